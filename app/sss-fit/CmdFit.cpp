@@ -1,0 +1,160 @@
+#include "CommandSupport.h"
+#include "SvgPlot.h"
+
+#include "profiles/GaussianFit.h"
+#include "profiles/KernelExport.h"
+#include "profiles/MonteCarlo.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+namespace sss::app {
+
+namespace {
+
+constexpr const char* kChannelColor[3] = {"#d62728", "#2ca02c", "#1f77b4"};
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+LogLogPlot make_plot(const FitArgs& a, const ResolvedMedium& rm,
+                     const profiles::FitTarget& target, const profiles::GaussianFit& fit,
+                     const profiles::ModelOptions& opt) {
+  LogLogPlot plot;
+  plot.title = "r·R(r): " + a.common.model + " and a " + std::to_string(a.gaussians) +
+               "-Gaussian fit — " + rm.description;
+  plot.x_label = "r (mm)";
+  plot.y_label = "r·R(r) (mm^-1)";
+  for (int c = 0; c < 3; ++c) {
+    PlotSeries model;
+    model.label = std::string(kChannelNames[c]) + " " + a.common.model;
+    model.color = kChannelColor[c];
+    PlotSeries fitted;
+    fitted.label = std::string(kChannelNames[c]) + " fit";
+    fitted.color = kChannelColor[c];
+    fitted.dashed = true;
+    for (std::size_t i = 0; i < target.r_mm.size(); ++i) {
+      const double r = target.r_mm[i];
+      model.x.push_back(r);
+      model.y.push_back(r * target.R[i][c]);
+      fitted.x.push_back(r);
+      fitted.y.push_back(r * fit.evaluate(r)[c]);
+    }
+    plot.series.push_back(std::move(model));
+    plot.series.push_back(std::move(fitted));
+  }
+  if (a.plot_mc) {
+    for (int c = 0; c < 3; ++c) {
+      const auto k = rm.medium.channel(c);
+      profiles::MonteCarloOptions mc;
+      mc.photons = opt.mc_photons;
+      mc.seed = opt.mc_seed + c;
+      mc.threads = opt.mc_threads;
+      mc.thickness_mm = rm.medium.thickness_mm;
+      mc.bin_edges_mm = profiles::log_bin_edges(0.02 * k.mfp_reduced(),
+                                                20.0 / k.sigma_tr_classical(), 40);
+      mc.progress = [c](double f) { progress_bar("Monte Carlo", (c + f) / 3.0); };
+      const auto res = profiles::run_monte_carlo(k, mc);
+      PlotSeries pts;
+      pts.label = std::string(kChannelNames[c]) + " Monte Carlo";
+      pts.color = kChannelColor[c];
+      pts.markers = true;
+      for (std::size_t b = 1; b + 1 < res.bin_edges_mm.size(); ++b) {
+        const double r0 = res.bin_edges_mm[b], r1 = res.bin_edges_mm[b + 1];
+        const double r = std::sqrt(0.5 * (r0 * r0 + r1 * r1));
+        pts.x.push_back(r);
+        pts.y.push_back(r * res.reflectance.value[b]);
+        pts.y_err.push_back(r * res.reflectance.stderr_[b]);
+      }
+      plot.series.push_back(std::move(pts));
+    }
+  }
+  char line[128];
+  std::snprintf(line, sizeof line, "relative L2 error of r·R:");
+  plot.notes.push_back(line);
+  std::snprintf(line, sizeof line, "R %.2f%%  G %.2f%%  B %.2f%%", 100 * fit.relative_error[0],
+                100 * fit.relative_error[1], 100 * fit.relative_error[2]);
+  plot.notes.push_back(line);
+  std::snprintf(line, sizeof line, "total reflectance:");
+  plot.notes.push_back(line);
+  std::snprintf(line, sizeof line, "%.4f %.4f %.4f", fit.total_reflectance[0],
+                fit.total_reflectance[1], fit.total_reflectance[2]);
+  plot.notes.push_back(line);
+  plot.notes.push_back("solid: model, dashed: fit");
+  return plot;
+}
+
+}  // namespace
+
+int run_fit(const FitArgs& a) {
+  const auto model = resolve_model(a.common.model);
+  if (!model) return kExitUsage;
+  if (a.gaussians < 1 || a.gaussians > profiles::kMaxGaussians)
+    return usage_error("--gaussians: must be in [1, " + std::to_string(profiles::kMaxGaussians) +
+                       "], got " + std::to_string(a.gaussians));
+  if (a.taps != 0 && (a.taps < 3 || a.taps % 2 == 0 || a.taps > 255))
+    return usage_error("--taps: must be odd and in [3, 255], got " + std::to_string(a.taps));
+  const auto opt = model_options(a.common);
+  auto resolved = resolve_medium(a.common.medium, *model, opt);
+  if (auto* e = std::get_if<FieldError>(&resolved)) return usage_error(*e);
+  const auto& rm = std::get<ResolvedMedium>(resolved);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const profiles::RgbProfile profile(*model, rm.medium, opt);
+  const auto t1 = std::chrono::steady_clock::now();
+  const auto target = profiles::make_fit_target(profile, a.samples);
+  const auto fit = profiles::fit_gaussians(target, {a.gaussians});
+  const auto t2 = std::chrono::steady_clock::now();
+
+  std::optional<profiles::SeparableKernel> separable;
+  if (a.taps > 0) separable = profiles::make_separable_kernel(profile, a.taps);
+  const profiles::KernelInfo info{a.common.model, rm.description};
+  const std::string json = profiles::kernel_to_json(fit, info, separable ? &*separable : nullptr);
+
+  if (!a.out.empty()) {
+    const std::string bytes =
+        ends_with(a.out, ".h") || ends_with(a.out, ".hpp")
+            ? profiles::kernel_to_c_header(fit, info, separable ? &*separable : nullptr,
+                                           a.header_prefix)
+            : json;
+    if (!write_output(a.out, bytes)) return kExitRuntime;
+  }
+  if (!a.plot.empty() &&
+      !write_output(a.plot, render_svg(make_plot(a, rm, target, fit, opt))))
+    return kExitRuntime;
+
+  if (a.common.json) {
+    std::cout << json << '\n';
+    return kExitOk;
+  }
+  const double ms_profile = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  const double ms_fit = std::chrono::duration<double, std::milli>(t2 - t1).count();
+  std::printf("%d-Gaussian fit of %s for %s\n", a.gaussians, a.common.model.c_str(),
+              rm.description.c_str());
+  std::printf("G(v,r) = exp(-r^2/2v)/(2 pi v);  R(r) ~ sum_i w_i G(v_i, r)\n\n");
+  std::printf("  %-12s %-12s %-12s %-12s\n", "v (mm^2)", "w_R", "w_G", "w_B");
+  for (std::size_t i = 0; i < fit.variances_mm2.size(); ++i)
+    std::printf("  %-12.5g %-12.5g %-12.5g %-12.5g\n", fit.variances_mm2[i], fit.weights[i][0],
+                fit.weights[i][1], fit.weights[i][2]);
+  std::printf("\ntotal reflectance     %.6f %.6f %.6f\n", fit.total_reflectance[0],
+              fit.total_reflectance[1], fit.total_reflectance[2]);
+  std::printf("relative L2 error    %.3f%% %.3f%% %.3f%%   (of r*R(r), measure dr)\n",
+              100 * fit.relative_error[0], 100 * fit.relative_error[1],
+              100 * fit.relative_error[2]);
+  std::printf("time: profile %.2f ms, sampling + fit %.2f ms\n", ms_profile, ms_fit);
+  if (separable) {
+    std::printf("\nseparable kernel, %d taps over +-%.4g mm (weights sum to 1 per channel):\n",
+                a.taps, separable->range_mm);
+    for (std::size_t i = 0; i < separable->offsets_mm.size(); ++i)
+      std::printf("  %+10.5f mm  %.6f %.6f %.6f\n", separable->offsets_mm[i],
+                  separable->weights[i][0], separable->weights[i][1], separable->weights[i][2]);
+  }
+  if (!a.out.empty()) std::printf("wrote %s\n", a.out.c_str());
+  if (!a.plot.empty()) std::printf("wrote %s\n", a.plot.c_str());
+  return kExitOk;
+}
+
+}  // namespace sss::app

@@ -1,0 +1,49 @@
+// The four sss-fit commands. Each returns the process exit code: 0 success, 2 bad usage
+// or input (message on stderr), 1 a runtime failure such as an unwritable output file.
+#pragma once
+
+#include "MediumArgs.h"
+
+#include <cstdint>
+#include <string>
+
+namespace sss::app {
+
+inline constexpr int kExitOk = 0, kExitRuntime = 1, kExitUsage = 2;
+
+struct CommonArgs {
+  MediumArgs medium;
+  std::string model = "better-dipole";
+  bool json = false;
+  int pbd_samples = 0;  // 0: the library default
+  std::uint64_t photons = 1u << 20;
+  std::uint64_t seed = 1;
+  int threads = 0;
+};
+
+struct ProfileArgs {
+  CommonArgs common;
+  std::string radii;  // START:STOP:COUNT
+  bool log_spacing = false;
+};
+
+struct FitArgs {
+  CommonArgs common;
+  int gaussians = 6;
+  int samples = 96;
+  int taps = 0;  // > 0: also a separable kernel with this many taps
+  std::string out, plot;
+  bool plot_mc = false;
+  std::string header_prefix = "sss_kernel";
+};
+
+int run_presets(bool json);
+int run_profile(const ProfileArgs& a);
+int run_fit(const FitArgs& a);
+int run_validate(const CommonArgs& a);
+
+// "sss-fit: error: FIELD: message" on stderr.
+int usage_error(const FieldError& e);
+int usage_error(const std::string& message);
+
+}  // namespace sss::app

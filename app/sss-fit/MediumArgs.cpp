@@ -1,0 +1,159 @@
+#include "MediumArgs.h"
+
+#include "profiles/ArtistMapping.h"
+#include "profiles/Presets.h"
+
+#include <cerrno>
+#include <cstdlib>
+#include <sstream>
+
+namespace sss::app {
+
+using profiles::Medium;
+
+void add_medium_options(CLI::App& cmd, MediumArgs& a) {
+  cmd.add_option("--preset", a.preset, "Measured medium of Jensen et al. 2001 (see `presets`)");
+  cmd.add_option("--sigma-a", a.sigma_a, "Absorption coefficient, mm^-1: R,G,B or one value");
+  cmd.add_option("--sigma-s", a.sigma_s, "Scattering coefficient, mm^-1: R,G,B or one value");
+  cmd.add_option("--color", a.color,
+                 "Artist mode: diffuse colour (total reflectance) R,G,B in (0,1)");
+  cmd.add_option("--mfp", a.mfp, "Artist mode: reduced mean free path 1/sigma_t', mm: R,G,B");
+  cmd.add_option("--g", a.g, "Henyey-Greenstein anisotropy in (-1,1) (default 0)");
+  cmd.add_option("--eta", a.eta, "Refractive index of the medium (default 1.3; preset's own)");
+  cmd.add_option("--thickness", a.thickness, "Slab thickness, mm (default: semi-infinite)");
+}
+
+std::variant<double, FieldError> parse_number(const std::string& option,
+                                              const std::string& text) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(begin, &end);
+  if (text.empty() || end == begin || *end != '\0' || errno == ERANGE)
+    return FieldError{option, "expected a number, got '" + text + "'"};
+  return v;
+}
+
+std::variant<Rgb, FieldError> parse_rgb(const std::string& option, const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) parts.push_back(item);
+  if (!text.empty() && text.back() == ',') parts.push_back("");
+  if (parts.size() != 1 && parts.size() != 3)
+    return FieldError{option, "expected R,G,B or one number, got '" + text + "'"};
+  Rgb out{};
+  for (int c = 0; c < 3; ++c) {
+    auto v = parse_number(option, parts[parts.size() == 1 ? 0 : c]);
+    if (auto* e = std::get_if<FieldError>(&v)) {
+      e->message = "expected R,G,B or one number, got '" + text + "'";
+      return *e;
+    }
+    out[c] = std::get<double>(v);
+  }
+  return out;
+}
+
+namespace {
+
+std::string rgb_text(const Rgb& v) {
+  std::ostringstream s;
+  s << v[0] << ',' << v[1] << ',' << v[2];
+  return s.str();
+}
+
+}  // namespace
+
+std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
+                                                        profiles::Model model,
+                                                        const profiles::ModelOptions& opt) {
+  const bool by_preset = !a.preset.empty();
+  const bool by_coeff = !a.sigma_a.empty() || !a.sigma_s.empty();
+  const bool by_artist = !a.color.empty() || !a.mfp.empty();
+  if (by_preset + by_coeff + by_artist == 0)
+    return FieldError{"MEDIUM", "give --preset NAME, or --sigma-a and --sigma-s, or --color and --mfp"};
+  if (by_preset + by_coeff + by_artist > 1)
+    return FieldError{"MEDIUM", "--preset, --sigma-a/--sigma-s and --color/--mfp exclude each other"};
+
+  double g = 0.0, eta = 1.3, thickness = std::numeric_limits<double>::infinity();
+  if (!a.g.empty()) {
+    auto v = parse_number("--g", a.g);
+    if (auto* e = std::get_if<FieldError>(&v)) return *e;
+    g = std::get<double>(v);
+  }
+  const bool eta_given = !a.eta.empty();
+  if (eta_given) {
+    auto v = parse_number("--eta", a.eta);
+    if (auto* e = std::get_if<FieldError>(&v)) return *e;
+    eta = std::get<double>(v);
+  }
+  if (!a.thickness.empty()) {
+    auto v = parse_number("--thickness", a.thickness);
+    if (auto* e = std::get_if<FieldError>(&v)) return *e;
+    thickness = std::get<double>(v);
+  }
+
+  ResolvedMedium out;
+  std::ostringstream desc;
+  if (by_preset) {
+    const profiles::Preset* p = profiles::find_preset(a.preset);
+    if (!p)
+      return FieldError{"--preset", "unknown preset '" + a.preset +
+                                        "'; known: " + profiles::preset_names()};
+    if (!a.g.empty())
+      return FieldError{"--g", "presets give the reduced scattering σs' only (g = 0); "
+                               "use --sigma-a/--sigma-s with --g instead"};
+    out.medium = profiles::preset_medium(*p);
+    if (eta_given) out.medium.eta = {eta, eta, eta};
+    desc << "preset " << p->name;
+    if (eta_given) desc << ", eta " << eta;
+  } else if (by_coeff) {
+    if (a.sigma_a.empty()) return FieldError{"--sigma-a", "is required with --sigma-s"};
+    if (a.sigma_s.empty()) return FieldError{"--sigma-s", "is required with --sigma-a"};
+    auto sa = parse_rgb("--sigma-a", a.sigma_a);
+    if (auto* e = std::get_if<FieldError>(&sa)) return *e;
+    auto ss = parse_rgb("--sigma-s", a.sigma_s);
+    if (auto* e = std::get_if<FieldError>(&ss)) return *e;
+    out.medium.sigma_a = std::get<Rgb>(sa);
+    out.medium.sigma_s = std::get<Rgb>(ss);
+    out.medium.g = {g, g, g};
+    out.medium.eta = {eta, eta, eta};
+    desc << "sigma_a " << rgb_text(out.medium.sigma_a) << " sigma_s "
+         << rgb_text(out.medium.sigma_s) << " /mm, g " << g << ", eta " << eta;
+  } else {
+    if (a.color.empty()) return FieldError{"--color", "is required with --mfp"};
+    if (a.mfp.empty()) return FieldError{"--mfp", "is required with --color"};
+    auto col = parse_rgb("--color", a.color);
+    if (auto* e = std::get_if<FieldError>(&col)) return *e;
+    auto mfp = parse_rgb("--mfp", a.mfp);
+    if (auto* e = std::get_if<FieldError>(&mfp)) return *e;
+    profiles::ArtistParameters ap{std::get<Rgb>(col), std::get<Rgb>(mfp), eta, g, thickness};
+    const profiles::Model inversion =
+        model == profiles::Model::MonteCarlo ? profiles::Model::BetterDipole : model;
+    auto m = profiles::medium_from_artist(inversion, ap, opt);
+    if (auto* e = std::get_if<FieldError>(&m)) {
+      e->field = "--" + e->field;
+      return *e;
+    }
+    out.medium = std::get<Medium>(m);
+    desc << "color " << rgb_text(ap.color) << ", mfp " << rgb_text(ap.mfp_mm) << " mm via "
+         << profiles::model_name(inversion) << ", g " << g << ", eta " << eta;
+  }
+  out.medium.thickness_mm = thickness;
+  if (out.medium.is_slab()) desc << ", slab " << thickness << " mm";
+  if (auto e = out.medium.validate()) {
+    // Name the option the user typed, e.g. "--sigma-a[G]".
+    std::string f = e->field;
+    for (const char* key : {"sigma_a", "sigma_s"})
+      if (f.rfind(key, 0) == 0) f = std::string(by_preset ? "--preset " + a.preset + ": " : "--") +
+                                     (key[6] == 'a' ? "sigma-a" : "sigma-s") + f.substr(7);
+    if (f.rfind("thickness", 0) == 0) f = "--thickness";
+    if (f.rfind("eta", 0) == 0) f = "--eta" + f.substr(3);
+    if (f.rfind("g[", 0) == 0) f = "--g" + f.substr(1);
+    e->field = f;
+    return *e;
+  }
+  out.description = desc.str();
+  return out;
+}
+
+}  // namespace sss::app

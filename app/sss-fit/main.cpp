@@ -1,0 +1,90 @@
+// sss-fit: diffusion profiles, their sum-of-Gaussians fits, and validation against Monte
+// Carlo. The command-line contract is DESIGN.md §4.
+#include "Commands.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+using namespace sss::app;
+
+namespace {
+
+void add_common(CLI::App& cmd, CommonArgs& a, bool with_model) {
+  add_medium_options(cmd, a.medium);
+  if (with_model)
+    cmd.add_option("--model", a.model,
+                   "dipole | better-dipole | pbd | burley | multipole | mc (default better-dipole)");
+  cmd.add_flag("--json", a.json, "Print one JSON document on stdout and nothing else");
+  cmd.add_option("--pbd-samples", a.pbd_samples, "PBD depth samples per strategy (default 32)")
+      ->check(CLI::Range(1, 4096));
+  cmd.add_option("--photons", a.photons, "Monte Carlo photons per channel")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  cmd.add_option("--seed", a.seed, "Monte Carlo seed (results are deterministic per seed)");
+  cmd.add_option("--threads", a.threads, "Monte Carlo threads (0: all cores)")
+      ->check(CLI::Range(0, 1024));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "sss-fit: diffusion profiles R(r) of translucent media, sum-of-Gaussians fits for "
+      "real-time rendering, and validation against Monte Carlo.\n"
+      "Units: coefficients in mm^-1, radii in mm, R(r) in mm^-2.",
+      "sss-fit"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "sss-fit 0.1.0");
+
+  bool presets_json = false;
+  auto* presets = app.add_subcommand("presets", "List the measured media (Jensen et al. 2001)");
+  presets->add_flag("--json", presets_json, "Print JSON");
+
+  ProfileArgs pa;
+  auto* profile = app.add_subcommand("profile", "Print R(r) of a model at given radii");
+  add_common(*profile, pa.common, true);
+  profile->add_option("--radii", pa.radii, "START:STOP:COUNT in mm (linear spacing)")->required();
+  profile->add_flag("--log", pa.log_spacing, "Space the radii logarithmically instead");
+
+  FitArgs fa;
+  auto* fit = app.add_subcommand("fit", "Fit a sum of Gaussians to a model's profile");
+  add_common(*fit, fa.common, true);
+  fit->add_option("--gaussians", fa.gaussians, "Number of Gaussians, 1..8 (default 6)");
+  fit->add_option("--samples", fa.samples, "Radii sampled for the fit (default 96)")
+      ->check(CLI::Range(16, 4096));
+  fit->add_option("--out", fa.out, "Write the kernel: FILE.json, or FILE.h for a C header");
+  fit->add_option("--plot", fa.plot, "Write an SVG plot of r*R(r), the fit and its error");
+  fit->add_flag("--plot-mc", fa.plot_mc, "Add Monte Carlo points (with error bars) to the plot");
+  fit->add_option("--taps", fa.taps, "Also export a separable 1D kernel with this many taps (odd)");
+  fit->add_option("--prefix", fa.header_prefix, "Identifier prefix in the C header");
+
+  CommonArgs va;
+  auto* validate = app.add_subcommand("validate", "Every model against Monte Carlo");
+  add_common(*validate, va, false);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "sss-fit: error: " << e.what() << "\nRun 'sss-fit --help' for usage.\n";
+    return kExitUsage;
+  }
+
+  try {
+    if (presets->parsed()) return run_presets(presets_json);
+    if (profile->parsed()) return run_profile(pa);
+    if (fit->parsed()) return run_fit(fa);
+    if (validate->parsed()) return run_validate(va);
+  } catch (const std::invalid_argument& e) {
+    return usage_error(e.what());
+  } catch (const std::exception& e) {
+    std::cerr << "sss-fit: error: " << e.what() << '\n';
+    return kExitRuntime;
+  }
+  return kExitUsage;
+}

@@ -1,0 +1,94 @@
+#include "profiles/ArtistMapping.h"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace sss::profiles {
+
+namespace {
+
+// The medium in reduced-mean-free-path units (σt' = 1) with reduced albedo α'.
+Coefficients optical_units(double alpha_p, double eta, double g) {
+  return {1.0 - alpha_p, alpha_p / (1.0 - g), g, eta};
+}
+
+double total_at(Model model, double alpha_p, double eta, double g, double thickness_mfp,
+                const ModelOptions& opt) {
+  return make_profile(model, optical_units(alpha_p, eta, g), thickness_mfp, opt)
+      ->total_reflectance();
+}
+
+std::string str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::variant<double, FieldError> invert_total_reflectance(Model model, double reflectance,
+                                                          double eta, double g,
+                                                          double thickness_mfp,
+                                                          const ModelOptions& opt) {
+  if (model == Model::MonteCarlo)
+    return FieldError{"model",
+                      "mc has no deterministic total reflectance to invert; choose an "
+                      "analytic model for the colour + mean free path mapping"};
+  if (!std::isfinite(reflectance) || !(reflectance > 0.0) || !(reflectance < 1.0))
+    return FieldError{"color", "must lie strictly between 0 and 1, got " + str(reflectance)};
+  // Total reflectance rises monotonically with α'. Near α' = 1 it behaves like
+  // 1 - c√(1-α'), so bisect in u = √(1-α'), where it is close to linear.
+  constexpr double u_min = 1e-5, u_max = 1.0 - 1e-9;  // α' ∈ [~0, 1 - 1e-10]
+  const double hi_total = total_at(model, 1.0 - u_min * u_min, eta, g, thickness_mfp, opt);
+  const double lo_total = total_at(model, 1.0 - u_max * u_max, eta, g, thickness_mfp, opt);
+  if (reflectance > hi_total)
+    return FieldError{"color", str(reflectance) + " is brighter than model " +
+                                   std::string(model_name(model)) + " can reach (" +
+                                   str(hi_total) + " at this eta and thickness)"};
+  if (reflectance < lo_total)
+    return FieldError{"color", str(reflectance) + " is darker than model " +
+                                   std::string(model_name(model)) + " can reach (" +
+                                   str(lo_total) + ")"};
+  double lo = u_min, hi = u_max;  // total(lo) >= reflectance >= total(hi)
+  for (int i = 0; i < 64 && hi - lo > 1e-15; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (total_at(model, 1.0 - mid * mid, eta, g, thickness_mfp, opt) > reflectance)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  const double u = 0.5 * (lo + hi);
+  return 1.0 - u * u;
+}
+
+std::variant<Medium, FieldError> medium_from_artist(Model model, const ArtistParameters& p,
+                                                    const ModelOptions& opt) {
+  Medium m;
+  m.thickness_mm = p.thickness_mm;
+  for (int c = 0; c < 3; ++c) {
+    const std::string ch = std::string("[") + kChannelNames[c] + "]";
+    if (!std::isfinite(p.mfp_mm[c]) || !(p.mfp_mm[c] > 0.0))
+      return FieldError{"mfp" + ch, "mean free path must be > 0 mm, got " + str(p.mfp_mm[c])};
+    if (!std::isfinite(p.g) || !(std::fabs(p.g) < 1.0))
+      return FieldError{"g", "must lie in (-1, 1), got " + str(p.g)};
+    if (!std::isfinite(p.eta) || !(p.eta > 0.0))
+      return FieldError{"eta", "must be > 0, got " + str(p.eta)};
+    auto inverted = invert_total_reflectance(model, p.color[c], p.eta, p.g,
+                                             p.thickness_mm / p.mfp_mm[c], opt);
+    if (auto* e = std::get_if<FieldError>(&inverted)) {
+      e->field += ch;
+      return *e;
+    }
+    const double alpha_p = std::get<double>(inverted);
+    const double sigma_tp = 1.0 / p.mfp_mm[c];
+    m.sigma_a[c] = (1.0 - alpha_p) * sigma_tp;
+    m.sigma_s[c] = alpha_p * sigma_tp / (1.0 - p.g);
+    m.g[c] = p.g;
+    m.eta[c] = p.eta;
+  }
+  if (auto e = m.validate()) return *e;
+  return m;
+}
+
+}  // namespace sss::profiles

@@ -1,0 +1,71 @@
+// Sum-of-Gaussians fit of an RGB diffusion profile (DESIGN.md §3):
+//   R_c(r) ≈ Σ_i w_ic G(v_i, r),   G(v, r) = exp(-r²/2v) / (2πv)   (unit integral in 2D)
+// with variances v_i shared by R, G and B and weights w_ic >= 0 per channel, so one blur
+// per Gaussian serves all three channels. Σ_i w_ic equals the profile's total reflectance
+// exactly (energy is preserved). The error is the relative L2 error of r·R(r) with the
+// linear measure dr:  e_c = ‖r(R_c - R̃_c)‖₂ / ‖r R_c‖₂.
+//
+// Optimiser: variable projection (Golub & Pereyra 1973). For fixed variances the weights
+// are a non-negative least-squares problem (Lawson–Hanson) with the energy equality;
+// Levenberg–Marquardt moves the log-variances.
+#pragma once
+
+#include "profiles/Medium.h"
+#include "profiles/Profile.h"
+
+#include <vector>
+
+namespace sss::profiles {
+
+inline constexpr int kMaxGaussians = 8;
+
+// G(v, r) above.
+double gaussian_2d(double variance_mm2, double r_mm);
+
+// Samples of the profile to fit: radii (ascending, log-spaced), R at each, quadrature
+// weights for ∫ · dr, and the totals that the weights must sum to.
+struct FitTarget {
+  std::vector<double> r_mm;
+  std::vector<Rgb> R;
+  std::vector<double> dr;  // quadrature weight of each sample for ∫ f(r) dr
+  Rgb total_reflectance{};
+  // The profile's length scales (RgbProfile::inner_radius / support_radius), which place
+  // the fit's starting variances. 0 (a hand-built target) means 1e3·r_mm.front() and
+  // r_mm.back(), the grid make_fit_target would have used.
+  double inner_radius_mm = 0.0;
+  double support_radius_mm = 0.0;
+};
+
+// Samples `profile` on a log grid from 1e-3·inner_radius to support_radius. dr holds the
+// trapezoid weights in ln r times r (∫ f dr = ∫ f r d ln r). Throws std::invalid_argument
+// for samples < 2.
+FitTarget make_fit_target(const RgbProfile& profile, int samples = 96);
+
+struct GaussianFit {
+  std::vector<double> variances_mm2;  // ascending
+  std::vector<Rgb> weights;           // one RGB weight per variance, each >= 0
+  Rgb total_reflectance{};            // Σ_i weights[i] per channel (== the profile's)
+  Rgb relative_error{};               // e_c above, on the target's samples
+  int iterations = 0;                 // Levenberg–Marquardt iterations, all starts summed
+
+  Rgb evaluate(double r_mm) const;
+};
+
+struct FitOptions {
+  int gaussians = 6;  // 1 .. kMaxGaussians
+  int max_iterations = 60;
+};
+
+// For fixed variances each channel's weights solve min Σ_j dr_j r_j²(R_j − R̃_j)² with
+// w >= 0 and Σw = total: NNLS on the system augmented by a heavily weighted row Σw = total,
+// then a rescale that makes the sum exact to rounding (|Σw − total| <= 1e-15·total; the
+// rescale changes each weight by the row's residual, below 1e-8 relative). The outer
+// Levenberg–Marquardt minimises Σ_c e_c² over the log-variances with the exact
+// variable-projection Jacobian, from three starting spreads, and re-seeds Gaussians
+// whose weights vanish in every channel.
+// Throws std::invalid_argument for a gaussian count outside [1, kMaxGaussians] or an
+// empty/invalid target (sizes differ, fewer samples than gaussians + 1, radii not
+// positive and ascending, non-finite values, negative totals).
+GaussianFit fit_gaussians(const FitTarget& target, const FitOptions& opt = {});
+
+}  // namespace sss::profiles

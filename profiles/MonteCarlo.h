@@ -1,0 +1,101 @@
+// Monte Carlo reference: an analog-direction random walk with Henyey–Greenstein
+// scattering in a semi-infinite medium or a finite slab under a smooth dielectric
+// boundary (Fresnel reflection and refraction, total internal reflection).
+//
+// A unit-power pencil beam enters at the origin at normal incidence; like the diffusion
+// models, results are per unit power that entered (the specular reflection at entry is
+// excluded). Deterministic for a seed whatever the thread count: photons are processed in
+// fixed chunks, each with its own RNG stream, and chunk tallies are summed in order.
+// Every binned value carries its standard error, computed from per-photon contributions.
+//
+// The walk (MonteCarlo.cpp has the details and sources):
+// - photons start at the origin going straight down (+z; the medium is z >= 0) with
+//   weight 1; distances between scattering events are sampled with sigma_s, and the weight
+//   decays continuously as exp(-sigma_a * path length) ("absorption weighting", the
+//   microscopic Beer–Lambert form; Sassaroli & Martelli 2012, JOSA A 29(10):2110, show it
+//   equals implicit capture with sigma_t flights in expectation). Without scattering the
+//   walk is therefore deterministic and reproduces the slab's closed forms to rounding;
+// - Henyey–Greenstein scattering with the real g (not similarity-reduced);
+// - Russian roulette (unbiased) below `roulette_weight`;
+// - Fresnel splitting at each face: the fraction 1 - Fr of the weight escapes and is
+//   tallied at the exit radius; the fraction Fr reflects specularly and walks on.
+#pragma once
+
+#include "profiles/Medium.h"
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace sss::profiles {
+
+struct MonteCarloOptions {
+  std::uint64_t photons = 1u << 20;
+  std::uint64_t seed = 1;
+  int threads = 0;  // 0: std::thread::hardware_concurrency()
+  double thickness_mm = std::numeric_limits<double>::infinity();
+  // Radial bin edges (mm, ascending, first edge may be 0). Exits beyond the last edge
+  // count in the totals only.
+  std::vector<double> bin_edges_mm;
+  // Called with the fraction done (0..1] after each chunk; may be empty. Calls come from
+  // worker threads but never overlap, and the fractions increase. An exception thrown by
+  // it stops the run and is rethrown by run_monte_carlo.
+  std::function<void(double)> progress;
+
+  // Russian roulette: when a photon's weight falls below roulette_weight it survives with
+  // probability roulette_survival (its weight divided by that) or ends. In (0, 1) each.
+  double roulette_weight = 1e-4;
+  double roulette_survival = 0.1;
+  // Guard against endless walks: a photon is stopped after this many interactions
+  // (scattering events plus boundary hits); such photons are counted in
+  // MonteCarloResult::truncated_photons and their remaining weight is lost.
+  std::uint64_t max_interactions_per_photon = 1'000'000;
+  // 0: every scattering order. k > 0: a photon ends (its weight dropped, not tallied)
+  // instead of scattering a (k+1)-th time; k = 1 gives single scattering alone, to check
+  // against closed forms.
+  int max_scattering_order = 0;
+};
+
+// Photons per chunk: the unit of work, of RNG streams and of the ordered reduction.
+inline constexpr std::uint64_t kMonteCarloChunkPhotons = 4096;
+
+// Standard errors use the per-photon contributions x_p (a photon's summed exits into a
+// bin, or through a face): SE = sqrt((Σx² - N x̄²) / (N (N - 1))), divided by the
+// annulus area for binned values. With photons == 1 they are +infinity (unknown).
+struct MonteCarloTally {
+  std::vector<double> value;   // mean over the annulus, mm^-2: Σ weight / (N π (r1² - r0²))
+  std::vector<double> stderr_; // its standard error
+  double total = 0.0;          // total flux fraction (exits at any radius)
+  double total_stderr = 0.0;
+};
+
+struct MonteCarloResult {
+  std::vector<double> bin_edges_mm;
+  MonteCarloTally reflectance;    // exits through the top face (z = 0)
+  MonteCarloTally transmittance;  // exits through the bottom face (slabs only)
+  std::uint64_t photons = 0;
+  std::uint64_t scattering_events = 0;
+  // Weight absorbed in the medium per unit power entered, with its standard error. In
+  // expectation reflectance.total + transmittance.total + absorbed = 1 when no photon was
+  // truncated and max_scattering_order == 0 (roulette is unbiased, so it adds no bias).
+  double absorbed = 0.0;
+  double absorbed_stderr = 0.0;
+  std::uint64_t truncated_photons = 0;  // stopped by max_interactions_per_photon
+  double seconds = 0.0;
+};
+
+// Throws std::invalid_argument whose message starts with the offending field
+// ("sigma_a: ...", "photons: ...", "bin_edges_mm: ...", "thickness_mm: ...", "threads: ...",
+// "roulette_weight: ...", ...) for invalid coefficients (Coefficients::validate), photons
+// == 0, threads < 0, a thickness that is not > 0 (NaN included), or bin edges that are
+// not finite, >= 0 and strictly ascending. An empty bin_edges_mm is allowed (totals
+// only); a single edge is not (it bounds no bin).
+MonteCarloResult run_monte_carlo(const Coefficients& c, const MonteCarloOptions& opt);
+
+// Returns count + 2 edges: {0, lo, lo q, lo q², ..., hi} with q = (hi/lo)^(1/count), i.e.
+// the disc [0, lo] followed by `count` log-spaced annuli from lo to hi (the last edge is
+// exactly hi). Throws std::invalid_argument unless 0 < lo < hi (finite) and count >= 1.
+std::vector<double> log_bin_edges(double lo, double hi, int count);
+
+}  // namespace sss::profiles

@@ -1,0 +1,120 @@
+#include "profiles/Profile.h"
+
+#include "profiles/BetterDipole.h"
+#include "profiles/Burley.h"
+#include "profiles/ClassicalDipole.h"
+#include "profiles/MonteCarlo.h"
+#include "profiles/Multipole.h"
+#include "profiles/PhotonBeamDiffusion.h"
+#include "profiles/TabulatedProfile.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace sss::profiles {
+
+std::string_view model_name(Model m) {
+  switch (m) {
+    case Model::Dipole: return "dipole";
+    case Model::BetterDipole: return "better-dipole";
+    case Model::Pbd: return "pbd";
+    case Model::Burley: return "burley";
+    case Model::Multipole: return "multipole";
+    case Model::MonteCarlo: return "mc";
+  }
+  return "?";
+}
+
+std::optional<Model> parse_model(std::string_view name) {
+  for (Model m : kAllModels)
+    if (model_name(m) == name) return m;
+  return std::nullopt;
+}
+
+std::string model_names() {
+  std::string s;
+  for (Model m : kAllModels) {
+    if (!s.empty()) s += ", ";
+    s += model_name(m);
+  }
+  return s;
+}
+
+namespace {
+
+// The Monte Carlo "model": a random walk tabulated on log-spaced annuli from 1% of a
+// reduced mean free path out to where the classical diffusion tail has decayed by e^-20.
+std::unique_ptr<RadialProfile> make_monte_carlo(const Coefficients& c, double thickness_mm,
+                                                const ModelOptions& opt) {
+  MonteCarloOptions mc;
+  mc.photons = opt.mc_photons;
+  mc.seed = opt.mc_seed;
+  mc.threads = opt.mc_threads;
+  mc.thickness_mm = thickness_mm;
+  const double mfp = c.mfp_reduced();
+  const double outer = 20.0 / c.sigma_tr_classical() + 10.0 * mfp;
+  mc.bin_edges_mm = log_bin_edges(0.01 * mfp, outer, 96);
+  return std::make_unique<TabulatedProfile>(
+      TabulatedProfile::from_monte_carlo(run_monte_carlo(c, mc)));
+}
+
+}  // namespace
+
+std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
+                                            double thickness_mm, const ModelOptions& opt) {
+  if (auto e = c.validate()) throw std::invalid_argument(e->what());
+  switch (model) {
+    case Model::Dipole: return std::make_unique<ClassicalDipole>(c);
+    case Model::BetterDipole: return std::make_unique<BetterDipole>(c);
+    case Model::Pbd: return std::make_unique<PhotonBeamDiffusion>(c, opt.pbd_samples);
+    case Model::Burley: return std::make_unique<Burley>(c);
+    case Model::Multipole:
+      if (!(thickness_mm < std::numeric_limits<double>::infinity()))
+        throw std::invalid_argument(
+            "thickness: the multipole model describes a finite slab and needs a thickness "
+            "(--thickness MM)");
+      return std::make_unique<Multipole>(c, thickness_mm, opt.multipole_pairs);
+    case Model::MonteCarlo: return make_monte_carlo(c, thickness_mm, opt);
+  }
+  throw std::invalid_argument("unknown model");
+}
+
+RgbProfile::RgbProfile(Model model, const Medium& medium, const ModelOptions& opt)
+    : model_(model) {
+  if (auto e = medium.validate()) throw std::invalid_argument(e->what());
+  for (int c = 0; c < 3; ++c)
+    channels_[c] = make_profile(model, medium.channel(c), medium.thickness_mm, opt);
+}
+
+Rgb RgbProfile::reflectance(double r) const {
+  return {channels_[0]->reflectance(r), channels_[1]->reflectance(r),
+          channels_[2]->reflectance(r)};
+}
+
+Rgb RgbProfile::transmittance(double r) const {
+  return {channels_[0]->transmittance(r), channels_[1]->transmittance(r),
+          channels_[2]->transmittance(r)};
+}
+
+Rgb RgbProfile::total_reflectance() const {
+  return {channels_[0]->total_reflectance(), channels_[1]->total_reflectance(),
+          channels_[2]->total_reflectance()};
+}
+
+Rgb RgbProfile::total_transmittance() const {
+  return {channels_[0]->total_transmittance(), channels_[1]->total_transmittance(),
+          channels_[2]->total_transmittance()};
+}
+
+double RgbProfile::support_radius() const {
+  return std::max({channels_[0]->support_radius(), channels_[1]->support_radius(),
+                   channels_[2]->support_radius()});
+}
+
+double RgbProfile::inner_radius() const {
+  return std::min({channels_[0]->inner_radius(), channels_[1]->inner_radius(),
+                   channels_[2]->inner_radius()});
+}
+
+}  // namespace sss::profiles

@@ -1,0 +1,87 @@
+// RadialProfile: the radially symmetric diffusion profile R(r) of one channel, and the
+// factory that builds one for any model. RgbProfile bundles three channels.
+//
+// Conventions (DESIGN.md §3): r in mm, R(r) in mm^-2 = exitant flux per unit area per
+// unit power *entering* the medium at the origin (normal incidence; the specular
+// reflection at entry is not part of R). ∫ 2πr R(r) dr is the total diffuse reflectance.
+#pragma once
+
+#include "profiles/Medium.h"
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string_view>
+
+namespace sss::profiles {
+
+enum class Model { Dipole, BetterDipole, Pbd, Burley, Multipole, MonteCarlo };
+
+inline constexpr std::array<Model, 6> kAllModels = {Model::Dipole, Model::BetterDipole,
+                                                    Model::Pbd,    Model::Burley,
+                                                    Model::Multipole, Model::MonteCarlo};
+
+// CLI names: dipole | better-dipole | pbd | burley | multipole | mc
+std::string_view model_name(Model m);
+std::optional<Model> parse_model(std::string_view name);
+// A comma-separated list of every model name, for messages.
+std::string model_names();
+
+struct ModelOptions {
+  // Photon beam diffusion: samples along the refracted beam *per strategy* (exponential
+  // and equiangular, combined with MIS). See docs/PROFILES.md for the convergence study.
+  int pbd_samples = 32;
+  // Multipole: dipole pairs i in [-n, n].
+  int multipole_pairs = 10;
+  // Monte Carlo (Model::MonteCarlo tabulates a random-walk run).
+  std::uint64_t mc_photons = 1u << 20;
+  std::uint64_t mc_seed = 1;
+  int mc_threads = 0;  // 0: all hardware threads
+};
+
+class RadialProfile {
+ public:
+  virtual ~RadialProfile() = default;
+  // R(r) in mm^-2, for r >= 0. Finite at r = 0 for every model except those whose
+  // profile has an integrable 1/r singularity (PBD single scattering, Burley), which
+  // clamp r to a tiny positive radius instead of dividing by zero.
+  virtual double reflectance(double r_mm) const = 0;
+  // ∫ 2πr R(r) dr, closed form where one exists.
+  virtual double total_reflectance() const = 0;
+  // Transmittance profile at the far face of a finite slab (0 for semi-infinite media).
+  virtual double transmittance(double /*r_mm*/) const { return 0.0; }
+  virtual double total_transmittance() const { return 0.0; }
+  // A radius (mm) beyond which r R(r) is negligible (< 1e-8 of its scale): the outer end
+  // of integration and fitting ranges.
+  virtual double support_radius() const = 0;
+  // The smallest length (mm) on which the profile changes shape (about one reduced mean
+  // free path): the inner end of log-spaced grids is a small fraction of it.
+  virtual double inner_radius() const = 0;
+};
+
+// Builds one channel's profile. `thickness_mm` matters only to Multipole (which requires
+// it finite) and MonteCarlo (slab or semi-infinite). Throws std::invalid_argument for a
+// model that cannot be built from these inputs (e.g. multipole without a thickness).
+std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
+                                            double thickness_mm, const ModelOptions& opt);
+
+class RgbProfile {
+ public:
+  RgbProfile(Model model, const Medium& medium, const ModelOptions& opt = {});
+  Model model() const { return model_; }
+  const RadialProfile& channel(int c) const { return *channels_[c]; }
+  Rgb reflectance(double r_mm) const;
+  Rgb transmittance(double r_mm) const;
+  Rgb total_reflectance() const;
+  Rgb total_transmittance() const;
+  double support_radius() const;  // max over channels
+  double inner_radius() const;    // min over channels
+
+ private:
+  Model model_;
+  std::array<std::unique_ptr<RadialProfile>, 3> channels_;
+};
+
+}  // namespace sss::profiles
