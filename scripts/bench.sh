@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Builds in Release and runs the benchmarks. Arguments go to Google Benchmark, e.g.
+#   scripts/bench.sh --benchmark_filter=Fit
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SSS_BUILD_DIR=build-release SSS_BUILD_TYPE=Release scripts/build.sh >/dev/null
+build-release/bench/bench_profiles "$@"
