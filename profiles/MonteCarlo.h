@@ -64,9 +64,9 @@ inline constexpr std::uint64_t kMonteCarloChunkPhotons = 4096;
 // bin, or through a face): SE = sqrt((Σx² - N x̄²) / (N (N - 1))), divided by the
 // annulus area for binned values. With photons == 1 they are +infinity (unknown).
 struct MonteCarloTally {
-  std::vector<double> value;   // mean over the annulus, mm^-2: Σ weight / (N π (r1² - r0²))
-  std::vector<double> stderr_; // its standard error
-  double total = 0.0;          // total flux fraction (exits at any radius)
+  std::vector<double> value;    // mean over the annulus, mm^-2: Σ weight / (N π (r1² - r0²))
+  std::vector<double> stderr_;  // its standard error
+  double total = 0.0;           // total flux fraction (exits at any radius)
   double total_stderr = 0.0;
 };
 

@@ -79,7 +79,8 @@ TEST(HFunction, HOfZeroIsOne) {
 TEST(HFunction, TendsToOneWithTheRightSlope) {
   // Expanding H = 1 + α h1 + α² h2 + ... in the equation:
   //   h1(μ) = (μ/2) ln((1 + μ)/μ),
-  //   h2(μ) = h1(μ)² + (μ/2) ∫ h1(μ')/(μ+μ') dμ' <= h1(μ) (h1(μ) + max h1) <= 0.7 h1(μ),
+  //   h2(μ) = h1(μ)² + (μ/2) ∫ h1(μ')/(μ+μ') dμ'
+  //         <= h1(μ) (h1(μ) + max h1) <= 0.7 h1(μ),
   // since h1 increases with μ to h1(1) = ln(2)/2 < 0.35. Every h_k >= 0 and
   // Σ h_k = H(μ, α = 1) <= 2.91, so h_k <= 2.91 and the terms past α² sum to at most
   // 2.91 α³ / (1 - α). Hence |H - 1 - α h1| <= 0.7 α² h1 + 2.91 α³/(1 - α) (+ 1e-15 for
