@@ -23,7 +23,10 @@ void write_file_atomically(const std::string& path, std::string_view bytes) {
   const fs::path target(path);
   if (target.filename().empty()) throw WriteError(path + ": not a file name");
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string tmpl = (dir / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
+  std::string name = ".";
+  name += target.filename().string();
+  name += ".tmp-XXXXXX";
+  std::string tmpl = (dir / name).string();
   const int fd = ::mkstemp(tmpl.data());
   if (fd < 0) throw WriteError(path + ": cannot create a temporary file in " + dir.string() + ": " + reason());
   auto fail = [&](const std::string& what) {
