@@ -19,7 +19,7 @@ class Burley final : public RadialProfile {
   // Directly from the surface albedo A in [0, 1] and the mean free path ℓ (mm).
   // Throws std::invalid_argument outside those ranges.
   Burley(double albedo, double mfp_mm);
-  // R(r) in mm^-2; r is clamped to 1e-6 d (the 1/r singularity is integrable).
+  // R(r) in mm^-2; r is clamped to 1e-9 d (the 1/r singularity is integrable).
   double reflectance(double r_mm) const override;
   double total_reflectance() const override { return A_; }
   double support_radius() const override;

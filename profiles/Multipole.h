@@ -3,6 +3,17 @@
 // extrapolated boundaries, giving reflectance and transmittance profiles. With the
 // classical dipole's source depth and boundary constant, so a thick slab becomes the
 // classical dipole.
+//
+// Limits of the model (measured in tests/profiles/test_multipole.cpp):
+// - For d < ℓ = 1/σt' the real source lies below the slab: T(r) turns negative near the
+//   axis (total T ≈ -0.3 at d = 0.5 mfp). At d = ℓ it sits on the far face and adds
+//   nothing to T. Results are meaningful for d > ℓ.
+// - The pole series converges like e^{-σtr P |i|}, P = 2(d + 2 z_b). For bright thin slabs
+//   (σtr P ≲ 1, e.g. α' = 0.999, d = 0.5 mfp: 0.43) ten pairs miss R by 7e-4 relative at
+//   3 mfp and get the tail beyond 10 mfp wrong by orders of magnitude (there R has fallen
+//   below 1e-5 of R(0)). As α' → 1 the truncated totals even tend to R → α', T → 0,
+//   whereas the series tends to R = α'(d + z_b - ℓ)/(d + 2z_b): kAutoPairs sizes n
+//   from σtr P instead.
 #pragma once
 
 #include "profiles/Profile.h"
@@ -13,8 +24,11 @@ namespace sss::profiles {
 
 class Multipole final : public RadialProfile {
  public:
-  // Throws std::invalid_argument for invalid coefficients, a thickness that is not a
-  // finite positive number, or pairs < 0. `pairs` = n: the poles i in [-n, n].
+  // `pairs` = n: the poles i in [-n, n]. kAutoPairs picks n = max(10, ⌈25/(σtr P)⌉),
+  // capped at 10⁶, so that the omitted poles weigh ≲ e^{-25}. Throws
+  // std::invalid_argument for invalid coefficients, a thickness that is not a finite
+  // positive number, or pairs < 0 other than kAutoPairs.
+  static constexpr int kAutoPairs = -1;
   Multipole(const Coefficients& c, double thickness_mm, int pairs = 10);
   double reflectance(double r_mm) const override;
   double transmittance(double r_mm) const override;
@@ -22,14 +36,17 @@ class Multipole final : public RadialProfile {
   double total_transmittance() const override;  // closed form, summed over the pairs
   double support_radius() const override;
   double inner_radius() const override;
+  int pairs() const { return n_; }
   // Pole depths (z down from the lit face), i = -n..n in order.
-  const std::vector<double>& positive_poles() const { return z_pos_; }
-  const std::vector<double>& negative_poles() const { return z_neg_; }
+  std::vector<double> positive_poles() const;
+  std::vector<double> negative_poles() const;
 
  private:
+  double z_pos(int i) const { return i * period_ + ell_; }
+  double z_neg(int i) const { return i * period_ - ell_ - 2.0 * z_b_; }
   double alpha_p_, sigma_tr_, thickness_;
-  double ell_, z_b_;                   // source depth 1/σt', extrapolation distance 2AD
-  std::vector<double> z_pos_, z_neg_;  // source depths of the positive and negative poles
+  double ell_, z_b_, period_;  // source depth 1/σt', extrapolation distance 2AD, 2(d + 2z_b)
+  int n_;
 };
 
 }  // namespace sss::profiles
