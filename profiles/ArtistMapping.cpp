@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 namespace sss::profiles {
@@ -40,8 +41,17 @@ std::variant<double, FieldError> invert_total_reflectance(Model model, double re
   // Total reflectance rises monotonically with α'. Near α' = 1 it behaves like
   // 1 - c√(1-α'), so bisect in u = √(1-α'), where it is close to linear.
   constexpr double u_min = 1e-5, u_max = 1.0 - 1e-9;  // α' ∈ [~0, 1 - 1e-10]
-  const double hi_total = total_at(model, 1.0 - u_min * u_min, eta, g, thickness_mfp, opt);
-  const double lo_total = total_at(model, 1.0 - u_max * u_max, eta, g, thickness_mfp, opt);
+  double hi_total = 0.0, lo_total = 0.0;
+  try {
+    hi_total = total_at(model, 1.0 - u_min * u_min, eta, g, thickness_mfp, opt);
+    lo_total = total_at(model, 1.0 - u_max * u_max, eta, g, thickness_mfp, opt);
+  } catch (const std::invalid_argument& e) {
+    // The model refuses this geometry (e.g. a multipole slab thinner than one mfp).
+    std::string what = e.what();
+    const auto colon = what.find(": ");
+    if (colon != std::string::npos) return FieldError{what.substr(0, colon), what.substr(colon + 2)};
+    return FieldError{"model", what};
+  }
   if (reflectance > hi_total)
     return FieldError{"color", str(reflectance) + " is brighter than model " +
                                    std::string(model_name(model)) + " can reach (" +
@@ -74,6 +84,10 @@ std::variant<Medium, FieldError> medium_from_artist(Model model, const ArtistPar
       return FieldError{"g", "must lie in (-1, 1), got " + str(p.g)};
     if (!std::isfinite(p.eta) || !(p.eta > 0.0))
       return FieldError{"eta", "must be > 0, got " + str(p.eta)};
+    if (model == Model::Multipole && !(p.thickness_mm > p.mfp_mm[c]))
+      return FieldError{"thickness" + ch,
+                        "the multipole model needs a slab thicker than one reduced mean free "
+                        "path (" + str(p.mfp_mm[c]) + " mm), got " + str(p.thickness_mm) + " mm"};
     auto inverted = invert_total_reflectance(model, p.color[c], p.eta, p.g,
                                              p.thickness_mm / p.mfp_mm[c], opt);
     if (auto* e = std::get_if<FieldError>(&inverted)) {

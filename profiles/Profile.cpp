@@ -74,6 +74,13 @@ std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
         throw std::invalid_argument(
             "thickness: the multipole model describes a finite slab and needs a thickness "
             "(--thickness MM)");
+      // Donner & Jensen put the source one reduced mean free path deep; a slab thinner
+      // than that has its source outside and yields negative transmittance.
+      if (!(thickness_mm > c.mfp_reduced()))
+        throw std::invalid_argument(
+            "thickness: the multipole model needs a slab thicker than one reduced mean free "
+            "path (1/sigma_t' = " + std::to_string(c.mfp_reduced()) + " mm here), got " +
+            std::to_string(thickness_mm) + " mm");
       return std::make_unique<Multipole>(c, thickness_mm, opt.multipole_pairs);
     case Model::MonteCarlo: return make_monte_carlo(c, thickness_mm, opt);
   }

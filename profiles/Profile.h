@@ -31,10 +31,11 @@ std::string model_names();
 
 struct ModelOptions {
   // Photon beam diffusion: samples along the refracted beam *per strategy* (exponential
-  // and equiangular, combined with MIS). See docs/PROFILES.md for the convergence study.
+  // and equiangular, combined with MIS). 32 reaches 1% everywhere: docs/PBD_CONVERGENCE.md.
   int pbd_samples = 32;
-  // Multipole: dipole pairs i in [-n, n].
-  int multipole_pairs = 10;
+  // Multipole: dipole pairs i in [-n, n]; -1 (Multipole::kAutoPairs) sizes n so the
+  // omitted poles weigh less than e^-25 (needed for bright thin slabs).
+  int multipole_pairs = -1;
   // Monte Carlo (Model::MonteCarlo tabulates a random-walk run).
   std::uint64_t mc_photons = 1u << 20;
   std::uint64_t mc_seed = 1;

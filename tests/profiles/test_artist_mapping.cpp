@@ -52,7 +52,7 @@ TEST(ArtistMapping, RoundTripThroughAPresetAndBack) {
 }
 
 TEST(ArtistMapping, ThinSlabUsesTheMultipoleTotal) {
-  ArtistParameters p{{0.3, 0.3, 0.3}, {1.0, 1.0, 1.0}, 1.3, 0.0, 0.5};
+  ArtistParameters p{{0.3, 0.3, 0.3}, {1.0, 1.0, 1.0}, 1.3, 0.0, 2.0};
   const Medium med = ok(medium_from_artist(Model::Multipole, p));
   const RgbProfile prof(Model::Multipole, med);
   EXPECT_NEAR(prof.total_reflectance()[0], 0.3, 1e-9);
@@ -78,7 +78,11 @@ TEST(ArtistMapping, RejectsWhatCannotBeInverted) {
   EXPECT_EQ(field(p), "g");
   p = {{0.5, 0.5, 0.5}, {1, 1, 1}};
   EXPECT_EQ(field(p, Model::MonteCarlo), "model[R]");
-  // A thin slab cannot reflect 0.99: the multipole's maximum is far lower.
-  p = {{0.99, 0.5, 0.5}, {1, 1, 1}, 1.3, 0.0, 0.1};
+  // A thin slab cannot reflect 0.99: with d = 1.5 mfp the multipole's limit for α' → 1 is
+  // (d + z_b - ℓ)/(d + 2 z_b) ≈ 0.45.
+  p = {{0.99, 0.5, 0.5}, {1, 1, 1}, 1.3, 0.0, 1.5};
   EXPECT_EQ(field(p, Model::Multipole), "color[R]");
+  // Thinner than one reduced mean free path: the multipole does not apply.
+  p = {{0.3, 0.3, 0.3}, {1, 1, 1}, 1.3, 0.0, 0.5};
+  EXPECT_EQ(field(p, Model::Multipole), "thickness[R]");
 }
