@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
+struct CliRun {
   int code = -1;
   std::string out, err;
 };
@@ -38,10 +38,10 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
-Run sss_fit(const std::string& args) {
+CliRun sss_fit(const std::string& args) {
   const fs::path err = scratch_dir() / "stderr.txt";
   const std::string cmd = std::string(SSS_FIT_EXE) + " " + args + " 2>" + err.string();
-  Run r;
+  CliRun r;
   FILE* p = ::popen(cmd.c_str(), "r");
   if (!p) return r;
   std::array<char, 4096> buf;
@@ -60,7 +60,7 @@ nlohmann::json parse_only_json(const std::string& s) {
 }  // namespace
 
 TEST(SssFit, HelpListsTheCommands) {
-  Run r = sss_fit("--help");
+  CliRun r = sss_fit("--help");
   EXPECT_EQ(r.code, 0);
   for (const char* c : {"presets", "profile", "fit", "validate"})
     EXPECT_NE(r.out.find(c), std::string::npos) << c;
@@ -70,10 +70,10 @@ TEST(SssFit, HelpListsTheCommands) {
 TEST(SssFit, NoCommandIsUsageError) { EXPECT_EQ(sss_fit("").code, 2); }
 
 TEST(SssFit, Presets) {
-  Run r = sss_fit("presets");
+  CliRun r = sss_fit("presets");
   EXPECT_EQ(r.code, 0);
   EXPECT_NE(r.out.find("skin1"), std::string::npos);
-  Run j = sss_fit("presets --json");
+  CliRun j = sss_fit("presets --json");
   ASSERT_EQ(j.code, 0);
   auto doc = parse_only_json(j.out);
   ASSERT_EQ(doc.size(), 12u);
@@ -81,7 +81,7 @@ TEST(SssFit, Presets) {
 }
 
 TEST(SssFit, ProfileJsonContract) {
-  Run r = sss_fit("profile --preset skin1 --model dipole --radii 0:10:11 --json");
+  CliRun r = sss_fit("profile --preset skin1 --model dipole --radii 0:10:11 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto doc = parse_only_json(r.out);
   EXPECT_EQ(doc["model"], "dipole");
@@ -95,22 +95,22 @@ TEST(SssFit, ProfileJsonContract) {
 
 TEST(SssFit, ProfileTextAndEveryModel) {
   for (const char* m : {"dipole", "better-dipole", "pbd", "burley"}) {
-    Run r = sss_fit(std::string("profile --preset marble --radii 0.1:5:5 --log --model ") + m);
+    CliRun r = sss_fit(std::string("profile --preset marble --radii 0.1:5:5 --log --model ") + m);
     EXPECT_EQ(r.code, 0) << m << r.err;
     EXPECT_NE(r.out.find("# r_mm"), std::string::npos);
   }
-  Run mp = sss_fit("profile --preset skin1 --model multipole --thickness 2 --radii 0:4:5 --json");
+  CliRun mp = sss_fit("profile --preset skin1 --model multipole --thickness 2 --radii 0:4:5 --json");
   ASSERT_EQ(mp.code, 0) << mp.err;
   auto doc = parse_only_json(mp.out);
   EXPECT_TRUE(doc.contains("T"));
   EXPECT_GT(doc["total_transmittance"][0].get<double>(), 0.0);
-  Run mc = sss_fit("profile --preset skin1 --model mc --photons 20000 --radii 0.5:2:3 --json");
+  CliRun mc = sss_fit("profile --preset skin1 --model mc --photons 20000 --radii 0.5:2:3 --json");
   ASSERT_EQ(mc.code, 0) << mc.err;
   EXPECT_EQ(parse_only_json(mc.out)["R"].size(), 3u);
 }
 
 TEST(SssFit, FitJsonContractPreservesEnergy) {
-  Run r = sss_fit("fit --preset marble --model better-dipole --gaussians 4 --json");
+  CliRun r = sss_fit("fit --preset marble --model better-dipole --gaussians 4 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto doc = parse_only_json(r.out);
   for (const char* k : {"model", "variances_mm2", "weights", "total_reflectance", "relative_error"})
@@ -126,7 +126,7 @@ TEST(SssFit, FitJsonContractPreservesEnergy) {
 TEST(SssFit, FitWritesKernelHeaderAndPlot) {
   const fs::path json = scratch_dir() / "k.json", header = scratch_dir() / "k.h",
                  svg = scratch_dir() / "fit.svg";
-  Run r = sss_fit("fit --preset skin1 --gaussians 6 --taps 9 --out " + json.string() +
+  CliRun r = sss_fit("fit --preset skin1 --gaussians 6 --taps 9 --out " + json.string() +
                   " --plot " + svg.string() + " --plot-mc --photons 20000");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(nlohmann::json::parse(slurp(json)).contains("separable"));
@@ -135,7 +135,7 @@ TEST(SssFit, FitWritesKernelHeaderAndPlot) {
   EXPECT_NE(plot.find("</svg>"), std::string::npos);
   EXPECT_NE(plot.find("r (mm)"), std::string::npos);
   EXPECT_NE(plot.find("Monte Carlo"), std::string::npos);
-  Run h = sss_fit("fit --preset skin1 --out " + header.string());
+  CliRun h = sss_fit("fit --preset skin1 --out " + header.string());
   ASSERT_EQ(h.code, 0) << h.err;
   EXPECT_NE(slurp(header).find("sss_kernel_variances_mm2"), std::string::npos);
   // Nothing but the outputs: no temporary files left behind.
@@ -144,12 +144,12 @@ TEST(SssFit, FitWritesKernelHeaderAndPlot) {
 }
 
 TEST(SssFit, ValidateJson) {
-  Run r = sss_fit("validate --preset skin1 --photons 20000 --json");
+  CliRun r = sss_fit("validate --preset skin1 --photons 20000 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto doc = parse_only_json(r.out);
   ASSERT_GE(doc["models"].size(), 4u);
   EXPECT_GT(doc["monte_carlo"]["total_reflectance"][0].get<double>(), 0.3);
-  Run t = sss_fit("validate --preset skin1 --photons 20000");
+  CliRun t = sss_fit("validate --preset skin1 --photons 20000");
   EXPECT_EQ(t.code, 0);
   EXPECT_NE(t.out.find("better-dipole"), std::string::npos);
 }
@@ -162,7 +162,7 @@ struct BadInput {
 class SssFitErrors : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(SssFitErrors, ExitTwoAndNameTheField) {
-  Run r = sss_fit(GetParam().args);
+  CliRun r = sss_fit(GetParam().args);
   EXPECT_EQ(r.code, 2) << GetParam().args << "\n" << r.err;
   EXPECT_NE(r.err.find(GetParam().expected), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty()) << r.out;
@@ -201,7 +201,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(SssFit, UnwritableOutputIsARuntimeErrorAndLeavesNothing) {
   const fs::path missing = scratch_dir() / "no-such-dir" / "k.json";
-  Run r = sss_fit("fit --preset skin1 --out " + missing.string());
+  CliRun r = sss_fit("fit --preset skin1 --out " + missing.string());
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(missing));
