@@ -11,6 +11,9 @@
 namespace sss::profiles {
 
 // For x >= 0, M(x) = ∫_x^∞ R(r) 2r acos(x/r) dr; for x < 0, M(x) = total - M(-x).
+// Numerically (Gauss–Legendre on geometric panels from x), truncated at the profile's
+// support radius (so M = 0 beyond it); M(0) = total/2 exactly, whatever R does at 0.
+// `total` is the profile's closed-form total_reflectance().
 double edge_response(const RadialProfile& profile, double x_mm);
 Rgb edge_response(const RgbProfile& profile, double x_mm);
 // Closed form for a sum of Gaussians: Σ w_i ½ erfc(x / √(2 v_i)).
