@@ -38,6 +38,7 @@ ValidationReport validate_against_monte_carlo(const Medium& medium,
   for (std::size_t i = 0; i < models.size(); ++i) report.models[i].model = models[i];
 
   for (int c = 0; c < 3; ++c) {
+    if (!opt.channels[c]) continue;
     const Coefficients k = medium.channel(c);
     const double mfp = k.mfp_reduced();
     MonteCarloOptions mc;
@@ -65,6 +66,9 @@ ValidationReport validate_against_monte_carlo(const Medium& medium,
       out.total = profile->total_reflectance();
       out.total_transmittance = profile->total_transmittance();
       out.total_rel_error = out.total / res.reflectance.total - 1.0;
+      if (res.transmittance.total > 0.0)
+        out.total_transmittance_rel_error =
+            out.total_transmittance / res.transmittance.total - 1.0;
       double sum2 = 0.0, worst = 0.0;
       int n = 0;
       for (std::size_t b = 1; b + 1 < res.bin_edges_mm.size(); ++b) {

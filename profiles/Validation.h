@@ -24,6 +24,7 @@ struct ValidationOptions {
   std::vector<Model> models;  // empty: every analytic model that applies to the medium
   ModelOptions model_options;
   std::function<void(double)> progress;  // fraction of the Monte Carlo done
+  std::array<bool, 3> channels{true, true, true};  // which channels to run (tests use one)
 };
 
 struct ChannelComparison {
@@ -32,6 +33,7 @@ struct ChannelComparison {
   double rms_rel_error = 0.0;    // over the annuli in range
   double max_rel_error = 0.0;    // largest |model - MC| / MC over the annuli
   double total_transmittance = 0.0;  // slabs only
+  double total_transmittance_rel_error = 0.0;  // (model - MC) / MC, slabs only
 };
 
 struct ModelComparison {
