@@ -7,6 +7,9 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libvulkan-dev glslang-tools mesa-vulkan-drivers vulkan-validationlayers
+  libglm-dev libtinygltf-dev libstb-dev libtinyexr-dev
+  assimp-testmodels
 )
 
 missing=()
