@@ -1,0 +1,54 @@
+// An RGBA float image and its files. PNG (8-bit, via stb) and OpenEXR (32-bit float,
+// via tinyexr). Writes go through write_file_atomically: a failed write leaves nothing.
+//
+// Colour (DESIGN.md §3): EXR holds linear values as they are. PNG holds display values:
+// write_png quantizes what it is given (the caller tonemaps and sRGB-encodes first, see
+// encode_srgb), and read_png returns the 8-bit codes divided by 255, not linearized.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace sss::image {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgba;  // row-major, top row first, 4 floats per pixel
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), rgba(static_cast<std::size_t>(w) * h * 4, 0.0f) {}
+  float* pixel(int x, int y) { return &rgba[(static_cast<std::size_t>(y) * width + x) * 4]; }
+  const float* pixel(int x, int y) const {
+    return &rgba[(static_cast<std::size_t>(y) * width + x) * 4];
+  }
+};
+
+struct ImageError {
+  std::string path;
+  std::string message;
+  std::string what() const { return path + ": " + message; }
+};
+
+// Largest accepted side and pixel count when reading (a hostile header cannot make us
+// allocate gigabytes).
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr std::size_t kMaxImagePixels = std::size_t{1} << 26;
+
+// By file contents (PNG or EXR magic), whatever the extension.
+std::variant<Image, ImageError> read_image(const std::string& path);
+
+// Throw WriteError (AtomicFile.h) on failure; values are clamped to [0, 1] and rounded.
+void write_png(const std::string& path, const Image& image);
+void write_exr(const std::string& path, const Image& image);
+// Chooses by extension (.png or .exr, case-insensitive); anything else is an error.
+void write_image(const std::string& path, const Image& image);
+
+// The sRGB transfer function (IEC 61966-2-1) applied to R, G, B; alpha unchanged.
+float srgb_encode(float linear);
+float srgb_decode(float encoded);
+Image encode_srgb(const Image& linear);
+
+}  // namespace sss::image
