@@ -71,8 +71,10 @@ SeparableKernel make_separable_kernel(const RgbProfile& profile, int taps, doubl
   k.offsets_mm.resize(taps);
   k.weights.resize(taps);
   for (int i = 0; i <= half; ++i) {
-    k.offsets_mm[half + i] = positive[i];
+    // The mirror first: at i = 0 both write the centre tap, which must end +0.0, not
+    // -positive[0] = -0.0 (printed "-0.00000", serialised "-0").
     k.offsets_mm[half - i] = -positive[i];
+    k.offsets_mm[half + i] = positive[i];
     k.weights[half + i] = weight[i];
     k.weights[half - i] = weight[i];
   }

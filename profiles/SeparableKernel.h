@@ -21,8 +21,9 @@ struct SeparableKernel {
 };
 
 // `taps` odd, >= 3. Offsets follow Jimenez's quadratic spacing x = range·sign(t)·t², t
-// uniform in [-1, 1], so taps crowd where the profile is sharp. range_mm <= 0 picks the
-// radius holding 99.9% of the marginal's energy in the widest channel (M(range) = 5e-4·T).
+// uniform in [-1, 1], so taps crowd where the profile is sharp; the centre tap's offset
+// is +0.0. range_mm <= 0 picks the radius holding 99.9% of the marginal's energy in the
+// widest channel (M(range) = 5e-4·T).
 // Tap i owns the cell between the midpoints to its neighbours (the outermost cells reach
 // ±∞), so its weight is (M(lower boundary) − M(upper boundary)) / T. Convolving a step
 // edge with the taps therefore gives M exactly at the cell boundaries; at a tap itself

@@ -45,6 +45,7 @@ TEST(SeparableKernel, SumsToOneSymmetricWithATapAtZero) {
   ASSERT_EQ(k.offsets_mm.size(), 17u);
   ASSERT_EQ(k.weights.size(), 17u);
   EXPECT_EQ(k.offsets_mm[half], 0.0);
+  EXPECT_FALSE(std::signbit(k.offsets_mm[half]));  // +0.0: never printed as "-0.00000"
   for (int i = 0; i < taps; ++i) {
     EXPECT_EQ(k.offsets_mm[i], -k.offsets_mm[taps - 1 - i]) << i;
     if (i > 0) {
