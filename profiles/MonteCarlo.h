@@ -8,7 +8,7 @@
 // fixed chunks, each with its own RNG stream, and chunk tallies are summed in order.
 // Every binned value carries its standard error, computed from per-photon contributions.
 //
-// The walk (MonteCarlo.cpp has the details and sources):
+// The walk (MonteCarloWalker.cpp has the details and sources):
 // - photons start at the origin going straight down (+z; the medium is z >= 0) with
 //   weight 1; distances between scattering events are sampled with sigma_s, and the weight
 //   decays continuously as exp(-sigma_a * path length) ("absorption weighting", the

@@ -1,0 +1,140 @@
+#include "profiles/MonteCarloWalker.h"
+
+#include "profiles/Fresnel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sss::profiles::detail {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// A weight this small can never show in a double-precision tally of order-1 values; a
+// photon that reflects down to it ends (bias below 1e-250 per photon). Only walks with no
+// scattering at all (sigma_s = 0) end this way: otherwise roulette ends them first.
+constexpr double kNegligibleWeight = 1e-250;
+
+}  // namespace
+
+Walker::Walker(const Coefficients& c, const MonteCarloOptions& o)
+    : c_(c), o_(o), nb_(o.bin_edges_mm.empty() ? 0 : o.bin_edges_mm.size() - 1),
+      photon_(2 * nb_, 0.0) {
+  touched_.reserve(2 * nb_);
+}
+
+void Walker::run_chunk(std::uint64_t chunk, std::uint64_t count, ChunkSums& out) {
+  Xoshiro256ss rng(o_.seed, chunk);
+  for (std::uint64_t p = 0; p < count; ++p) {
+    double totals[3] = {0, 0, 0};
+    walk(rng, totals, out);
+    for (int k = 0; k < 3; ++k) {
+      out.total[k] += totals[k];
+      out.total_sq[k] += totals[k] * totals[k];
+    }
+    for (std::size_t slot : touched_) {
+      const double x = photon_[slot];
+      out.sum[slot] += x;
+      out.sum_sq[slot] += x * x;
+      photon_[slot] = 0.0;
+    }
+    touched_.clear();
+  }
+}
+
+void Walker::tally(std::size_t face, double r, double w) {
+  const auto& e = o_.bin_edges_mm;
+  if (nb_ == 0 || w == 0.0 || r < e.front() || r >= e.back()) return;
+  const auto bin = std::upper_bound(e.begin(), e.end(), r) - e.begin() - 1;
+  const std::size_t slot = face * nb_ + static_cast<std::size_t>(bin);
+  if (photon_[slot] == 0.0) touched_.push_back(slot);
+  photon_[slot] += w;
+}
+
+// One photon. The current weight is w0 * exp(-sigma_a * len): `len` is the path walked
+// since w0 last changed, so the exponential is evaluated only at boundary hits and
+// roulette, not at every scattering event.
+void Walker::walk(Xoshiro256ss& rng, double totals[3], ChunkSums& out) {
+  const double sa = c_.sigma_a, ss = c_.sigma_s, g = c_.g, d = o_.thickness_mm;
+  const double inv_eta = 1.0 / c_.eta;
+  double x = 0, y = 0, z = 0, ux = 0, uy = 0, uz = 1;
+  double w0 = 1.0, len = 0.0;
+  // The path length at which the weight falls below the roulette threshold.
+  auto roulette_len = [&] {
+    return w0 > o_.roulette_weight ? std::log(w0 / o_.roulette_weight) / sa : 0.0;
+  };
+  double len_roulette = roulette_len();
+  int order = 0;
+  for (std::uint64_t n = 0;; ++n) {
+    if (n == o_.max_interactions_per_photon) {
+      ++out.truncated;
+      return;
+    }
+    const double s = ss > 0.0 ? -std::log(1.0 - rng.uniform()) / ss : kInf;
+    double db = kInf;  // distance to the face ahead
+    if (uz < 0.0) db = std::max(-z / uz, 0.0);
+    else if (uz > 0.0) db = std::max((d - z) / uz, 0.0);
+    if (s < db) {  // scattering event
+      x += s * ux, y += s * uy, z += s * uz;
+      len += s;
+      if (o_.max_scattering_order > 0 && ++order > o_.max_scattering_order) return;
+      ++out.events;
+      if (len > len_roulette) {
+        const double w = w0 * std::exp(-sa * len);
+        totals[2] += w0 - w;
+        len = 0.0;
+        if (rng.uniform() >= o_.roulette_survival) return;
+        w0 = w / o_.roulette_survival;
+        len_roulette = roulette_len();
+      }
+      scatter(rng, g, ux, uy, uz);
+      continue;
+    }
+    if (db == kInf) {  // no scattering and no face ahead: everything is absorbed
+      totals[2] += w0;
+      return;
+    }
+    x += db * ux, y += db * uy;
+    const bool top = uz < 0.0;
+    z = top ? 0.0 : d;
+    const double w = w0 * std::exp(-sa * (len + db));
+    totals[2] += w0 - w;
+    const double fr = fresnel_dielectric(std::fabs(uz), inv_eta);
+    const double escaped = w * (1.0 - fr);
+    totals[top ? 0 : 1] += escaped;
+    tally(top ? 0 : 1, std::sqrt(x * x + y * y), escaped);
+    w0 = w * fr;
+    len = 0.0;
+    uz = -uz;
+    if (w0 < kNegligibleWeight) {
+      totals[2] += w0;  // (at most 1e-250) counted as absorbed so the balance closes
+      return;
+    }
+    len_roulette = roulette_len();
+  }
+}
+
+// New direction: cos θ from Henyey–Greenstein about the old direction, φ uniform, in
+// the orthonormal basis of Duff et al. 2017 ("Building an orthonormal basis,
+// revisited", JCGT 6(1)), which is accurate for every unit vector.
+void Walker::scatter(Xoshiro256ss& rng, double g, double& ux, double& uy, double& uz) {
+  const double ct = sample_hg_cos(g, rng.uniform());
+  const double st = std::sqrt(std::max(0.0, 1.0 - ct * ct));
+  double cp, sp;
+  sample_azimuth(rng, cp, sp);
+  const double sign = std::copysign(1.0, uz);
+  const double a = -1.0 / (sign + uz);
+  const double b = ux * uy * a;
+  const double t1x = 1.0 + sign * ux * ux * a, t1y = sign * b, t1z = -sign * ux;
+  const double t2x = b, t2y = sign + uy * uy * a, t2z = -uy;
+  const double px = st * cp, py = st * sp;
+  const double nx = px * t1x + py * t2x + ct * ux;
+  const double ny = px * t1y + py * t2y + ct * uy;
+  const double nz = px * t1z + py * t2z + ct * uz;
+  // Renormalise so rounding cannot accumulate over thousands of events.
+  const double inv = 1.0 / std::sqrt(nx * nx + ny * ny + nz * nz);
+  ux = nx * inv, uy = ny * inv, uz = nz * inv;
+}
+
+}  // namespace sss::profiles::detail

@@ -1,0 +1,65 @@
+// Internal to run_monte_carlo (MonteCarlo.cpp): the per-photon random walk that
+// MonteCarlo.h describes, and the per-chunk sums it tallies into.
+#pragma once
+
+#include "profiles/Medium.h"
+#include "profiles/MonteCarlo.h"
+#include "profiles/Random.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace sss::profiles::detail {
+
+// Per-chunk sums of per-photon contributions. Bins [0, nb) are reflectance, [nb, 2nb)
+// transmittance. Totals: 0 reflectance, 1 transmittance, 2 absorbed.
+struct ChunkSums {
+  std::vector<double> sum, sum_sq;
+  double total[3] = {0, 0, 0};
+  double total_sq[3] = {0, 0, 0};
+  std::uint64_t events = 0;
+  std::uint64_t truncated = 0;
+
+  explicit ChunkSums(std::size_t slots) : sum(slots, 0.0), sum_sq(slots, 0.0) {}
+  void add(const ChunkSums& o) {
+    for (std::size_t i = 0; i < sum.size(); ++i) {
+      sum[i] += o.sum[i];
+      sum_sq[i] += o.sum_sq[i];
+    }
+    for (int k = 0; k < 3; ++k) {
+      total[k] += o.total[k];
+      total_sq[k] += o.total_sq[k];
+    }
+    events += o.events;
+    truncated += o.truncated;
+  }
+};
+
+// One worker's walker: the per-photon dense accumulator and its list of touched slots are
+// allocated once and reused, so a photon allocates nothing.
+class Walker {
+ public:
+  Walker(const Coefficients& c, const MonteCarloOptions& o);
+  // Walks `count` photons on the RNG stream (o.seed, chunk) and adds their per-photon
+  // contributions, and their squares, to `out`.
+  void run_chunk(std::uint64_t chunk, std::uint64_t count, ChunkSums& out);
+
+ private:
+  // Adds the weight w leaving through `face` (0 top, 1 bottom) at radius r to this
+  // photon's bin, if r lies within the bin edges.
+  void tally(std::size_t face, double r, double w);
+  // One photon: adds what it leaves through the top face, the bottom face and what is
+  // absorbed to totals[0], [1] and [2], and its exits to its bins.
+  void walk(Xoshiro256ss& rng, double totals[3], ChunkSums& out);
+  // Turns the unit direction u by a Henyey–Greenstein scattering event.
+  static void scatter(Xoshiro256ss& rng, double g, double& ux, double& uy, double& uz);
+
+  const Coefficients& c_;
+  const MonteCarloOptions& o_;
+  std::size_t nb_;
+  std::vector<double> photon_;
+  std::vector<std::size_t> touched_;
+};
+
+}  // namespace sss::profiles::detail
