@@ -1,0 +1,142 @@
+#include "renderer/vk/Descriptors.h"
+
+#include "renderer/vk/Buffer.h"
+#include "renderer/vk/Check.h"
+#include "renderer/vk/Context.h"
+#include "renderer/vk/Image.h"
+
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace sss::vk {
+
+DescriptorSetLayoutBuilder& DescriptorSetLayoutBuilder::add(uint32_t binding, VkDescriptorType type,
+                                                            VkShaderStageFlags stages,
+                                                            uint32_t count) {
+  for (const VkDescriptorSetLayoutBinding& b : bindings_) {
+    if (b.binding == binding) {
+      throw std::logic_error("descriptor set layout: binding " + std::to_string(binding) +
+                             " added twice");
+    }
+  }
+  bindings_.push_back({binding, type, count, stages, nullptr});
+  return *this;
+}
+
+DescriptorSetLayoutHandle DescriptorSetLayoutBuilder::build(const Context& context,
+                                                            std::string_view name) const {
+  VkDescriptorSetLayoutCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  info.bindingCount = static_cast<uint32_t>(bindings_.size());
+  info.pBindings = bindings_.data();
+  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateDescriptorSetLayout(context.device(), &info, nullptr, &layout));
+  if (!name.empty()) context.set_object_name(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, layout, name);
+  return DescriptorSetLayoutHandle(context.device(), layout);
+}
+
+DescriptorPool::DescriptorPool(const Context& context, uint32_t max_sets,
+                               std::span<const VkDescriptorPoolSize> sizes, std::string_view name) {
+  VkDescriptorPoolCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  info.maxSets = max_sets;
+  info.poolSizeCount = static_cast<uint32_t>(sizes.size());
+  info.pPoolSizes = sizes.data();
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateDescriptorPool(context.device(), &info, nullptr, &pool));
+  pool_ = DescriptorPoolHandle(context.device(), pool);
+  if (!name.empty()) context.set_object_name(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, name);
+}
+
+namespace {
+std::vector<VkDescriptorPoolSize> pool_sizes(const DescriptorSetLayoutBuilder& bindings,
+                                             uint32_t sets) {
+  std::map<VkDescriptorType, uint32_t> counts;
+  for (const VkDescriptorSetLayoutBinding& b : bindings.bindings()) {
+    counts[b.descriptorType] += b.descriptorCount * sets;
+  }
+  std::vector<VkDescriptorPoolSize> sizes;
+  for (const auto& [type, count] : counts) sizes.push_back({type, count});
+  return sizes;
+}
+}  // namespace
+
+DescriptorPool::DescriptorPool(const Context& context, const DescriptorSetLayoutBuilder& bindings,
+                               uint32_t sets, std::string_view name)
+    : DescriptorPool(context, sets, pool_sizes(bindings, sets), name) {}
+
+VkDescriptorSet DescriptorPool::allocate(VkDescriptorSetLayout layout) {
+  VkDescriptorSetAllocateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  info.descriptorPool = pool_.get();
+  info.descriptorSetCount = 1;
+  info.pSetLayouts = &layout;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  VK_CHECK(vkAllocateDescriptorSets(pool_.device(), &info, &set));
+  return set;
+}
+
+void DescriptorPool::reset() { VK_CHECK(vkResetDescriptorPool(pool_.device(), pool_.get(), 0)); }
+
+DescriptorWriter& DescriptorWriter::buffer(uint32_t binding, VkDescriptorType type,
+                                           const VkDescriptorBufferInfo& info, uint32_t element) {
+  buffers_.push_back(info);
+  writes_.push_back({binding, element, type, false, buffers_.size() - 1});
+  return *this;
+}
+
+DescriptorWriter& DescriptorWriter::image(uint32_t binding, VkDescriptorType type,
+                                          const VkDescriptorImageInfo& info, uint32_t element) {
+  images_.push_back(info);
+  writes_.push_back({binding, element, type, true, images_.size() - 1});
+  return *this;
+}
+
+DescriptorWriter& DescriptorWriter::uniform_buffer(uint32_t binding, const Buffer& b,
+                                                   VkDeviceSize offset, VkDeviceSize range) {
+  return buffer(binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, b.descriptor(offset, range));
+}
+DescriptorWriter& DescriptorWriter::storage_buffer(uint32_t binding, const Buffer& b,
+                                                   VkDeviceSize offset, VkDeviceSize range) {
+  return buffer(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, b.descriptor(offset, range));
+}
+DescriptorWriter& DescriptorWriter::storage_image(uint32_t binding, const Image& i) {
+  return image(binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, i.descriptor(VK_IMAGE_LAYOUT_GENERAL));
+}
+DescriptorWriter& DescriptorWriter::sampled_image(uint32_t binding, const Image& i,
+                                                  VkImageLayout layout) {
+  return image(binding, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, i.descriptor(layout));
+}
+DescriptorWriter& DescriptorWriter::combined_image(uint32_t binding, const Image& i, VkSampler s,
+                                                   VkImageLayout layout) {
+  return image(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, i.descriptor(layout, s));
+}
+DescriptorWriter& DescriptorWriter::sampler(uint32_t binding, VkSampler s) {
+  return image(binding, VK_DESCRIPTOR_TYPE_SAMPLER, {s, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED});
+}
+
+void DescriptorWriter::update(const Context& context) const {
+  // The info arrays are complete now, so the pointers into them are stable.
+  std::vector<VkWriteDescriptorSet> writes;
+  writes.reserve(writes_.size());
+  for (const Pending& p : writes_) {
+    VkWriteDescriptorSet w{};
+    w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    w.dstSet = set_;
+    w.dstBinding = p.binding;
+    w.dstArrayElement = p.element;
+    w.descriptorCount = 1;
+    w.descriptorType = p.type;
+    if (p.is_image) {
+      w.pImageInfo = &images_[p.index];
+    } else {
+      w.pBufferInfo = &buffers_[p.index];
+    }
+    writes.push_back(w);
+  }
+  vkUpdateDescriptorSets(context.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0,
+                         nullptr);
+}
+
+}  // namespace sss::vk
