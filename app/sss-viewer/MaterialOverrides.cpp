@@ -1,0 +1,49 @@
+#include "ViewerArgs.h"
+
+#include "profiles/Presets.h"
+
+namespace sss::app {
+
+namespace {
+bool any_medium(const MediumArgs& m) {
+  return !m.preset.empty() || !m.sigma_a.empty() || !m.sigma_s.empty() || !m.color.empty() ||
+         !m.mfp.empty() || !m.g.empty() || !m.eta.empty() || !m.thickness.empty();
+}
+}  // namespace
+
+std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
+                                                       const ViewerArgs& args) {
+  std::optional<profiles::Model> model;
+  if (!args.model.empty()) {
+    model = profiles::parse_model(args.model);
+    if (!model)
+      return FieldError{"--model", "unknown model '" + args.model + "' (expected one of " +
+                                       profiles::model_names() + ")"};
+  }
+  if (args.gaussians && (*args.gaussians < scene::kMinGaussians ||
+                         *args.gaussians > scene::kMaxGaussians))
+    return FieldError{"--gaussians", "must be in 1..8, got " + std::to_string(*args.gaussians)};
+  const bool medium = any_medium(args.medium);
+  if (!model && !args.gaussians && !medium) return 0;
+
+  int changed = 0;
+  for (scene::Material& m : scene.materials) {
+    if (!m.sss.enabled) continue;
+    const profiles::Model use_model = model.value_or(m.sss.model);
+    scene::SssSource source = m.sss.source;
+    if (medium) {
+      profiles::ModelOptions options;
+      auto resolved = resolve_medium(args.medium, use_model, options);
+      if (auto* e = std::get_if<FieldError>(&resolved)) return *e;
+      source = scene::CoefficientSource{std::get<ResolvedMedium>(resolved).medium};
+    }
+    auto made = scene::make_sss_material(source, use_model, args.gaussians.value_or(m.sss.gaussians),
+                                         m.sss.scale, m.sss.albedo_mode);
+    if (auto* e = std::get_if<FieldError>(&made)) return *e;
+    m.sss = std::get<scene::SssMaterial>(made);
+    ++changed;
+  }
+  return changed;
+}
+
+}  // namespace sss::app

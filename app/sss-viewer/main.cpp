@@ -1,0 +1,136 @@
+// sss-viewer: renders a scene with the real-time renderer. Headless only for now:
+//   sss-viewer [SCENE] --headless --out FILE.png|FILE.exr [options]
+// The command-line contract is DESIGN.md §4; errors exit 2 (usage, input) or 1 (runtime).
+#include "ViewerArgs.h"
+
+#include "renderer/Renderer.h"
+#include "renderer/image/AtomicFile.h"
+#include "renderer/scene/BuiltinScenes.h"
+#include "renderer/vk/Context.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <iostream>
+
+using namespace sss;
+using namespace sss::app;
+
+namespace {
+
+int usage(const std::string& message) {
+  std::cerr << "sss-viewer: error: " << message << "\nRun 'sss-viewer --help' for usage.\n";
+  return kExitUsage;
+}
+
+std::string lower_extension(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos) return {};
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
+  const renderer::FrameStats& s = r.stats();
+  std::printf("frame %ux%u, sss %s, mode %s, %d frame(s)\n", r.options().width,
+              r.options().height, std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
+              std::string(renderer::sss_kind_name(r.options().kind)).c_str(), frames);
+  std::printf("%-16s %10s\n", "pass", "gpu ms");
+  for (const vk::PassTime& p : s.passes) std::printf("%-16s %10.3f\n", p.name.c_str(), p.ms);
+  std::printf("%-16s %10.3f\n", "gpu total", s.gpu_ms);
+  std::printf("%-16s %10.3f\n", "cpu frame", s.cpu_ms);
+  std::printf("%-16s %10.3f\n", "cpu mean", cpu_total_ms / frames);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"sss-viewer: real-time subsurface scattering (Vulkan). Headless for now.",
+               "sss-viewer"};
+  ViewerArgs a;
+  app.add_option("scene", a.scene, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
+  app.add_flag("--headless", a.headless, "Render without a window and write --out");
+  app.add_option("--out", a.out, "Output image: FILE.png (tonemapped) or FILE.exr (linear)");
+  app.add_option("--screenshot", a.screenshot, "Window mode: save after --frames and exit");
+  app.add_option("--width", a.width, "Image width (default 640)")->check(CLI::Range(1, 16384));
+  app.add_option("--height", a.height, "Image height (default 360)")->check(CLI::Range(1, 16384));
+  app.add_option("--frames", a.frames, "Frames to render (default 1)")->check(CLI::Range(1, 100000));
+  app.add_option("--sss", a.sss, "off | screen | texture (default screen)");
+  app.add_option("--mode", a.mode, "separable | gaussians (default separable)");
+  app.add_option("--model", a.model,
+                 "Profile model for every SSS material: dipole | better-dipole | pbd | burley | "
+                 "multipole | mc");
+  app.add_option("--gaussians", a.gaussians, "Gaussians per fit, 1..8");
+  app.add_option("--taps", a.taps, "Separable kernel taps (odd, 3..33; default 17)");
+  app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1)");
+  add_medium_options(app, a.medium);
+  app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
+  app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return usage(e.what());
+  }
+
+  if (!a.headless)
+    return usage("the windowed viewer is not available yet; use --headless --out FILE.png|FILE.exr");
+  if (a.out.empty()) return usage("--headless needs --out FILE.png|FILE.exr");
+  const std::string ext = lower_extension(a.out);
+  if (ext != ".png" && ext != ".exr")
+    return usage("--out: expected a .png or .exr file name, got '" + a.out + "'");
+  if (a.sss == "texture") return usage("texture-space SSS is not available yet (issue 6)");
+  renderer::RenderOptions options;
+  if (a.sss == "off") {
+    options.sss = renderer::SssMode::Off;
+  } else if (a.sss != "screen") {
+    return usage("--sss: expected off, screen or texture, got '" + a.sss + "'");
+  }
+  const auto kind = renderer::parse_sss_kind(a.mode);
+  if (!kind) return usage("--mode: expected separable or gaussians, got '" + a.mode + "'");
+  options.kind = *kind;
+  if (a.taps < 3 || a.taps > 33 || a.taps % 2 == 0)
+    return usage("--taps: expected an odd number in 3..33, got " + std::to_string(a.taps));
+  options.separable_taps = a.taps;
+  options.width = static_cast<std::uint32_t>(a.width);
+  options.height = static_cast<std::uint32_t>(a.height);
+  options.exposure = a.exposure;
+
+  auto loaded = scene::load_scene(a.scene);
+  if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what());
+  scene::Scene scene = std::move(std::get<scene::Scene>(loaded));
+  scene::add_camera_if_missing(scene);
+  scene::add_light_if_missing(scene);
+  auto overridden = apply_material_overrides(scene, a);
+  if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
+  for (const std::string& w : scene.warnings) std::cerr << "sss-viewer: warning: " << w << '\n';
+
+  try {
+    vk::ContextOptions context_options;
+    context_options.device_name = a.device;
+    vk::Context context(context_options);
+    renderer::Renderer r(context, scene, options);
+    for (const std::string& w : r.warnings()) std::cerr << "sss-viewer: warning: " << w << '\n';
+    double cpu_total = 0.0;
+    for (int i = 0; i < a.frames; ++i) {
+      r.render_frame();
+      cpu_total += r.stats().cpu_ms;
+    }
+    if (ext == ".exr")
+      image::write_exr(a.out, r.read_hdr());
+    else
+      image::write_png(a.out, r.read_display());
+    if (a.stats) print_stats(r, a.frames, cpu_total);
+  } catch (const std::invalid_argument& e) {
+    return usage(e.what());
+  } catch (const std::exception& e) {
+    std::cerr << "sss-viewer: error: " << e.what() << '\n';
+    return kExitRuntime;
+  }
+  return kExitOk;
+}

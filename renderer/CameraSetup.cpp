@@ -1,0 +1,54 @@
+#include "renderer/CameraSetup.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
+
+#include <cmath>
+
+namespace sss::renderer {
+
+CameraSetup make_camera_setup(const scene::Camera& camera, std::uint32_t width,
+                              std::uint32_t height) {
+  CameraSetup c;
+  const float aspect = float(width) / float(height);
+  c.view = camera.view();
+  c.position = camera.position();
+  c.forward = camera.forward();
+  if (camera.projection == scene::Projection::Orthographic) {
+    c.orthographic = true;
+    const glm::vec2 half = camera.ortho_half_extent(aspect);
+    c.proj = glm::orthoRH_ZO(-half.x, half.x, -half.y, half.y, camera.znear, camera.zfar);
+  } else {
+    const float a = camera.aspect > 0.0f ? camera.aspect : aspect;
+    const float zfar = camera.zfar > 0.0f ? camera.zfar : camera.znear * 1.0e5f;
+    c.proj = glm::perspectiveRH_ZO(camera.yfov, a, camera.znear, zfar);
+  }
+  c.proj[1][1] = -c.proj[1][1];  // Vulkan: image y points down
+  return c;
+}
+
+shader::mat4 to_shader(const glm::mat4& m) {
+  shader::mat4 out;
+  for (int c = 0; c < 4; ++c) out.c[c] = {m[c][0], m[c][1], m[c][2], m[c][3]};
+  return out;
+}
+
+shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32_t width,
+                                          std::uint32_t height, double mm_per_unit,
+                                          float exposure, std::uint32_t light_count,
+                                          int sss_mode) {
+  shader::FrameUniforms u;
+  const glm::mat4 view_proj = camera.proj * camera.view;
+  u.view_proj = to_shader(view_proj);
+  u.inv_view_proj = to_shader(glm::inverse(view_proj));
+  u.inv_proj = to_shader(glm::inverse(camera.proj));
+  u.camera = {camera.position.x, camera.position.y, camera.position.z,
+              camera.orthographic ? 1.0f : 0.0f};
+  u.forward = {camera.forward.x, camera.forward.y, camera.forward.z, 0.0f};
+  u.viewport = {float(width), float(height), 1.0f / float(width), 1.0f / float(height)};
+  u.scale = {float(mm_per_unit), camera.proj[0][0], std::abs(camera.proj[1][1]), exposure};
+  u.options = {float(light_count), float(sss_mode), 0.0f, 0.0f};
+  return u;
+}
+
+}  // namespace sss::renderer

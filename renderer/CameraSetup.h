@@ -1,0 +1,32 @@
+// CameraSetup: the scene camera as the frame sees it: Vulkan projection (depth 0..1,
+// image y down), view, and the frame uniforms built from them.
+#pragma once
+
+#include "renderer/scene/Camera.h"
+#include "shaders/shared/frame.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+
+namespace sss::renderer {
+
+struct CameraSetup {
+  glm::mat4 view{1.0f};
+  glm::mat4 proj{1.0f};  // Vulkan clip space: y flipped, z in [0, 1]
+  bool orthographic = false;
+  glm::vec3 position{0.0f};
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};
+};
+
+CameraSetup make_camera_setup(const scene::Camera& camera, std::uint32_t width,
+                              std::uint32_t height);
+
+shader::mat4 to_shader(const glm::mat4& m);
+
+shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32_t width,
+                                          std::uint32_t height, double mm_per_unit,
+                                          float exposure, std::uint32_t light_count,
+                                          int sss_mode);
+
+}  // namespace sss::renderer

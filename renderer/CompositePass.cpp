@@ -1,0 +1,43 @@
+#include "renderer/CompositePass.h"
+
+#include "shaders/composite.comp.h"
+
+namespace sss::renderer {
+
+namespace {
+vk::DescriptorSetLayoutBuilder bindings() {
+  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+  vk::DescriptorSetLayoutBuilder b;
+  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs).add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
+  for (uint32_t i = 2; i <= 6; ++i) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
+  b.add(7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs).add(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
+  return b;
+}
+}  // namespace
+
+CompositePass::CompositePass(const FrameResources& resources)
+    : r_(resources), program_(r_.context, bindings(), sss_spv_composite_comp, 0, 1, kName) {
+  set_ = program_.allocate();
+  const FrameTargets& t = r_.targets;
+  const VkSampler nearest = r_.samplers.nearest.get();
+  const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL;
+  vk::DescriptorWriter(set_)
+      .uniform_buffer(0, r_.frame_uniforms)
+      .storage_buffer(1, r_.materials)
+      .combined_image(2, t.albedo, nearest)
+      .combined_image(3, t.irradiance, nearest, general)
+      .combined_image(4, t.specular, nearest, general)
+      .combined_image(5, t.blur_a, nearest, general)
+      .combined_image(6, t.accum, nearest, general)
+      .storage_image(7, t.hdr)
+      .storage_image(8, t.display)
+      .update(r_.context);
+}
+
+void CompositePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
+  auto scope = timer.scope(cmd, kName);
+  program_.bind(cmd, set_);
+  ComputeProgram::dispatch(cmd, r_.targets.width, r_.targets.height);
+}
+
+}  // namespace sss::renderer

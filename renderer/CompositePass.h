@@ -1,0 +1,25 @@
+// CompositePass ("composite"): post-scatter albedo x scattered diffuse / pi + specular:
+// L = albedo (1 - metallic) (1/pi)(R * E) + S, into targets.hdr (linear, what the EXR
+// holds), and targets.display (exposure, filmic tonemap, sRGB encoding: the PNG).
+#pragma once
+
+#include "renderer/ComputeProgram.h"
+#include "renderer/FrameResources.h"
+#include "renderer/vk/GpuTimer.h"
+
+namespace sss::renderer {
+
+class CompositePass {
+ public:
+  static constexpr const char* kName = "composite";
+
+  explicit CompositePass(const FrameResources& resources);
+  void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+
+ private:
+  const FrameResources& r_;
+  ComputeProgram program_;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+}  // namespace sss::renderer

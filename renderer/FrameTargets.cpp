@@ -1,0 +1,49 @@
+#include "renderer/FrameTargets.h"
+
+namespace sss::renderer {
+
+namespace {
+
+constexpr VkImageUsageFlags kComputeUsage =
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+
+vk::Image make(const vk::Context& c, std::uint32_t w, std::uint32_t h, VkFormat f,
+               VkImageUsageFlags usage, const char* name) {
+  return vk::Image(c, {w, h, f, usage, name});
+}
+
+}  // namespace
+
+FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uint32_t h,
+                           std::uint32_t layers, std::uint32_t shadow_size)
+    : width(w), height(h) {
+  vk::ImageDesc shadow_desc(shadow_size, shadow_size, kDepthFormat,
+                            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
+                                VK_IMAGE_USAGE_SAMPLED_BIT,
+                            "shadow maps");
+  shadow_desc.array_layers = layers;
+  shadow_desc.view_type = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  shadow = vk::Image(context, shadow_desc);
+  for (std::uint32_t i = 0; i < layers; ++i) shadow_layers.push_back(shadow.create_view(i));
+
+  const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  depth = make(context, w, h, kDepthFormat,
+               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+               "gbuffer depth");
+  normal = make(context, w, h, kNormalFormat, attachment, "gbuffer normal");
+  albedo = make(context, w, h, kAlbedoFormat, attachment, "gbuffer albedo");
+  irradiance = make(context, w, h, kLightingFormat, kComputeUsage, "irradiance");
+  specular = make(context, w, h, kLightingFormat, kComputeUsage, "specular");
+  blur_temp = make(context, w, h, kLightingFormat, kComputeUsage, "sss temp");
+  blur_a = make(context, w, h, kLightingFormat, kComputeUsage, "sss a");
+  blur_b = make(context, w, h, kLightingFormat, kComputeUsage, "sss b");
+  accum = make(context, w, h, kLightingFormat, kComputeUsage, "sss accum");
+  hdr = make(context, w, h, kHdrFormat, kComputeUsage, "hdr");
+  display = make(context, w, h, kDisplayFormat, kComputeUsage, "display");
+}
+
+std::vector<const vk::Image*> FrameTargets::compute_targets() const {
+  return {&irradiance, &specular, &blur_temp, &blur_a, &blur_b, &accum, &hdr, &display};
+}
+
+}  // namespace sss::renderer

@@ -1,0 +1,43 @@
+// FrameTargets: every image one frame writes, at the output size, with the formats of
+// DESIGN.md §5. Layouts: the G-buffer and the shadow maps are attachments while drawn
+// and SHADER_READ_ONLY_OPTIMAL afterwards; every compute target stays in GENERAL (read
+// through samplers or storage loads, written as storage images). Renderer::record moves
+// each image from UNDEFINED to its first layout at the start of the frame.
+#pragma once
+
+#include "renderer/vk/Handle.h"
+#include "renderer/vk/Image.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace sss::vk {
+class Context;
+}
+
+namespace sss::renderer {
+
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // xyz normal, w roughness
+inline constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;       // rgb albedo, a id
+inline constexpr VkFormat kLightingFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+inline constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;  // sRGB-encoded by hand
+
+struct FrameTargets {
+  FrameTargets(const vk::Context& context, std::uint32_t width, std::uint32_t height,
+               std::uint32_t shadow_layers, std::uint32_t shadow_size);
+
+  std::uint32_t width, height;
+  vk::Image shadow;  // D32 array, one layer per light
+  std::vector<vk::ImageViewHandle> shadow_layers;
+  vk::Image depth, normal, albedo;          // G-buffer
+  vk::Image irradiance, specular;           // lighting
+  vk::Image blur_temp, blur_a, blur_b, accum;  // SSS
+  vk::Image hdr, display;                   // composite
+
+  // The compute targets (GENERAL layout), for the frame's initial transition.
+  std::vector<const vk::Image*> compute_targets() const;
+};
+
+}  // namespace sss::renderer

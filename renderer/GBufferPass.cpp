@@ -1,0 +1,76 @@
+#include "renderer/GBufferPass.h"
+
+#include "renderer/vk/Barrier.h"
+#include "renderer/vk/GraphicsPipeline.h"
+#include "renderer/vk/Pipeline.h"
+#include "renderer/vk/Rendering.h"
+#include "shaders/gbuffer.frag.h"
+#include "shaders/gbuffer.vert.h"
+#include "shaders/shared/frame.h"
+
+#include <array>
+#include <cstddef>
+
+namespace sss::renderer {
+
+namespace {
+vk::DescriptorSetLayoutBuilder bindings() {
+  vk::DescriptorSetLayoutBuilder b;
+  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
+  return b;
+}
+}  // namespace
+
+GBufferPass::GBufferPass(const FrameResources& resources)
+    : r_(resources),
+      set_layout_(bindings().build(r_.context, kName)),
+      layout_(vk::create_pipeline_layout(r_.context, set_layout_.get(), sizeof(shader::DrawPush),
+                                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                         kName)),
+      pipeline_(vk::GraphicsPipelineBuilder()
+                    .vertex_shader(sss_spv_gbuffer_vert)
+                    .fragment_shader(sss_spv_gbuffer_frag)
+                    .vertex_binding(0, sizeof(GpuVertex))
+                    .vertex_attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT,
+                                      offsetof(GpuVertex, position))
+                    .vertex_attribute(1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal))
+                    .color(kNormalFormat)
+                    .color(kAlbedoFormat)
+                    .depth(kDepthFormat, vk::DepthTest::Write)
+                    .cull(VK_CULL_MODE_NONE)
+                    .build(r_.context, layout_.get(), kName)),
+      pool_(r_.context, bindings(), 1, kName) {
+  set_ = pool_.allocate(set_layout_.get());
+  vk::DescriptorWriter(set_).uniform_buffer(0, r_.frame_uniforms).update(r_.context);
+}
+
+void GBufferPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
+  auto scope = timer.scope(cmd, kName);
+  const FrameTargets& t = r_.targets;
+  const std::array<vk::ColorTarget, 2> colors = {vk::ColorTarget(t.normal.view()),
+                                                 vk::ColorTarget(t.albedo.view())};
+  const vk::DepthTarget depth(t.depth.view());
+  vk::begin_rendering(cmd, t.depth.extent(), colors, &depth);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_, 0,
+                          nullptr);
+  r_.scene.draw(cmd, layout_.get());
+  vk::end_rendering(cmd);
+  const vk::Scope color_write{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+  const vk::Scope depth_write{
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+  const vk::Scope sampled{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+  vk::pipeline_barrier(
+      cmd, {vk::image_barrier(t.normal, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
+            vk::image_barrier(t.albedo, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
+            vk::image_barrier(t.depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth_write, sampled)});
+}
+
+}  // namespace sss::renderer

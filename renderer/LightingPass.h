@@ -1,0 +1,25 @@
+// LightingPass ("lighting"): per pixel, diffuse irradiance E before albedo (Lambert cosine
+// x light x shadow visibility x the light's half-space mask) and GGX specular radiance,
+// into targets.irradiance and targets.specular (GENERAL).
+#pragma once
+
+#include "renderer/ComputeProgram.h"
+#include "renderer/FrameResources.h"
+#include "renderer/vk/GpuTimer.h"
+
+namespace sss::renderer {
+
+class LightingPass {
+ public:
+  static constexpr const char* kName = "lighting";
+
+  explicit LightingPass(const FrameResources& resources);
+  void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+
+ private:
+  const FrameResources& r_;
+  ComputeProgram program_;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+}  // namespace sss::renderer

@@ -1,0 +1,67 @@
+#include "renderer/MaterialTable.h"
+
+#include "renderer/vk/Transfer.h"
+
+#include "profiles/Profile.h"
+
+#include <span>
+#include <stdexcept>
+#include <string>
+
+namespace sss::renderer {
+
+MaterialData build_material_data(const scene::Scene& scene, int separable_taps) {
+  if (scene.materials.size() > shader::kMaxMaterials)
+    throw std::invalid_argument("the scene has " + std::to_string(scene.materials.size()) +
+                                " materials; the renderer supports " +
+                                std::to_string(shader::kMaxMaterials));
+  if (separable_taps < 3 || separable_taps % 2 == 0 ||
+      separable_taps > static_cast<int>(shader::kMaxTaps))
+    throw std::invalid_argument("separable taps must be odd, 3.." +
+                                std::to_string(shader::kMaxTaps));
+  MaterialData data;
+  for (const scene::Material& m : scene.materials) {
+    shader::GpuMaterial g;
+    g.surface = {0.04f * m.specular, m.metallic, m.roughness, 0.0f};
+    g.reflectance = {1.0f, 1.0f, 1.0f, 0.0f};
+    std::optional<MaterialProfile> profile;
+    if (m.sss.enabled) {
+      const profiles::RgbProfile rgb(m.sss.model, m.sss.effective_medium());
+      profiles::FitOptions options;
+      options.gaussians = m.sss.gaussians;
+      MaterialProfile p{profiles::fit_gaussians(profiles::make_fit_target(rgb), options),
+                        profiles::make_separable_kernel(rgb, separable_taps)};
+      const Rgb total = rgb.total_reflectance();
+      g.reflectance = {float(total[0]), float(total[1]), float(total[2]), 1.0f};
+      const auto count = p.fit.variances_mm2.size();
+      g.surface.w = float(count);
+      for (std::size_t i = 0; i < count; ++i) {
+        float* v = &g.variances[i / 4].x;
+        v[i % 4] = float(p.fit.variances_mm2[i]);
+        g.gauss_weights[i] = {float(p.fit.weights[i][0]), float(p.fit.weights[i][1]),
+                              float(p.fit.weights[i][2]), 0.0f};
+      }
+      g.kernel = {float(p.kernel.offsets_mm.size()), float(p.kernel.range_mm), 0.0f, 0.0f};
+      for (std::size_t i = 0; i < p.kernel.offsets_mm.size(); ++i)
+        g.taps[i] = {float(p.kernel.weights[i][0]), float(p.kernel.weights[i][1]),
+                     float(p.kernel.weights[i][2]), float(p.kernel.offsets_mm[i])};
+      data.max_gaussians = std::max(data.max_gaussians, static_cast<int>(count));
+      profile = std::move(p);
+    }
+    data.gpu.push_back(g);
+    data.profiles.push_back(std::move(profile));
+  }
+  if (data.gpu.empty()) data.gpu.emplace_back();  // a storage buffer cannot be empty
+  return data;
+}
+
+MaterialTable::MaterialTable(const vk::Context& context, const scene::Scene& scene,
+                             int separable_taps)
+    : data_(build_material_data(scene, separable_taps)),
+      buffer_(context, {data_.gpu.size() * sizeof(shader::GpuMaterial),
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                        vk::MemoryUsage::DeviceLocal, "materials"}) {
+  vk::upload_buffer(context, buffer_, std::span<const shader::GpuMaterial>(data_.gpu));
+}
+
+}  // namespace sss::renderer

@@ -1,0 +1,50 @@
+// MaterialTable: one GpuMaterial per scene material, uploaded to a storage buffer that
+// the lighting, SSS and composite passes index with the G-buffer's material id. For an
+// SSS material it holds the profile's sum-of-Gaussians fit (gaussians mode) and a
+// Jimenez separable kernel built from the exact profile (separable mode), both in object
+// mm (the material's scale is folded into the medium, Material::effective_medium).
+#pragma once
+
+#include "renderer/scene/Scene.h"
+#include "renderer/vk/Buffer.h"
+#include "shaders/shared/frame.h"
+
+#include "profiles/GaussianFit.h"
+#include "profiles/SeparableKernel.h"
+
+#include <optional>
+#include <vector>
+
+namespace sss::vk {
+class Context;
+}
+
+namespace sss::renderer {
+
+struct MaterialProfile {
+  profiles::GaussianFit fit;
+  profiles::SeparableKernel kernel;
+};
+
+// The GPU view of the scene's materials; profiles[i] is set for SSS materials. Throws
+// std::invalid_argument for more than SSS_MAX_MATERIALS materials or a bad tap count.
+struct MaterialData {
+  std::vector<shader::GpuMaterial> gpu;
+  std::vector<std::optional<MaterialProfile>> profiles;
+  int max_gaussians = 0;  // over SSS materials
+};
+MaterialData build_material_data(const scene::Scene& scene, int separable_taps);
+
+class MaterialTable {
+ public:
+  MaterialTable(const vk::Context& context, const scene::Scene& scene, int separable_taps);
+
+  const vk::Buffer& buffer() const { return buffer_; }
+  const MaterialData& data() const { return data_; }
+
+ private:
+  MaterialData data_;
+  vk::Buffer buffer_;
+};
+
+}  // namespace sss::renderer

@@ -1,0 +1,68 @@
+#include "renderer/ShadowPass.h"
+
+#include "renderer/vk/Barrier.h"
+#include "renderer/vk/GraphicsPipeline.h"
+#include "renderer/vk/Pipeline.h"
+#include "renderer/vk/Rendering.h"
+#include "shaders/shadow.vert.h"
+#include "shaders/shared/frame.h"
+
+#include <cstddef>
+
+namespace sss::renderer {
+
+namespace {
+vk::DescriptorSetLayoutBuilder bindings() {
+  vk::DescriptorSetLayoutBuilder b;
+  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT);
+  return b;
+}
+}  // namespace
+
+ShadowPass::ShadowPass(const FrameResources& resources, std::vector<bool> shadowed)
+    : r_(resources),
+      shadowed_(std::move(shadowed)),
+      set_layout_(bindings().build(r_.context, kName)),
+      layout_(vk::create_pipeline_layout(r_.context, set_layout_.get(), sizeof(shader::DrawPush),
+                                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                         kName)),
+      pipeline_(vk::GraphicsPipelineBuilder()
+                    .vertex_shader(sss_spv_shadow_vert)
+                    .vertex_binding(0, sizeof(GpuVertex))
+                    .vertex_attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT,
+                                      offsetof(GpuVertex, position))
+                    .depth(kDepthFormat, vk::DepthTest::Write)
+                    .cull(VK_CULL_MODE_NONE)
+                    .dynamic_depth_bias()
+                    .build(r_.context, layout_.get(), kName)),
+      pool_(r_.context, bindings(), 1, kName) {
+  set_ = pool_.allocate(set_layout_.get());
+  vk::DescriptorWriter(set_).uniform_buffer(0, r_.lights).update(r_.context);
+}
+
+void ShadowPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
+  auto scope = timer.scope(cmd, kName);
+  const vk::Image& shadow = r_.targets.shadow;
+  for (std::size_t layer = 0; layer < r_.targets.shadow_layers.size(); ++layer) {
+    const vk::DepthTarget target(r_.targets.shadow_layers[layer].get());
+    vk::begin_rendering(cmd, shadow.extent(), {}, &target);
+    if (layer < shadowed_.size() && shadowed_[layer]) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_,
+                              0, nullptr);
+      vkCmdSetDepthBias(cmd, 0.0f, 0.0f, 1.5f);
+      r_.scene.draw(cmd, layout_.get(), static_cast<int>(layer));
+    }
+    vk::end_rendering(cmd);
+  }
+  vk::pipeline_barrier(
+      cmd, {vk::image_barrier(shadow, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                              {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                                   VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT},
+                              {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT})});
+}
+
+}  // namespace sss::renderer

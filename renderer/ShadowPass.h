@@ -1,0 +1,32 @@
+// ShadowPass ("shadow"): one depth layer per light (LightSetup's matrices), slope-scaled
+// depth bias in the rasterizer plus the normal offset and constant bias of the lookup
+// (lighting.comp). Writes targets.shadow; leaves it SHADER_READ_ONLY_OPTIMAL.
+#pragma once
+
+#include "renderer/FrameResources.h"
+#include "renderer/vk/Descriptors.h"
+#include "renderer/vk/GpuTimer.h"
+
+#include <vector>
+
+namespace sss::renderer {
+
+class ShadowPass {
+ public:
+  static constexpr const char* kName = "shadow";
+
+  ShadowPass(const FrameResources& resources, std::vector<bool> shadowed);
+  // Expects targets.shadow in DEPTH_ATTACHMENT_OPTIMAL.
+  void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+
+ private:
+  const FrameResources& r_;
+  std::vector<bool> shadowed_;
+  vk::DescriptorSetLayoutHandle set_layout_;
+  vk::PipelineLayoutHandle layout_;
+  vk::PipelineHandle pipeline_;
+  vk::DescriptorPool pool_;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+}  // namespace sss::renderer

@@ -1,0 +1,19 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// G-buffer: world position and normal of each vertex.
+#include "shared/frame.h"
+
+layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+layout(push_constant) uniform Push { DrawPush draw; };
+
+layout(location = 0) in vec3 in_position;
+layout(location = 1) in vec3 in_normal;
+layout(location = 0) out vec3 out_world;
+layout(location = 1) out vec3 out_normal;
+
+void main() {
+  vec4 world = draw.model * vec4(in_position, 1.0);
+  out_world = world.xyz;
+  out_normal = transpose(inverse(mat3(draw.model))) * in_normal;
+  gl_Position = frame.view_proj * world;
+}

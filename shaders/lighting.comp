@@ -1,0 +1,94 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Lighting: per pixel, diffuse irradiance E (before albedo) and GGX specular radiance,
+// to separate targets. Only E scatters.
+#include "shared/frame.h"
+#include "shared/common.glsl"
+
+layout(local_size_x = SSS_WORKGROUP_2D_X, local_size_y = SSS_WORKGROUP_2D_Y) in;
+
+layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform Lights { LightBlock light_block; };
+layout(set = 0, binding = 2) readonly buffer Materials { GpuMaterial materials[]; };
+layout(set = 0, binding = 3) uniform sampler2D depth_tex;
+layout(set = 0, binding = 4) uniform sampler2D normal_tex;
+layout(set = 0, binding = 5) uniform sampler2D albedo_tex;
+layout(set = 0, binding = 6) uniform sampler2DArrayShadow shadow_tex;
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D irradiance_img;
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D specular_img;
+
+float shadow_visibility(int index, GpuLight light, vec3 p, vec3 n) {
+  vec4 c = light.shadow_matrix * vec4(p + n * light.shadow.z, 1.0);
+  vec3 s = c.xyz / c.w;
+  vec2 uv = s.xy * 0.5 + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || s.z > 1.0) return 1.0;
+  vec2 texel = 1.0 / vec2(textureSize(shadow_tex, 0).xy);
+  float sum = 0.0;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x)
+      sum += texture(shadow_tex, vec4(uv + vec2(x, y) * texel, float(index), s.z - light.shadow.w));
+  return sum / 9.0;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+  int id = material_id(texelFetch(albedo_tex, p, 0));
+  if (id < 0) {
+    imageStore(irradiance_img, p, vec4(0.0));
+    imageStore(specular_img, p, vec4(0.0));
+    return;
+  }
+  GpuMaterial m = materials[id];
+  vec3 albedo = texelFetch(albedo_tex, p, 0).rgb;
+  float depth = texelFetch(depth_tex, p, 0).r;
+  vec4 w = frame.inv_view_proj * vec4(pixel_ndc(vec2(p) + 0.5, frame.viewport), depth, 1.0);
+  vec3 P = w.xyz / w.w;
+  vec4 nr = texelFetch(normal_tex, p, 0);
+  vec3 N = normalize(nr.xyz);
+  vec3 V = frame.camera.w > 0.5 ? -frame.forward.xyz : normalize(frame.camera.xyz - P);
+  float NdotV = max(dot(N, V), 1e-4);
+  float alpha = max(m.surface.z * m.surface.z, 1e-3);
+  float a2 = alpha * alpha;
+  vec3 F0 = mix(vec3(m.surface.x), albedo, m.surface.y);
+  bool has_specular = max(F0.r, max(F0.g, F0.b)) > 0.0;
+
+  vec3 E = vec3(0.0);
+  vec3 S = vec3(0.0);
+  int count = int(frame.options.x);
+  for (int i = 0; i < count; ++i) {
+    GpuLight light = light_block.lights[i];
+    int type = int(light.color.w);
+    if (light.shadow.x > 0.5 && dot(light.mask.xyz, P) + light.mask.w >= 0.0) continue;
+    vec3 L;
+    vec3 radiance = light.color.rgb;  // irradiance at normal incidence
+    if (type == SSS_LIGHT_DIRECTIONAL) {
+      L = -light.direction.xyz;
+    } else {
+      vec3 d = light.position.xyz - P;
+      float d2 = max(dot(d, d), 1e-8);
+      L = d * inversesqrt(d2);
+      radiance /= d2;
+      if (type == SSS_LIGHT_SPOT)
+        radiance *= smoothstep(light.direction.w, light.position.w, dot(-L, light.direction.xyz));
+    }
+    float NdotL = dot(N, L);
+    if (NdotL <= 0.0) continue;
+    float visibility = light.shadow.y > 0.5 ? shadow_visibility(i, light, P, N) : 1.0;
+    vec3 incident = radiance * NdotL * visibility;
+    E += incident;
+    if (has_specular) {
+      vec3 H = normalize(L + V);
+      float NdotH = max(dot(N, H), 0.0);
+      float VdotH = max(dot(V, H), 0.0);
+      float dd = NdotH * NdotH * (a2 - 1.0) + 1.0;
+      float D = a2 / (kPi * dd * dd);
+      float vis = 0.5 / (NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2) +
+                         NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2));
+      vec3 F = F0 + (1.0 - F0) * pow(1.0 - VdotH, 5.0);
+      S += D * vis * F * incident;
+    }
+  }
+  imageStore(irradiance_img, p, vec4(E, 1.0));
+  imageStore(specular_img, p, vec4(S, 1.0));
+}

@@ -1,0 +1,96 @@
+// Layouts shared by the renderer's passes (renderer/*Pass.cpp) and their shaders: the
+// frame uniforms, the material/profile table, the lights, and the push constants. Valid
+// C++ and GLSL; every struct is made of vec4/mat4/scalar members in std140/std430 order
+// so that the C++ layout equals the GLSL one (static_asserts at the end).
+//
+// C++:  #include "shaders/shared/frame.h"      GLSL:  #include "shared/frame.h"
+#ifndef SSS_SHADERS_SHARED_FRAME_H
+#define SSS_SHADERS_SHARED_FRAME_H
+
+#include "config.h"
+
+// Lights the frame shades (the rest are ignored with a warning); each may have a shadow
+// map layer.
+#define SSS_MAX_LIGHTS 4
+// The most taps of a separable kernel (odd).
+#define SSS_MAX_TAPS 33
+// Gaussian blur half-taps at most per 1D pass (gaussians mode); wider Gaussians are
+// sampled with an integer stride.
+#define SSS_GAUSSIAN_HALF_TAPS 12
+// Light types (Light::type).
+#define SSS_LIGHT_DIRECTIONAL 0
+#define SSS_LIGHT_POINT 1
+#define SSS_LIGHT_SPOT 2
+// G-buffer material id: albedo.a = (material index + 1) / 255; 0 is background.
+#define SSS_MAX_MATERIALS 254
+
+#ifdef __cplusplus
+namespace sss::shader {
+struct vec4 {
+  float x = 0, y = 0, z = 0, w = 0;
+};
+struct mat4 {
+  vec4 c[4];  // columns, as GLSL and glm store them
+};
+#endif
+
+// Uniform buffer of the frame (set 0 of every pass that needs it).
+struct FrameUniforms {
+  mat4 view_proj;      // world -> clip
+  mat4 inv_view_proj;  // clip -> world
+  mat4 inv_proj;       // clip -> view
+  vec4 camera;         // xyz camera position (world), w 1 = orthographic
+  vec4 forward;        // xyz camera view direction (world, unit)
+  vec4 viewport;       // width, height, 1/width, 1/height
+  vec4 scale;          // x mm per scene unit, y P[0][0], z |P[1][1]|, w exposure
+  vec4 options;        // x light count, y sss mode (0 off, 1 separable, 2 gaussians), z, w
+};
+
+struct GpuLight {
+  mat4 shadow_matrix;  // world -> shadow clip (layer = index); identity when unshadowed
+  vec4 color;          // rgb colour x intensity (E for directional, I otherwise), w type
+  vec4 direction;      // xyz travel direction (unit), w cos(outer cone)
+  vec4 position;       // xyz position, w cos(inner cone)
+  vec4 mask;           // half-space: lit where dot(xyz, p) + w < 0
+  vec4 shadow;         // x has mask, y has shadow map, z normal offset (units), w depth bias
+};
+
+struct LightBlock {
+  GpuLight lights[SSS_MAX_LIGHTS];
+};
+
+// One material: surface parameters and, when it scatters, its profile as a fit and as a
+// separable kernel (both in object mm; the material's scale is already in them).
+struct GpuMaterial {
+  vec4 reflectance;  // rgb total diffuse reflectance T, w 1 when SSS is enabled
+  vec4 surface;      // x F0 (0.04 x specular), y metallic, z roughness, w Gaussian count
+  vec4 kernel;       // x separable taps, y range_mm (follow-surface width), z, w
+  vec4 variances[SSS_MAX_GAUSSIANS / 4];  // v_i in mm^2, ascending
+  vec4 gauss_weights[SSS_MAX_GAUSSIANS];  // rgb w_i (sum = T)
+  vec4 taps[SSS_MAX_TAPS];                // rgb weight (sum 1), w offset in mm
+};
+
+// Push constants.
+struct DrawPush {  // G-buffer and shadow draws (view_proj comes from the uniforms)
+  mat4 model;
+  vec4 material;    // x material index, y light index (shadow draws), z roughness
+  vec4 base_color;  // linear RGBA factor
+};
+
+struct BlurPush {  // screen-space SSS passes
+  vec4 direction;  // xy pixel direction (1,0) or (0,1); z Gaussian index; w 1 = first
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(mat4) == 64);
+static_assert(sizeof(FrameUniforms) == 3 * 64 + 5 * 16);
+static_assert(sizeof(GpuLight) == 64 + 5 * 16);
+static_assert(sizeof(GpuMaterial) == 16 * (3 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
+static_assert(sizeof(DrawPush) == 96);
+inline constexpr uint kMaxLights = SSS_MAX_LIGHTS;
+inline constexpr uint kMaxTaps = SSS_MAX_TAPS;
+inline constexpr uint kMaxMaterials = SSS_MAX_MATERIALS;
+}  // namespace sss::shader
+#endif
+
+#endif  // SSS_SHADERS_SHARED_FRAME_H

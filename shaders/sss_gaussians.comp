@@ -1,0 +1,72 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Screen-space SSS, gaussians mode: each Gaussian of the material's fit as its own
+// separable blur, incrementally. Pass (g, direction) blurs by the 1D Gaussian of variance
+// v_g - v_{g-1} (the input already holds E blurred by v_{g-1}); the vertical pass also
+// accumulates w_g x (E * G(v_g)) into accum_img (written, not added, for g = 0). Exact
+// for a flat surface up to sampling: integer-pixel taps (stride 1, or wider for wide
+// Gaussians), weights normalised over the taps.
+#include "shared/frame.h"
+#include "shared/common.glsl"
+
+layout(local_size_x = SSS_WORKGROUP_2D_X, local_size_y = SSS_WORKGROUP_2D_Y) in;
+
+layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = 1) readonly buffer Materials { GpuMaterial materials[]; };
+layout(set = 0, binding = 2) uniform sampler2D depth_tex;
+layout(set = 0, binding = 3) uniform sampler2D albedo_tex;
+layout(set = 0, binding = 4) uniform sampler2D input_tex;
+layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D output_img;
+layout(set = 0, binding = 6, rgba16f) uniform image2D accum_img;
+layout(push_constant) uniform Push { BlurPush blur; };
+
+#include "shared/sss.glsl"
+
+float variance(GpuMaterial m, int g) { return g < 0 ? 0.0 : m.variances[g / 4][g % 4]; }
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = ivec2(frame.viewport.xy);
+  if (any(greaterThanEqual(p, size))) return;
+  vec2 dir = blur.direction.xy;
+  int g = int(blur.direction.z);
+  bool vertical = dir.y > 0.5;
+  vec3 center = texelFetch(input_tex, p, 0).rgb;
+  int id = material_id(texelFetch(albedo_tex, p, 0));
+  bool scatters = id >= 0 && materials[id].reflectance.w > 0.5 &&
+                  g < int(materials[id].surface.w);
+  if (!scatters) {
+    imageStore(output_img, p, vec4(center, 1.0));
+    if (vertical && g == 0) imageStore(accum_img, p, vec4(0.0));
+    return;
+  }
+  GpuMaterial m = materials[id];
+  float z = view_depth_mm(p);
+  float sigma_px = sqrt(max(variance(m, g) - variance(m, g - 1), 0.0)) * pixels_per_mm(dir, z);
+  vec3 result = center;
+  if (sigma_px > 0.05) {
+    float reach = 3.0 * sigma_px;
+    int half_taps = min(int(ceil(reach)), SSS_GAUSSIAN_HALF_TAPS);
+    int stride = max(1, int(ceil(reach / float(SSS_GAUSSIAN_HALF_TAPS))));
+    float inv_two_var = 1.0 / (2.0 * sigma_px * sigma_px);
+    vec3 sum = center;
+    float weight_sum = 1.0;
+    for (int k = -half_taps; k <= half_taps; ++k) {
+      if (k == 0) continue;
+      float offset = float(k * stride);
+      ivec2 q = clamp(p + ivec2(dir * offset), ivec2(0), size - 1);
+      vec3 value = follow_surface(texelFetch(input_tex, q, 0).rgb, center,
+                                  material_id(texelFetch(albedo_tex, q, 0)), id,
+                                  view_depth_mm(q), z, m.kernel.y);
+      float weight = exp(-offset * offset * inv_two_var);
+      sum += weight * value;
+      weight_sum += weight;
+    }
+    result = sum / weight_sum;
+  }
+  imageStore(output_img, p, vec4(result, 1.0));
+  if (vertical) {
+    vec3 accum = g == 0 ? vec3(0.0) : imageLoad(accum_img, p).rgb;
+    imageStore(accum_img, p, vec4(accum + m.gauss_weights[g].rgb * result, 1.0));
+  }
+}

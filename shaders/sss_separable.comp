@@ -1,0 +1,49 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Screen-space SSS, separable mode (Jimenez 2015): one 1D pass of the material's kernel
+// (offsets in mm, RGB weights summing to 1) along direction.xy. Run horizontally on the
+// irradiance, then vertically on the result; composite multiplies by the total
+// reflectance.
+#include "shared/frame.h"
+#include "shared/common.glsl"
+
+layout(local_size_x = SSS_WORKGROUP_2D_X, local_size_y = SSS_WORKGROUP_2D_Y) in;
+
+layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = 1) readonly buffer Materials { GpuMaterial materials[]; };
+layout(set = 0, binding = 2) uniform sampler2D depth_tex;
+layout(set = 0, binding = 3) uniform sampler2D albedo_tex;
+layout(set = 0, binding = 4) uniform sampler2D input_tex;  // bilinear
+layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D output_img;
+layout(push_constant) uniform Push { BlurPush blur; };
+
+#include "shared/sss.glsl"
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = ivec2(frame.viewport.xy);
+  if (any(greaterThanEqual(p, size))) return;
+  vec3 center = texelFetch(input_tex, p, 0).rgb;
+  int id = material_id(texelFetch(albedo_tex, p, 0));
+  if (id < 0 || materials[id].reflectance.w < 0.5) {
+    imageStore(output_img, p, vec4(center, 1.0));
+    return;
+  }
+  vec2 dir = blur.direction.xy;
+  float z = view_depth_mm(p);
+  float ppm = pixels_per_mm(dir, z);
+  float width_mm = materials[id].kernel.y;
+  int taps = int(materials[id].kernel.x);
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < taps; ++i) {
+    vec4 tap = materials[id].taps[i];
+    vec2 pos = vec2(p) + 0.5 + dir * (tap.w * ppm);
+    ivec2 q = clamp(ivec2(floor(pos)), ivec2(0), size - 1);
+    vec3 value = textureLod(input_tex, pos * frame.viewport.zw, 0.0).rgb;
+    if (q != p)
+      value = follow_surface(value, center, material_id(texelFetch(albedo_tex, q, 0)), id,
+                             view_depth_mm(q), z, width_mm);
+    sum += tap.rgb * value;
+  }
+  imageStore(output_img, p, vec4(sum, 1.0));
+}

@@ -1,0 +1,67 @@
+// The frame end to end on lavapipe: builtin:sphere renders something sensible, cleanly
+// (validation, core + synchronization, reports nothing), and deterministically.
+#include "RenderTest.h"
+
+#include "renderer/scene/BuiltinScenes.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace sss::renderer::testing {
+namespace {
+
+TEST_F(RenderTest, SphereRendersLitGeometryOnABlackBackground) {
+  const scene::Scene scene = scene::sphere_scene();
+  const Frame f = render(scene, small_options(160, 90));
+  ASSERT_EQ(f.hdr.width, 160);
+  ASSERT_EQ(f.hdr.height, 90);
+  int geometry = 0, lit = 0;
+  for (int y = 0; y < 90; ++y)
+    for (int x = 0; x < 160; ++x) {
+      const float* p = f.hdr.pixel(x, y);
+      for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(p[c])) << x << "," << y;
+      if (p[3] > 0.5f) {
+        ++geometry;
+        if (luminance(p) > 0.01f) ++lit;
+      } else {
+        EXPECT_EQ(luminance(p), 0.0f) << "background at " << x << "," << y;
+      }
+    }
+  // The sphere covers a fair part of the frame and its lit side is not black.
+  EXPECT_GT(geometry, 160 * 90 / 20);
+  EXPECT_LT(geometry, 160 * 90 / 2);
+  EXPECT_GT(lit, geometry / 4);
+  // The centre pixel is on the sphere; the corners are background.
+  EXPECT_GT(f.hdr.pixel(80, 45)[3], 0.5f);
+  EXPECT_EQ(f.hdr.pixel(0, 0)[3], 0.0f);
+  // Display values are in [0, 1] and brighter where the radiance is.
+  EXPECT_GT(f.display.pixel(80, 45)[0], 0.0f);
+  EXPECT_LE(f.display.pixel(80, 45)[0], 1.0f);
+}
+
+TEST_F(RenderTest, StatsNamePassesInFrameOrder) {
+  const Frame f = render(scene::sphere_scene(), small_options(64, 36, SssMode::Screen));
+  std::vector<std::string> names;
+  for (const vk::PassTime& p : f.stats.passes) names.push_back(p.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"shadow", "gbuffer", "lighting", "sss separable",
+                                             "composite"}));
+  EXPECT_GT(f.stats.cpu_ms, 0.0);
+}
+
+TEST_F(RenderTest, RenderingIsDeterministic) {
+  const scene::Scene scene = scene::sphere_scene();
+  for (SssKind kind : {SssKind::Separable, SssKind::Gaussians}) {
+    const RenderOptions o = small_options(160, 90, SssMode::Screen, kind);
+    const Frame a = render(scene, o);
+    const Frame b = render(scene, o, 2);
+    ASSERT_EQ(a.hdr.rgba.size(), b.hdr.rgba.size());
+    EXPECT_EQ(std::memcmp(a.hdr.rgba.data(), b.hdr.rgba.data(), a.hdr.rgba.size() * sizeof(float)),
+              0)
+        << sss_kind_name(kind);
+    EXPECT_EQ(a.display.rgba, b.display.rgba);
+  }
+}
+
+}  // namespace
+}  // namespace sss::renderer::testing

@@ -1,0 +1,111 @@
+// sss-viewer: every documented command and error (DESIGN.md §4, §7 "apps").
+#include <gtest/gtest.h>
+
+#include "renderer/image/Image.h"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#ifdef SSS_VIEWER_EXE
+
+namespace {
+
+struct ViewerRun {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+ViewerRun run(const std::string& args) {
+  ViewerRun r;
+  const std::string command = std::string(SSS_VIEWER_EXE) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return r;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) r.output += buffer;
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("sss_viewer_test_" + name)).string();
+}
+
+TEST(ViewerApp, HeadlessWritesPngAndExr) {
+  for (const char* ext : {".png", ".exr"}) {
+    const std::string out = temp_path(std::string("sphere") + ext);
+    std::filesystem::remove(out);
+    const ViewerRun r = run("builtin:sphere --headless --out " + out + " --width 96 --height 54");
+    EXPECT_EQ(r.status, 0) << r.output;
+    auto image = sss::image::read_image(out);
+    ASSERT_TRUE(std::holds_alternative<sss::image::Image>(image)) << out;
+    EXPECT_EQ(std::get<sss::image::Image>(image).width, 96);
+    EXPECT_EQ(std::get<sss::image::Image>(image).height, 54);
+    std::filesystem::remove(out);
+  }
+}
+
+TEST(ViewerApp, StatsPrintEveryPassAndTheCpuFrameTime) {
+  const std::string out = temp_path("stats.png");
+  for (const char* mode : {"separable", "gaussians"}) {
+    const ViewerRun r = run("builtin:sphere --headless --out " + out +
+                      " --width 64 --height 36 --frames 2 --stats --mode " + mode);
+    EXPECT_EQ(r.status, 0) << r.output;
+    for (const char* row : {"shadow", "gbuffer", "lighting", "composite", "cpu frame"})
+      EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
+    EXPECT_NE(r.output.find(std::string("sss ") + mode), std::string::npos) << r.output;
+  }
+  const ViewerRun off = run("builtin:sphere --headless --out " + out + " --width 64 --height 36 --sss off --stats");
+  EXPECT_EQ(off.status, 0) << off.output;
+  EXPECT_EQ(off.output.find("sss separable"), std::string::npos) << off.output;
+  std::filesystem::remove(out);
+}
+
+TEST(ViewerApp, MaterialOverridesAreAccepted) {
+  const std::string out = temp_path("override.exr");
+  const ViewerRun r = run("builtin:sphere --headless --out " + out +
+                    " --width 48 --height 27 --preset marble --model dipole --gaussians 3");
+  EXPECT_EQ(r.status, 0) << r.output;
+  const ViewerRun c = run("builtin:sphere --headless --out " + out +
+                    " --width 48 --height 27 --sigma-a 0.01,0.02,0.03 --sigma-s 1,1,1");
+  EXPECT_EQ(c.status, 0) << c.output;
+  std::filesystem::remove(out);
+}
+
+TEST(ViewerApp, DocumentedErrors) {
+  const std::string out = temp_path("error.png");
+  struct Case {
+    std::string args;
+    int status;
+    std::string message;
+  };
+  const Case cases[] = {
+      {"builtin:sphere --out " + out, 2, "windowed viewer is not available yet"},
+      {"builtin:sphere --headless", 2, "--out"},
+      {"builtin:sphere --headless --out " + temp_path("x.jpg"), 2, ".png or .exr"},
+      {"builtin:sphere --headless --out " + out + " --sss texture", 2,
+       "texture-space SSS is not available yet (issue 6)"},
+      {"builtin:sphere --headless --out " + out + " --sss fuzzy", 2, "--sss"},
+      {"builtin:sphere --headless --out " + out + " --mode blurry", 2, "--mode"},
+      {"builtin:sphere --headless --out " + out + " --model nope", 2, "--model"},
+      {"builtin:sphere --headless --out " + out + " --gaussians 9", 2, "--gaussians"},
+      {"builtin:sphere --headless --out " + out + " --preset nope", 2, "preset"},
+      {"builtin:sphere --headless --out " + out + " --taps 4", 2, "--taps"},
+      {"builtin:nothing --headless --out " + out, 2, "builtin:nothing"},
+      {"/nonexistent/scene.gltf --headless --out " + out, 2, "scene.gltf"},
+      {"builtin:sphere --headless --out " + out + " --width 0", 2, "width"},
+  };
+  for (const Case& c : cases) {
+    const ViewerRun r = run(c.args);
+    EXPECT_EQ(r.status, c.status) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+
+#endif  // SSS_VIEWER_EXE
