@@ -45,7 +45,7 @@ void main() {
   float sigma_px = sqrt(max(variance(m, g) - variance(m, g - 1), 0.0)) * pixels_per_mm(dir, z);
   vec3 result = center;
   if (sigma_px > 0.05) {
-    float reach = 3.0 * sigma_px;
+    float reach = 4.0 * sigma_px;  // truncation: 6e-5 of the mass, 0.03% of the variance
     int half_taps = min(int(ceil(reach)), SSS_GAUSSIAN_HALF_TAPS);
     int stride = max(1, int(ceil(reach / float(SSS_GAUSSIAN_HALF_TAPS))));
     float inv_two_var = 1.0 / (2.0 * sigma_px * sigma_px);

@@ -17,6 +17,7 @@ struct Frame {
   image::Image hdr;      // linear radiance
   image::Image display;  // tonemapped, sRGB codes / 255
   FrameStats stats;
+  MaterialData materials;  // the fits and kernels the frame used
 };
 
 class RenderTest : public vk::testing::VulkanTest {
@@ -25,7 +26,7 @@ class RenderTest : public vk::testing::VulkanTest {
     EXPECT_TRUE(ctx().validation_enabled()) << "the validation layer is not installed";
     Renderer renderer(ctx(), scene, options);
     for (int i = 0; i < frames; ++i) renderer.render_frame();
-    return {renderer.read_hdr(), renderer.read_display(), renderer.stats()};
+    return {renderer.read_hdr(), renderer.read_display(), renderer.stats(), renderer.materials()};
   }
 };
 
