@@ -213,5 +213,45 @@ TEST_F(EdgeTest, GaussiansMatchTheEdgeResponseMarble) {
   check_gaussians("marble", render_edge("marble", SssKind::Gaussians));
 }
 
+// Zoom invariance: the same slab at half the width (x in [-10.24, 10.24] mm, 0.08 mm per
+// pixel). Wide pixel p covers [x - 0.08, x + 0.08] mm, exactly zoomed pixels 2p - 128 and
+// 2p - 127, so the mean of those two must equal it: the profile in mm does not depend on
+// the zoom. gaussians: both frames are box averages of the same response, so they agree
+// to both frames' eps. separable: both lie in the staircase bracket of the cells met by
+// the wide pixel, so they agree to its width (M(b_lo) - M(b_hi)) plus both eps.
+TEST_F(EdgeTest, ZoomingDoesNotChangeTheProfileInMm) {
+  for (SssKind kind : {SssKind::Gaussians, SssKind::Separable}) {
+    const EdgeRun wide = render_edge("skin1", kind);
+    const EdgeRun zoom = render_edge("skin1", kind, kHalfWidthMm / 2.0);
+    const profiles::RgbProfile profile = exact_profile(wide.scene);
+    const Rgb T = profile.total_reflectance();
+    const MaterialProfile& mp = *wide.materials.profiles[0];
+    const std::vector<double> b = cell_boundaries(mp.kernel);
+    double worst = 0.0;
+    for (int p = 64; p < 192; ++p) {
+      const int q = 2 * p - 128;
+      const double xc = pixel_center_mm(p);
+      double bracket = 0.0;
+      if (kind == SssKind::Separable) {
+        const auto first = std::upper_bound(b.begin(), b.end(), xc - 0.5 * kPixelMm) - 1;
+        const auto last = std::upper_bound(b.begin(), b.end(), xc + 0.5 * kPixelMm);
+        const Rgb M_lo = std::isinf(*first) ? T : profiles::edge_response(profile, *first);
+        const Rgb M_hi = std::isinf(*last) ? Rgb{0, 0, 0} : profiles::edge_response(profile, *last);
+        for (int c = 0; c < 3; ++c) bracket = std::max(bracket, (M_lo[c] - M_hi[c]) / T[c]);
+      }
+      for (int c = 0; c < 3; ++c) {
+        const double eps = kind == SssKind::Gaussians ? gaussians_eps(mp.fit) : kSeparableEps;
+        const double zoomed = 0.5 * (zoom.pi_L[q][c] + zoom.pi_L[q + 1][c]);
+        const double diff = std::fabs(wide.pi_L[p][c] - zoomed);
+        EXPECT_LE(diff, (bracket + 2.0 * eps) * T[c])
+            << sss_kind_name(kind) << " x=" << xc << " mm channel " << c;
+        worst = std::max(worst, diff / T[c]);
+      }
+    }
+    std::printf("[ zoom %s ] worst |wide - zoomed| / T = %.2e\n",
+                std::string(sss_kind_name(kind)).c_str(), worst);
+  }
+}
+
 }  // namespace
 }  // namespace sss::renderer::testing
