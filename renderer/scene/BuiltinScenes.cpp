@@ -1,0 +1,82 @@
+// The registry of built-in scenes, load_scene(), and builtin:bunny.
+#include "renderer/scene/BuiltinScenes.h"
+
+#include "renderer/scene/GltfLoader.h"
+
+#include <array>
+#include <functional>
+#include <stdexcept>
+
+#ifndef SSS_ASSET_DIR
+#error "SSS_ASSET_DIR must name the assets/ folder (renderer/scene/CMakeLists.txt sets it)"
+#endif
+
+namespace sss::scene {
+
+namespace {
+
+struct Entry {
+  std::string_view name;
+  std::function<std::variant<Scene, LoadError>()> make;
+};
+
+const std::array<Entry, 4>& registry() {
+  static const std::array<Entry, 4> entries = {{
+      {"bunny", [] { return bunny_scene(); }},
+      {"edge", []() -> std::variant<Scene, LoadError> { return edge_scene(); }},
+      {"materials", []() -> std::variant<Scene, LoadError> { return materials_scene(); }},
+      {"sphere", []() -> std::variant<Scene, LoadError> { return sphere_scene(); }},
+  }};
+  return entries;
+}
+
+}  // namespace
+
+std::vector<std::string> builtin_scene_names() {
+  std::vector<std::string> names;
+  for (const Entry& e : registry()) names.push_back(std::string(kBuiltinPrefix) + std::string(e.name));
+  return names;
+}
+
+std::variant<Scene, LoadError> builtin_scene(std::string_view name) {
+  const std::string given(name);
+  if (name.substr(0, kBuiltinPrefix.size()) == kBuiltinPrefix) name.remove_prefix(kBuiltinPrefix.size());
+  for (const Entry& e : registry()) {
+    if (e.name != name) continue;
+    try {
+      return e.make();
+    } catch (const std::exception& ex) {  // a broken preset table: a bug, reported as such
+      return LoadError{given, "", "", std::string("cannot be built: ") + ex.what()};
+    }
+  }
+  std::string known;
+  for (const std::string& n : builtin_scene_names()) known += (known.empty() ? "" : ", ") + n;
+  return LoadError{given, "", "", "unknown built-in scene; expected one of " + known};
+}
+
+std::variant<Scene, LoadError> load_scene(std::string_view scene) {
+  if (scene.substr(0, kBuiltinPrefix.size()) == kBuiltinPrefix) return builtin_scene(scene);
+  return load_gltf(std::string(scene));
+}
+
+// The bunny faces -x (its head), its ears rise toward -z; it stands on y = 0, 150 mm
+// tall (scripts/make_bunny_glb.mjs). The camera looks at it from the front left; the key
+// light comes from behind it (+x), above and to the side, so it crosses the ears toward
+// the camera and they glow red; a weak fill from the camera side shows the front.
+std::variant<Scene, LoadError> bunny_scene() {
+  LoadOptions options;
+  options.add_camera_if_missing = false;
+  options.add_light_if_missing = false;
+  auto loaded = load_gltf(std::string(SSS_ASSET_DIR) + "/bunny.glb", options);
+  if (auto* e = std::get_if<LoadError>(&loaded)) return *e;
+  Scene s = std::get<Scene>(std::move(loaded));
+  s.name = "builtin:bunny";
+  s.lights.clear();
+  s.cameras.clear();
+  s.lights.push_back(directional_light("key (behind, side)", {-0.75f, -0.45f, 0.5f}, 3.0f));
+  s.lights.push_back(directional_light("fill", {0.8f, -0.3f, -0.55f}, 0.4f));
+  s.cameras.push_back(frame_bounds(s.bounds(), {0.8f, -0.25f, -0.55f}, 0.5f));
+  return s;
+}
+
+}  // namespace sss::scene

@@ -1,0 +1,76 @@
+// GltfContext: the state of one load_gltf call, shared by the files that convert each
+// part of a tinygltf::Model (GltfAccessor, GltfMesh, GltfMaterial, GltfNodes). Each
+// conversion returns Status: nullopt, or the first LoadError. Internal to the loader.
+#pragma once
+
+#include "renderer/scene/GltfJson.h"
+#include "renderer/scene/GltfLoader.h"
+
+#include <tiny_gltf.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sss::scene {
+
+using Status = std::optional<LoadError>;
+
+struct GltfContext {
+  std::string file;
+  const LoadOptions& options;
+  const tinygltf::Model& model;
+  Scene& scene;
+  // Encoded bytes of URI images, captured by the image hook (index = images[i]).
+  const std::vector<std::vector<unsigned char>>& uri_image_bytes;
+  std::uint64_t bytes_charged = 0;
+  std::vector<std::vector<std::uint32_t>> mesh_primitives;  // glTF mesh -> scene meshes
+  std::vector<std::optional<std::uint32_t>> texture_map;     // glTF texture -> scene texture
+  std::vector<std::shared_ptr<const ImageRgba8>> images;     // decoded, by glTF image
+
+  LoadError fail(std::string object, std::string field, std::string message) const {
+    return LoadError{file, std::move(object), std::move(field), std::move(message)};
+  }
+  // Reserves `bytes` of the scene budget before they are allocated.
+  Status charge(std::uint64_t bytes, const std::string& object);
+};
+
+inline std::string indexed(const char* array, std::size_t i) {
+  return std::string(array) + "[" + std::to_string(i) + "]";
+}
+// "does not exist (the file has N)" for an index out of range, else nullopt.
+std::optional<std::string> out_of_range(const char* array, long long index, std::size_t size);
+// A float's text for messages.
+std::string number_text(double v);
+
+// Every buffer view: buffer index, byte range inside the buffer, stride.
+Status check_buffer_views(GltfContext& ctx);
+
+// What an attribute accessor may be: its type (components) and component encodings.
+struct AttributeRule {
+  const char* semantic;  // "POSITION"
+  int components;        // 2, 3 or 4
+  bool unorm8 = false;   // normalized UNSIGNED_BYTE allowed besides FLOAT
+  bool unorm16 = false;  // normalized UNSIGNED_SHORT allowed besides FLOAT
+};
+
+// Reads accessors[index] as `rule` says into out (count * components floats, unsigned
+// normalized values mapped to [0, 1]), after checking the accessor, its view and its
+// byte range. `object`/`field` name the reference ("meshes[0].primitives[1]",
+// "attributes.POSITION"). Non-finite values are an error.
+Status read_attribute(GltfContext& ctx, int index, const AttributeRule& rule,
+                      const std::string& object, const std::string& field,
+                      std::vector<float>& out);
+
+// Reads a SCALAR index accessor (UNSIGNED_BYTE / SHORT / INT, not normalized) and
+// checks every value < vertex_count.
+Status read_indices(GltfContext& ctx, int index, std::size_t vertex_count,
+                    const std::string& object, std::vector<std::uint32_t>& out);
+
+Status convert_meshes(GltfContext& ctx);
+Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts);
+Status convert_nodes(GltfContext& ctx);
+
+}  // namespace sss::scene

@@ -1,0 +1,151 @@
+// Materials, textures, samplers and images. Images are decoded only when a material
+// uses them, only after their bytes were checked, and only as PNG or JPEG.
+#include "renderer/scene/GltfContext.h"
+
+#include <cmath>
+#include <span>
+
+namespace sss::scene {
+
+namespace {
+
+Status check_unit_interval(GltfContext& ctx, const std::string& object, const std::string& field,
+                           double v) {
+  if (std::isfinite(v) && v >= 0.0 && v <= 1.0) return std::nullopt;
+  return ctx.fail(object, field, "must lie in [0, 1], got " + number_text(v));
+}
+
+Status decode(GltfContext& ctx, int index, std::shared_ptr<const ImageRgba8>& out) {
+  const std::size_t i = std::size_t(index);
+  if (ctx.images[i]) {
+    out = ctx.images[i];
+    return std::nullopt;
+  }
+  const tinygltf::Image& img = ctx.model.images[i];
+  const std::string object = indexed("images", i);
+  std::span<const unsigned char> bytes;
+  const char* field = "uri";
+  if (img.bufferView >= 0) {
+    field = "bufferView";
+    if (auto e = out_of_range("bufferViews", img.bufferView, ctx.model.bufferViews.size()))
+      return ctx.fail(object, field, *e);
+    const tinygltf::BufferView& v = ctx.model.bufferViews[std::size_t(img.bufferView)];
+    // check_buffer_views() has put [byteOffset, byteOffset + byteLength) inside the buffer.
+    bytes = std::span<const unsigned char>(
+        ctx.model.buffers[std::size_t(v.buffer)].data.data() + v.byteOffset, v.byteLength);
+  } else if (i < ctx.uri_image_bytes.size()) {
+    bytes = ctx.uri_image_bytes[i];
+  }
+  if (bytes.empty()) return ctx.fail(object, field, "has no image data");
+  ImageLimits limits = ctx.options.image_limits;
+  const std::uint64_t left = ctx.options.max_scene_bytes - ctx.bytes_charged;
+  limits.max_pixels = std::min(limits.max_pixels, left / 4);
+  auto decoded = decode_image(bytes, limits);
+  if (auto* msg = std::get_if<std::string>(&decoded)) return ctx.fail(object, field, *msg);
+  auto& image = std::get<ImageRgba8>(decoded);
+  if (auto e = ctx.charge(image.pixels.size(), object)) return e;
+  image.name = img.name.empty() ? object : img.name;
+  ctx.images[i] = std::make_shared<const ImageRgba8>(std::move(image));
+  out = ctx.images[i];
+  return std::nullopt;
+}
+
+// The scene texture for glTF textures[index], converting it on first use.
+Status texture(GltfContext& ctx, int index, const std::string& object, const std::string& field,
+               std::optional<std::uint32_t>& out) {
+  if (auto e = out_of_range("textures", index, ctx.model.textures.size()))
+    return ctx.fail(object, field, *e);
+  const std::size_t t = std::size_t(index);
+  if (ctx.texture_map[t]) {
+    out = ctx.texture_map[t];
+    return std::nullopt;
+  }
+  const tinygltf::Texture& gt = ctx.model.textures[t];
+  const std::string name = indexed("textures", t);
+  if (gt.source < 0)
+    return ctx.fail(name, "source", "is missing (image extensions such as KHR_texture_basisu "
+                                    "are not supported)");
+  if (auto e = out_of_range("images", gt.source, ctx.model.images.size()))
+    return ctx.fail(name, "source", *e);
+  Texture tex;
+  tex.name = gt.name.empty() ? name : gt.name;
+  if (gt.sampler >= 0) {
+    if (auto e = out_of_range("samplers", gt.sampler, ctx.model.samplers.size()))
+      return ctx.fail(name, "sampler", *e);
+    const tinygltf::Sampler& s = ctx.model.samplers[std::size_t(gt.sampler)];
+    const auto sampler = sampler_from_gl(s.magFilter, s.minFilter, s.wrapS, s.wrapT);
+    if (!sampler)
+      return ctx.fail(indexed("samplers", std::size_t(gt.sampler)), "",
+                      "has a filter or wrap value that is not a glTF enum (magFilter " +
+                          std::to_string(s.magFilter) + ", minFilter " + std::to_string(s.minFilter) +
+                          ", wrapS " + std::to_string(s.wrapS) + ", wrapT " + std::to_string(s.wrapT) + ")");
+    tex.sampler = *sampler;
+  }
+  if (auto e = decode(ctx, gt.source, tex.image)) return e;
+  out = static_cast<std::uint32_t>(ctx.scene.textures.size());
+  ctx.texture_map[t] = out;
+  ctx.scene.textures.push_back(std::move(tex));
+  return std::nullopt;
+}
+
+// A material's texture reference; a texture set other than 0 is dropped with a warning.
+Status texture_ref(GltfContext& ctx, int index, int tex_coord, const std::string& object,
+                   const std::string& field, std::optional<std::uint32_t>& out) {
+  if (index < 0) return std::nullopt;
+  if (tex_coord != 0) {
+    ctx.scene.warnings.push_back(ctx.file + ": " + object + "." + field + ": uses TEXCOORD_" +
+                                 std::to_string(tex_coord) + "; only TEXCOORD_0 is read, texture ignored");
+    return std::nullopt;
+  }
+  return texture(ctx, index, object, field + ".index", out);
+}
+
+}  // namespace
+
+Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts) {
+  const auto& materials = ctx.model.materials;
+  if (facts.material_count != materials.size())
+    return ctx.fail("materials", "", "tinygltf read " + std::to_string(materials.size()) +
+                                         " materials where the JSON has " +
+                                         std::to_string(facts.material_count));
+  ctx.texture_map.assign(ctx.model.textures.size(), std::nullopt);
+  ctx.images.assign(ctx.model.images.size(), nullptr);
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    const tinygltf::Material& gm = materials[i];
+    const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
+    const std::string object = indexed("materials", i);
+    Material m;
+    m.name = gm.name.empty() ? object : gm.name;
+    if (pbr.baseColorFactor.size() != 4)
+      return ctx.fail(object, "pbrMetallicRoughness.baseColorFactor", "must have 4 numbers");
+    for (int c = 0; c < 4; ++c) {
+      if (auto e = check_unit_interval(ctx, object,
+                                       "pbrMetallicRoughness.baseColorFactor[" + std::to_string(c) + "]",
+                                       pbr.baseColorFactor[std::size_t(c)]))
+        return e;
+      m.base_color[c] = static_cast<float>(pbr.baseColorFactor[std::size_t(c)]);
+    }
+    if (auto e = check_unit_interval(ctx, object, "pbrMetallicRoughness.metallicFactor", pbr.metallicFactor))
+      return e;
+    if (auto e = check_unit_interval(ctx, object, "pbrMetallicRoughness.roughnessFactor", pbr.roughnessFactor))
+      return e;
+    m.metallic = static_cast<float>(pbr.metallicFactor);
+    m.roughness = static_cast<float>(pbr.roughnessFactor);
+    if (auto e = texture_ref(ctx, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, object,
+                             "pbrMetallicRoughness.baseColorTexture", m.base_color_texture))
+      return e;
+    if (auto e = texture_ref(ctx, gm.normalTexture.index, gm.normalTexture.texCoord, object,
+                             "normalTexture", m.normal_texture))
+      return e;
+    if (!std::isfinite(gm.normalTexture.scale) || std::fabs(gm.normalTexture.scale) > 1e6)
+      return ctx.fail(object, "normalTexture.scale",
+                      "must be a finite number, got " + number_text(gm.normalTexture.scale));
+    m.normal_scale = static_cast<float>(gm.normalTexture.scale);
+    m.double_sided = gm.doubleSided;
+    if (facts.material_sss[i]) m.sss = *facts.material_sss[i];
+    ctx.scene.materials.push_back(std::move(m));
+  }
+  return std::nullopt;
+}
+
+}  // namespace sss::scene

@@ -1,0 +1,165 @@
+// Meshes: each glTF primitive becomes one scene Mesh with uint32 triangle indices and
+// unit normals.
+#include "renderer/scene/GltfContext.h"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace sss::scene {
+
+namespace {
+
+constexpr AttributeRule kPosition{"POSITION", 3};
+constexpr AttributeRule kNormal{"NORMAL", 3};
+constexpr AttributeRule kTexcoord{"TEXCOORD_0", 2, true, true};
+constexpr AttributeRule kTangent{"TANGENT", 4};
+
+// Triangle list from a strip or fan of `seq` (glTF 2.0 §3.7.2.1 winding).
+std::vector<std::uint32_t> to_triangles(const std::vector<std::uint32_t>& seq, int mode) {
+  std::vector<std::uint32_t> tri;
+  if (seq.size() < 3) return tri;
+  tri.reserve(3 * (seq.size() - 2));
+  for (std::size_t i = 0; i + 2 < seq.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      const bool odd = i % 2 == 1;
+      tri.insert(tri.end(), {seq[i], seq[i + (odd ? 2 : 1)], seq[i + (odd ? 1 : 2)]});
+    } else {  // fan
+      tri.insert(tri.end(), {seq[i + 1], seq[i + 2], seq[0]});
+    }
+  }
+  return tri;
+}
+
+Status attribute_count(GltfContext& ctx, const std::string& object, const char* semantic,
+                       std::size_t got, std::size_t expected) {
+  if (got == expected) return std::nullopt;
+  return ctx.fail(object, std::string("attributes.") + semantic,
+                  "has " + std::to_string(got) + " elements but POSITION has " +
+                      std::to_string(expected));
+}
+
+Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
+                         std::optional<std::uint32_t>& default_material) {
+  const tinygltf::Mesh& gm = ctx.model.meshes[m];
+  const tinygltf::Primitive& prim = gm.primitives[p];
+  const std::string object = indexed("meshes", m) + "." + indexed("primitives", p);
+  const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;  // -1: not given
+  if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN)
+    return ctx.fail(object, "mode", std::to_string(prim.mode) + " is not a glTF primitive mode (0..6)");
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    ctx.scene.warnings.push_back(ctx.file + ": " + object + ": mode " + std::to_string(mode) +
+                                 " (points or lines) skipped; only triangles scatter light");
+    return std::nullopt;
+  }
+  if (!prim.targets.empty())
+    ctx.scene.warnings.push_back(ctx.file + ": " + object + ": morph targets ignored");
+
+  Mesh mesh;
+  mesh.name = gm.name.empty() ? indexed("meshes", m) : gm.name;
+  if (gm.primitives.size() > 1) mesh.name += "/" + std::to_string(p);
+  const auto attr = [&](const char* s) {
+    const auto it = prim.attributes.find(s);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  if (attr("POSITION") < 0) return ctx.fail(object, "attributes.POSITION", "is required");
+  std::vector<float> f;
+  if (auto e = read_attribute(ctx, attr("POSITION"), kPosition, object, "attributes.POSITION", f))
+    return e;
+  const std::size_t n = f.size() / 3;
+  if (n > std::numeric_limits<std::uint32_t>::max())
+    return ctx.fail(object, "attributes.POSITION", "too many vertices for 32-bit indices");
+  mesh.positions.resize(n);
+  for (std::size_t i = 0; i < n; ++i) mesh.positions[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+  if (attr("NORMAL") >= 0) {
+    if (auto e = read_attribute(ctx, attr("NORMAL"), kNormal, object, "attributes.NORMAL", f)) return e;
+    if (auto e = attribute_count(ctx, object, "NORMAL", f.size() / 3, n)) return e;
+    mesh.normals.resize(n);
+    for (std::size_t i = 0; i < n; ++i) mesh.normals[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+  }
+  if (attr("TEXCOORD_0") >= 0) {
+    if (auto e = read_attribute(ctx, attr("TEXCOORD_0"), kTexcoord, object, "attributes.TEXCOORD_0", f))
+      return e;
+    if (auto e = attribute_count(ctx, object, "TEXCOORD_0", f.size() / 2, n)) return e;
+    mesh.uv0.resize(n);
+    for (std::size_t i = 0; i < n; ++i) mesh.uv0[i] = {f[2 * i], f[2 * i + 1]};
+  }
+  if (attr("TANGENT") >= 0) {
+    if (auto e = read_attribute(ctx, attr("TANGENT"), kTangent, object, "attributes.TANGENT", f))
+      return e;
+    if (auto e = attribute_count(ctx, object, "TANGENT", f.size() / 4, n)) return e;
+    mesh.tangents.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const float w = f[4 * i + 3];
+      if (w == 0.0f)
+        return ctx.fail(object, "attributes.TANGENT", "element " + std::to_string(i) +
+                                                          " has w = 0; it must be +1 or -1");
+      glm::vec3 t(f[4 * i], f[4 * i + 1], f[4 * i + 2]);
+      const float len = glm::length(t);
+      t = len > 0.0f && std::isfinite(len) ? t / len : glm::vec3(1, 0, 0);
+      mesh.tangents[i] = glm::vec4(t, w > 0.0f ? 1.0f : -1.0f);
+    }
+  }
+
+  std::vector<std::uint32_t> seq;
+  if (prim.indices >= 0) {
+    if (auto e = read_indices(ctx, prim.indices, n, object, seq)) return e;
+  } else {
+    if (auto e = ctx.charge(n * sizeof(std::uint32_t), object)) return e;
+    seq = sequential_indices(static_cast<std::uint32_t>(n));
+  }
+  const char* what = prim.indices >= 0 ? "indices" : "attributes.POSITION";
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (seq.size() % 3 != 0)
+      return ctx.fail(object, what, std::to_string(seq.size()) +
+                                        " vertices do not make whole triangles (a multiple of 3)");
+    mesh.indices = std::move(seq);
+  } else {
+    if (seq.size() < 3)
+      return ctx.fail(object, what, "a strip or fan needs at least 3 vertices");
+    if (auto e = ctx.charge(3 * seq.size() * sizeof(std::uint32_t), object)) return e;
+    mesh.indices = to_triangles(seq, mode);
+  }
+  if (mesh.indices.empty()) return ctx.fail(object, what, "has no triangles");
+
+  if (prim.material >= 0) {
+    if (auto e = out_of_range("materials", prim.material, ctx.model.materials.size()))
+      return ctx.fail(object, "material", *e);
+    mesh.material = static_cast<std::uint32_t>(prim.material);
+  } else {
+    if (!default_material) {
+      default_material = static_cast<std::uint32_t>(ctx.scene.materials.size());
+      Material def;
+      def.name = "default";  // glTF 2.0 §3.9.6: white, metallic 1, roughness 1
+      ctx.scene.materials.push_back(def);
+    }
+    mesh.material = *default_material;
+  }
+  if (auto e = ctx.charge(n * sizeof(glm::vec3), object)) return e;  // generated normals
+  if (const std::size_t replaced = repair_normals(mesh))
+    ctx.scene.warnings.push_back(ctx.file + ": " + object + ": " + std::to_string(replaced) +
+                                 " zero-length normals replaced by generated ones");
+  compute_bounds(mesh);
+  if (auto problem = check_mesh(mesh)) return ctx.fail(object, "", *problem);
+  ctx.mesh_primitives[m].push_back(static_cast<std::uint32_t>(ctx.scene.meshes.size()));
+  ctx.scene.meshes.push_back(std::move(mesh));
+  return std::nullopt;
+}
+
+}  // namespace
+
+Status convert_meshes(GltfContext& ctx) {
+  ctx.mesh_primitives.assign(ctx.model.meshes.size(), {});
+  std::optional<std::uint32_t> default_material;
+  for (std::size_t m = 0; m < ctx.model.meshes.size(); ++m) {
+    if (ctx.model.meshes[m].primitives.empty())
+      return ctx.fail(indexed("meshes", m), "primitives", "must not be empty");
+    for (std::size_t p = 0; p < ctx.model.meshes[m].primitives.size(); ++p)
+      if (auto e = convert_primitive(ctx, m, p, default_material)) return e;
+  }
+  return std::nullopt;
+}
+
+}  // namespace sss::scene

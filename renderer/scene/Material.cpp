@@ -1,0 +1,91 @@
+#include "renderer/scene/Material.h"
+
+#include "profiles/Presets.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace sss::scene {
+
+namespace {
+
+std::string str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::string_view albedo_mode_name(AlbedoMode mode) {
+  return mode == AlbedoMode::PrePost ? "pre-post" : "post-scatter";
+}
+
+std::optional<AlbedoMode> parse_albedo_mode(std::string_view name) {
+  if (name == "post-scatter") return AlbedoMode::PostScatter;
+  if (name == "pre-post") return AlbedoMode::PrePost;
+  return std::nullopt;
+}
+
+profiles::Medium SssMaterial::effective_medium() const {
+  profiles::Medium m = medium;
+  for (int c = 0; c < 3; ++c) {
+    m.sigma_a[c] *= scale;
+    m.sigma_s[c] *= scale;
+  }
+  m.thickness_mm /= scale;  // stays infinite for a semi-infinite medium
+  return m;
+}
+
+std::variant<profiles::Medium, FieldError> resolve_medium(const SssSource& source,
+                                                          profiles::Model model) {
+  if (const auto* p = std::get_if<PresetSource>(&source)) {
+    const profiles::Preset* preset = profiles::find_preset(p->name);
+    if (!preset)
+      return FieldError{"preset", "unknown preset \"" + p->name +
+                                      "\"; expected one of " + profiles::preset_names()};
+    const profiles::Medium m = profiles::preset_medium(*preset);
+    if (auto e = m.validate())
+      return FieldError{"preset", "\"" + p->name + "\" cannot be rendered: " + e->what()};
+    return m;
+  }
+  if (const auto* c = std::get_if<CoefficientSource>(&source)) {
+    if (auto e = c->medium.validate()) return *e;
+    return c->medium;
+  }
+  const auto& artist = std::get<ArtistSource>(source);
+  auto m = profiles::medium_from_artist(model, artist.parameters);
+  if (auto* e = std::get_if<FieldError>(&m)) return *e;
+  return std::get<profiles::Medium>(m);
+}
+
+std::variant<SssMaterial, FieldError> make_sss_material(SssSource source,
+                                                        profiles::Model model, int gaussians,
+                                                        double scale, AlbedoMode albedo_mode) {
+  if (gaussians < kMinGaussians || gaussians > kMaxGaussians)
+    return FieldError{"gaussians", "must be an integer in [" + std::to_string(kMinGaussians) +
+                                       ", " + std::to_string(kMaxGaussians) + "], got " +
+                                       std::to_string(gaussians)};
+  if (!std::isfinite(scale) || !(scale > 0.0))
+    return FieldError{"scale", "must be a finite number > 0, got " + str(scale)};
+  auto medium = resolve_medium(source, model);
+  if (auto* e = std::get_if<FieldError>(&medium)) return *e;
+  SssMaterial s;
+  s.enabled = true;
+  s.source = std::move(source);
+  s.medium = std::get<profiles::Medium>(medium);
+  s.model = model;
+  s.gaussians = gaussians;
+  s.scale = scale;
+  s.albedo_mode = albedo_mode;
+  return s;
+}
+
+SssMaterial preset_sss_material(std::string_view preset) {
+  auto s = make_sss_material(PresetSource{std::string(preset)});
+  if (auto* e = std::get_if<FieldError>(&s)) throw std::invalid_argument(e->what());
+  return std::get<SssMaterial>(s);
+}
+
+}  // namespace sss::scene

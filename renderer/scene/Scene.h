@@ -1,0 +1,51 @@
+// Scene: everything both renderers read (DESIGN.md §1): meshes (one per glTF primitive),
+// materials, textures, the node hierarchy flattened to instances, cameras and lights in
+// world space. Positions are in scene units; mm_per_unit converts them to the mm of the
+// optical coefficients (glTF is in metres: 1000).
+#pragma once
+
+#include "renderer/scene/Bounds.h"
+#include "renderer/scene/Camera.h"
+#include "renderer/scene/Light.h"
+#include "renderer/scene/Material.h"
+#include "renderer/scene/Mesh.h"
+#include "renderer/scene/Texture.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sss::scene {
+
+struct Instance {
+  std::uint32_t mesh = 0;  // Scene::meshes
+  glm::mat4 world{1.0f};   // mesh space -> world, composed down the node hierarchy
+  std::string node;        // the glTF node's name, or "nodes[i]"
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;  // every Mesh::material indexes this
+  std::vector<Texture> textures;    // every Material texture index indexes this
+  std::vector<Instance> instances;
+  std::vector<Camera> cameras;      // cameras[0] is the one to render from
+  std::vector<Light> lights;
+  double mm_per_unit = 1000.0;
+  std::vector<std::string> warnings;  // what was skipped or repaired, for the user
+
+  // World-space bounds of every instance (empty box for an empty scene).
+  Bounds bounds() const;
+  std::size_t triangle_count() const;  // over instances
+};
+
+// A perspective camera framing the scene's bounds, added when it has none.
+void add_camera_if_missing(Scene& scene);
+
+// A white directional key light from the upper left front (E = 3), added when the scene
+// has no light, so that a file without lights is not rendered black.
+void add_light_if_missing(Scene& scene);
+
+}  // namespace sss::scene

@@ -1,0 +1,201 @@
+#include "renderer/scene/SssExtras.h"
+
+#include "renderer/scene/GltfJson.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <cmath>
+#include <sstream>
+
+namespace sss::scene {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr std::array<std::string_view, 13> kKeys = {
+    "enabled", "preset", "sigma_a", "sigma_s", "g", "eta", "color",
+    "mfp", "thickness", "model", "gaussians", "scale", "albedo_mode"};
+
+std::string str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::string key_list() {
+  std::string s;
+  for (std::string_view k : kKeys) s += (s.empty() ? "" : ", ") + std::string(k);
+  return s;
+}
+
+// A number or an array of three; `scalar` tells which, so errors can name "g" or "g[1]".
+std::optional<FieldError> read_rgb(const json& o, const char* key, Rgb& out, bool& scalar) {
+  const json& v = o.at(key);
+  scalar = v.is_number();
+  if (scalar) {
+    out.fill(v.get<double>());
+  } else if (v.is_array() && v.size() == 3) {
+    for (int c = 0; c < 3; ++c) {
+      if (!v[c].is_number())
+        return FieldError{std::string(key) + "[" + std::to_string(c) + "]", "must be a number"};
+      out[c] = v[c].get<double>();
+    }
+  } else {
+    return FieldError{key, "must be a number or an array of 3 numbers"};
+  }
+  for (int c = 0; c < 3; ++c)
+    if (!std::isfinite(out[c]))
+      return FieldError{scalar ? std::string(key) : std::string(key) + "[" + std::to_string(c) + "]",
+                        "must be a finite number"};
+  return std::nullopt;
+}
+
+// profiles names channels "[R]", "[G]", "[B]"; here they are array positions, and a
+// field the user gave as a single number (or a derived one, like sigma_t from two
+// single numbers) has none.
+FieldError as_written(FieldError e, const json& o) {
+  const auto bracket = e.field.find('[');
+  if (bracket == std::string::npos) return e;
+  const std::string base = e.field.substr(0, bracket);
+  const auto is_array = [&](const char* k) { return o.contains(k) && o.at(k).is_array(); };
+  const bool per_channel = base == "sigma_t" ? is_array("sigma_a") || is_array("sigma_s")
+                                             : is_array(base.c_str());
+  if (!per_channel) {
+    e.field = base;
+    return e;
+  }
+  for (int c = 0; c < 3; ++c)
+    if (e.field.compare(bracket, std::string::npos, std::string("[") + kChannelNames[c] + "]") == 0)
+      e.field = base + "[" + std::to_string(c) + "]";
+  return e;
+}
+
+}  // namespace
+
+std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
+  if (!o.is_object()) return FieldError{"", "must be a JSON object"};
+  for (const auto& item : o.items())
+    if (std::find(kKeys.begin(), kKeys.end(), item.key()) == kKeys.end())
+      return FieldError{item.key(), "unknown field; expected one of " + key_list()};
+
+  bool enabled = true;
+  if (o.contains("enabled")) {
+    if (!o["enabled"].is_boolean()) return FieldError{"enabled", "must be true or false"};
+    enabled = o["enabled"].get<bool>();
+  }
+  profiles::Model model = profiles::Model::BetterDipole;
+  if (o.contains("model")) {
+    const json& m = o["model"];
+    const auto parsed = m.is_string() ? profiles::parse_model(m.get<std::string>()) : std::nullopt;
+    if (!parsed)
+      return FieldError{"model", "unknown model " + m.dump() + "; expected one of " +
+                                     profiles::model_names()};
+    model = *parsed;
+  }
+  int gaussians = kDefaultGaussians;
+  if (o.contains("gaussians")) {
+    const json& n = o["gaussians"];
+    const double v = n.is_number() ? n.get<double>() : std::nan("");
+    if (!(v >= kMinGaussians && v <= kMaxGaussians && v == std::floor(v)))
+      return FieldError{"gaussians", "must be an integer in [" + std::to_string(kMinGaussians) +
+                                         ", " + std::to_string(kMaxGaussians) + "], got " +
+                                         n.dump()};
+    gaussians = static_cast<int>(v);
+  }
+  double scale = 1.0;
+  if (o.contains("scale")) {
+    if (!o["scale"].is_number()) return FieldError{"scale", "must be a number"};
+    scale = o["scale"].get<double>();
+  }
+  AlbedoMode albedo_mode = AlbedoMode::PostScatter;
+  if (o.contains("albedo_mode")) {
+    const json& a = o["albedo_mode"];
+    const auto parsed = a.is_string() ? parse_albedo_mode(a.get<std::string>()) : std::nullopt;
+    if (!parsed)
+      return FieldError{"albedo_mode", "must be \"post-scatter\" or \"pre-post\", got " + a.dump()};
+    albedo_mode = *parsed;
+  }
+  double thickness = std::numeric_limits<double>::infinity();
+  if (o.contains("thickness")) {
+    const json& t = o["thickness"];
+    thickness = t.is_number() ? t.get<double>() : std::nan("");
+    if (!std::isfinite(thickness) || !(thickness > 0.0))
+      return FieldError{"thickness", "must be a number of mm > 0, got " + t.dump()};
+  }
+
+  const bool preset = o.contains("preset");
+  const bool coefficients = o.contains("sigma_a") || o.contains("sigma_s");
+  const bool artist = o.contains("color") || o.contains("mfp");
+  if (int(preset) + int(coefficients) + int(artist) != 1)
+    return FieldError{"", std::string(preset || coefficients || artist ? "give only one" : "needs one") +
+                              " of: preset; sigma_a + sigma_s; color + mfp"};
+  SssSource source;
+  if (preset) {
+    for (const char* k : {"g", "eta"})
+      if (o.contains(k)) return FieldError{k, "cannot be combined with a preset (it has its own)"};
+    if (!o["preset"].is_string()) return FieldError{"preset", "must be a preset name (a string)"};
+    source = PresetSource{o["preset"].get<std::string>()};
+  } else if (coefficients) {
+    for (const char* k : {"sigma_a", "sigma_s"})
+      if (!o.contains(k)) return FieldError{k, "is required with sigma_a and sigma_s"};
+    profiles::Medium m;
+    m.g.fill(0.0);
+    m.eta.fill(1.3);
+    m.thickness_mm = thickness;
+    bool scalar = false;
+    if (auto e = read_rgb(o, "sigma_a", m.sigma_a, scalar)) return *e;
+    if (auto e = read_rgb(o, "sigma_s", m.sigma_s, scalar)) return *e;
+    if (o.contains("g"))
+      if (auto e = read_rgb(o, "g", m.g, scalar)) return *e;
+    if (o.contains("eta"))
+      if (auto e = read_rgb(o, "eta", m.eta, scalar)) return *e;
+    for (int c = 0; c < 3; ++c)
+      if (auto e = m.channel(c).validate("[" + std::to_string(c) + "]")) return as_written(*e, o);
+    source = CoefficientSource{m};
+  } else {
+    for (const char* k : {"color", "mfp"})
+      if (!o.contains(k)) return FieldError{k, "is required with color and mfp"};
+    profiles::ArtistParameters p;
+    p.thickness_mm = thickness;
+    bool scalar = false;
+    if (auto e = read_rgb(o, "color", p.color, scalar)) return *e;
+    for (int c = 0; c < 3; ++c)
+      if (!(p.color[c] > 0.0 && p.color[c] < 1.0))
+        return FieldError{scalar ? "color" : "color[" + std::to_string(c) + "]",
+                          "must lie strictly between 0 and 1, got " + str(p.color[c])};
+    if (auto e = read_rgb(o, "mfp", p.mfp_mm, scalar)) return *e;
+    for (int c = 0; c < 3; ++c)
+      if (!(p.mfp_mm[c] > 0.0))
+        return FieldError{scalar ? "mfp" : "mfp[" + std::to_string(c) + "]",
+                          "mean free path must be > 0 mm, got " + str(p.mfp_mm[c])};
+    for (auto [k, dst] : {std::pair{"g", &p.g}, std::pair{"eta", &p.eta}}) {
+      if (!o.contains(k)) continue;
+      if (!o[k].is_number())
+        return FieldError{k, "must be a single number with color + mfp"};
+      *dst = o[k].get<double>();
+    }
+    if (!(std::fabs(p.g) < 1.0)) return FieldError{"g", "must lie in (-1, 1), got " + str(p.g)};
+    if (!(p.eta > 0.0)) return FieldError{"eta", "must be > 0, got " + str(p.eta)};
+    source = ArtistSource{p};
+  }
+
+  auto made = make_sss_material(std::move(source), model, gaussians, scale, albedo_mode);
+  if (auto* e = std::get_if<FieldError>(&made)) return as_written(*e, o);
+  auto& s = std::get<SssMaterial>(made);
+  s.enabled = enabled;
+  if (preset && o.contains("thickness")) s.medium.thickness_mm = thickness;
+  return s;
+}
+
+std::variant<SssMaterial, FieldError> parse_sss_extras_text(std::string_view text) {
+  if (auto e = check_json_depth(text, kMaxJsonDepth)) return FieldError{"", *e};
+  const json o = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
+  if (o.is_discarded()) return FieldError{"", "is not valid JSON"};
+  return parse_sss_extras(o);
+}
+
+}  // namespace sss::scene
