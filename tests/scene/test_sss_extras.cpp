@@ -1,0 +1,134 @@
+// materials[i].extras.sss: every source, every option, and an error naming the field
+// for every bad value.
+#include "renderer/scene/SssExtras.h"
+
+#include "profiles/Presets.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace sss::scene {
+namespace {
+
+SssMaterial parse_ok(std::string_view text) {
+  auto r = parse_sss_extras_text(text);
+  if (auto* e = std::get_if<FieldError>(&r)) ADD_FAILURE() << text << " -> " << e->what();
+  return r.index() == 0 ? std::get<SssMaterial>(r) : SssMaterial{};
+}
+
+FieldError parse_error(std::string_view text) {
+  auto r = parse_sss_extras_text(text);
+  if (r.index() == 0) ADD_FAILURE() << text << " parsed";
+  return r.index() == 1 ? std::get<FieldError>(r) : FieldError{};
+}
+
+TEST(SssExtras, PresetWithDefaults) {
+  const SssMaterial s = parse_ok(R"({"preset": "skin1"})");
+  EXPECT_TRUE(s.enabled);
+  EXPECT_EQ(s.model, profiles::Model::BetterDipole);
+  EXPECT_EQ(s.gaussians, 6);
+  EXPECT_EQ(s.scale, 1.0);
+  EXPECT_EQ(s.albedo_mode, AlbedoMode::PostScatter);
+  const profiles::Medium expected = profiles::preset_medium(*profiles::find_preset("skin1"));
+  EXPECT_EQ(s.medium.sigma_a, expected.sigma_a);
+  EXPECT_EQ(s.medium.sigma_s, expected.sigma_s);
+  EXPECT_EQ(s.medium.eta, expected.eta);
+  EXPECT_FALSE(s.medium.is_slab());
+}
+
+TEST(SssExtras, EveryOption) {
+  const SssMaterial s = parse_ok(
+      R"({"preset": "marble", "model": "pbd", "gaussians": 8, "scale": 0.5,
+          "albedo_mode": "pre-post", "thickness": 20, "enabled": true})");
+  EXPECT_EQ(s.model, profiles::Model::Pbd);
+  EXPECT_EQ(s.gaussians, 8);
+  EXPECT_EQ(s.scale, 0.5);
+  EXPECT_EQ(s.albedo_mode, AlbedoMode::PrePost);
+  EXPECT_EQ(s.medium.thickness_mm, 20.0);
+  EXPECT_NEAR(s.effective_medium().sigma_s[0], 0.5 * s.medium.sigma_s[0], 1e-15);
+  EXPECT_NEAR(s.effective_medium().thickness_mm, 40.0, 1e-12);
+}
+
+TEST(SssExtras, CoefficientsScalarOrArray) {
+  const SssMaterial s = parse_ok(R"({"sigma_a": 0.05, "sigma_s": [1, 2, 3], "g": [0, 0.2, 0.4]})");
+  ASSERT_TRUE(std::holds_alternative<CoefficientSource>(s.source));
+  EXPECT_EQ(s.medium.sigma_a, (Rgb{0.05, 0.05, 0.05}));
+  EXPECT_EQ(s.medium.sigma_s, (Rgb{1, 2, 3}));
+  EXPECT_EQ(s.medium.g, (Rgb{0, 0.2, 0.4}));
+  EXPECT_EQ(s.medium.eta, (Rgb{1.3, 1.3, 1.3}));  // default
+}
+
+TEST(SssExtras, ArtistColourAndMeanFreePath) {
+  const SssMaterial s = parse_ok(R"({"color": [0.6, 0.4, 0.2], "mfp": 2})");
+  ASSERT_TRUE(std::holds_alternative<ArtistSource>(s.source));
+  const profiles::RgbProfile profile(s.model, s.medium);
+  const Rgb total = profile.total_reflectance();
+  EXPECT_NEAR(total[0], 0.6, 1e-6);
+  EXPECT_NEAR(total[2], 0.2, 1e-6);
+}
+
+TEST(SssExtras, ErrorsNameTheField) {
+  const std::pair<const char*, std::pair<const char*, const char*>> cases[] = {
+      {R"({"sigma_a": [0.1, -1, 0.1], "sigma_s": 1})", {"sigma_a[1]", "must be >= 0 mm^-1, got -1"}},
+      {R"({"sigma_a": 0.1, "sigma_s": -1})", {"sigma_s", ">= 0"}},
+      {R"({"sigma_a": 0, "sigma_s": 0})", {"sigma_t", "empty"}},
+      {R"({"sigma_a": [0.1, 0.1, 0], "sigma_s": 1})", {"sigma_a[2]", "albedo of 1"}},
+      {R"({"sigma_a": 0.1, "sigma_s": 1, "eta": 0})", {"eta", "> 0, got 0"}},
+      {R"({"sigma_a": 0.1, "sigma_s": 1, "eta": [1.3, 1.3, -2]})", {"eta[2]", "> 0"}},
+      {R"({"sigma_a": 0.1, "sigma_s": 1, "g": 1})", {"g", "(-1, 1), got 1"}},
+      {R"({"sigma_a": 0.1, "sigma_s": 1, "g": [0, -1, 0]})", {"g[1]", "(-1, 1)"}},
+      {R"({"sigma_a": 0.1})", {"sigma_s", "required"}},
+      {R"({"sigma_a": [1, 2], "sigma_s": 1})", {"sigma_a", "array of 3"}},
+      {R"({"sigma_a": [1, "x", 2], "sigma_s": 1})", {"sigma_a[1]", "number"}},
+      {R"({"preset": "jade"})", {"preset", "unknown preset \"jade\"; expected one of apple"}},
+      {R"({"preset": 3})", {"preset", "string"}},
+      {R"({"preset": "spectralon"})", {"preset", "cannot be rendered"}},
+      {R"({"preset": "skin1", "g": 0.3})", {"g", "preset"}},
+      {R"({"preset": "skin1", "gaussians": 9})", {"gaussians", "[1, 8], got 9"}},
+      {R"({"preset": "skin1", "gaussians": 0})", {"gaussians", "[1, 8], got 0"}},
+      {R"({"preset": "skin1", "gaussians": 2.5})", {"gaussians", "integer"}},
+      {R"({"preset": "skin1", "gaussians": 4294967302})", {"gaussians", "4294967302"}},
+      {R"({"preset": "skin1", "scale": -1})", {"scale", "> 0"}},
+      {R"({"preset": "skin1", "model": "quadpole"})", {"model", "dipole, better-dipole"}},
+      {R"({"preset": "skin1", "albedo_mode": 1})", {"albedo_mode", "post-scatter"}},
+      {R"({"preset": "skin1", "thickness": 0})", {"thickness", "> 0"}},
+      {R"({"preset": "skin1", "enabled": "yes"})", {"enabled", "true or false"}},
+      {R"({"color": [1.2, 0.5, 0.5], "mfp": 1})", {"color[0]", "between 0 and 1, got 1.2"}},
+      {R"({"color": 0, "mfp": 1})", {"color", "between 0 and 1, got 0"}},
+      {R"({"color": 0.5, "mfp": [1, 1, -3]})", {"mfp[2]", "> 0 mm, got -3"}},
+      {R"({"color": 0.5, "mfp": 1, "g": [0, 0, 0]})", {"g", "single number"}},
+      {R"({"color": 0.5, "mfp": 1, "model": "mc"})", {"model", "mc"}},
+      {R"({"color": 0.5})", {"mfp", "required"}},
+      {R"({"colour": 0.5})", {"colour", "unknown field"}},
+      {R"({})", {"", "needs one of"}},
+      {R"({"preset": "skin1", "color": 0.5, "mfp": 1})", {"", "only one"}},
+      {R"([1, 2, 3])", {"", "JSON object"}},
+      {R"({"preset": )", {"", "not valid JSON"}},
+  };
+  for (const auto& [text, want] : cases) {
+    const FieldError e = parse_error(text);
+    EXPECT_EQ(e.field, want.first) << text << " -> " << e.what();
+    EXPECT_NE(e.message.find(want.second), std::string::npos) << text << " -> " << e.what();
+  }
+}
+
+TEST(SssExtras, DeepJsonIsRefusedWithoutRecursion) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  EXPECT_NE(parse_error(deep).message.find("nests deeper"), std::string::npos);
+}
+
+TEST(SssExtras, MakeSssMaterialChecksItsArguments) {
+  EXPECT_EQ(std::get<FieldError>(make_sss_material(PresetSource{"skin1"}, profiles::Model::Dipole, 9)).field,
+            "gaussians");
+  EXPECT_EQ(std::get<FieldError>(make_sss_material(PresetSource{"skin1"}, profiles::Model::Dipole, 6,
+                                                   std::nan(""))).field,
+            "scale");
+  EXPECT_THROW(preset_sss_material("jade"), std::invalid_argument);
+  EXPECT_EQ(albedo_mode_name(AlbedoMode::PrePost), "pre-post");
+  EXPECT_EQ(parse_albedo_mode("post-scatter"), AlbedoMode::PostScatter);
+  EXPECT_EQ(parse_albedo_mode("x"), std::nullopt);
+}
+
+}  // namespace
+}  // namespace sss::scene
