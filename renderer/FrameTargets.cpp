@@ -34,6 +34,7 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
   albedo = make(context, w, h, kAlbedoFormat, attachment, "gbuffer albedo");
   irradiance = make(context, w, h, kLightingFormat, kComputeUsage, "irradiance");
   specular = make(context, w, h, kLightingFormat, kComputeUsage, "specular");
+  surface = make(context, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, kComputeUsage, "surface");
   blur_temp = make(context, w, h, kLightingFormat, kComputeUsage, "sss temp");
   blur_a = make(context, w, h, kLightingFormat, kComputeUsage, "sss a");
   blur_b = make(context, w, h, kLightingFormat, kComputeUsage, "sss b");
@@ -43,7 +44,7 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
 }
 
 std::vector<const vk::Image*> FrameTargets::compute_targets() const {
-  return {&irradiance, &specular, &blur_temp, &blur_a, &blur_b, &accum, &hdr, &display};
+  return {&irradiance, &specular, &surface, &blur_temp, &blur_a, &blur_b, &accum, &hdr, &display};
 }
 
 }  // namespace sss::renderer

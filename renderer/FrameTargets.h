@@ -33,6 +33,7 @@ struct FrameTargets {
   std::vector<vk::ImageViewHandle> shadow_layers;
   vk::Image depth, normal, albedo;          // G-buffer
   vk::Image irradiance, specular;           // lighting
+  vk::Image surface;  // lighting, for SSS: view depth in mm, material id (rgba32f)
   vk::Image blur_temp, blur_a, blur_b, accum;  // SSS
   vk::Image hdr, display;                   // composite
 

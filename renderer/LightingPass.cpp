@@ -12,7 +12,7 @@ vk::DescriptorSetLayoutBuilder bindings() {
       .add(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
       .add(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
   for (uint32_t i = 3; i <= 6; ++i) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
-  b.add(7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs).add(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
+  for (uint32_t i = 7; i <= 9; ++i) b.add(i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
   return b;
 }
 }  // namespace
@@ -32,6 +32,7 @@ LightingPass::LightingPass(const FrameResources& resources)
       .combined_image(6, t.shadow, r_.samplers.shadow.get())
       .storage_image(7, t.irradiance)
       .storage_image(8, t.specular)
+      .storage_image(9, t.surface)
       .update(r_.context);
 }
 

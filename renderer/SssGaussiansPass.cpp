@@ -12,7 +12,6 @@ vk::DescriptorSetLayoutBuilder bindings() {
   b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
       .add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)
       .add(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
       .add(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
       .add(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
       .add(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
@@ -32,8 +31,7 @@ SssGaussiansPass::SssGaussiansPass(const FrameResources& resources, int gaussian
     vk::DescriptorWriter(set)
         .uniform_buffer(0, r_.frame_uniforms)
         .storage_buffer(1, r_.materials)
-        .combined_image(2, t.depth, nearest)
-        .combined_image(3, t.albedo, nearest)
+        .combined_image(2, t.surface, nearest, VK_IMAGE_LAYOUT_GENERAL)
         .combined_image(4, in, nearest, VK_IMAGE_LAYOUT_GENERAL)
         .storage_image(5, out)
         .storage_image(6, t.accum)

@@ -12,7 +12,6 @@ vk::DescriptorSetLayoutBuilder bindings() {
   b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
       .add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)
       .add(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
       .add(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
       .add(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
   return b;
@@ -30,8 +29,7 @@ SssSeparablePass::SssSeparablePass(const FrameResources& resources)
     vk::DescriptorWriter(set)
         .uniform_buffer(0, r_.frame_uniforms)
         .storage_buffer(1, r_.materials)
-        .combined_image(2, t.depth, nearest)
-        .combined_image(3, t.albedo, nearest)
+        .combined_image(2, t.surface, nearest, VK_IMAGE_LAYOUT_GENERAL)
         .combined_image(4, in, linear, VK_IMAGE_LAYOUT_GENERAL)
         .storage_image(5, out)
         .update(r_.context);

@@ -16,6 +16,8 @@ layout(set = 0, binding = 5) uniform sampler2D albedo_tex;
 layout(set = 0, binding = 6) uniform sampler2DArrayShadow shadow_tex;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D irradiance_img;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D specular_img;
+// For the SSS passes: x distance from the camera plane in mm, y material id (-1: none).
+layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D surface_img;
 
 float shadow_visibility(int index, GpuLight light, vec3 p, vec3 n) {
   vec4 c = light.shadow_matrix * vec4(p + n * light.shadow.z, 1.0);
@@ -37,6 +39,7 @@ void main() {
   if (id < 0) {
     imageStore(irradiance_img, p, vec4(0.0));
     imageStore(specular_img, p, vec4(0.0));
+    imageStore(surface_img, p, vec4(0.0, -1.0, 0.0, 0.0));
     return;
   }
   GpuMaterial m = materials[id];
@@ -44,6 +47,8 @@ void main() {
   float depth = texelFetch(depth_tex, p, 0).r;
   vec4 w = frame.inv_view_proj * vec4(pixel_ndc(vec2(p) + 0.5, frame.viewport), depth, 1.0);
   vec3 P = w.xyz / w.w;
+  float depth_mm = dot(P - frame.camera.xyz, frame.forward.xyz) * frame.scale.x;
+  imageStore(surface_img, p, vec4(depth_mm, float(id), 0.0, 0.0));
   vec4 nr = texelFetch(normal_tex, p, 0);
   vec3 N = normalize(nr.xyz);
   vec3 V = frame.camera.w > 0.5 ? -frame.forward.xyz : normalize(frame.camera.xyz - P);

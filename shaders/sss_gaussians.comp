@@ -13,8 +13,7 @@ layout(local_size_x = SSS_WORKGROUP_2D_X, local_size_y = SSS_WORKGROUP_2D_Y) in;
 
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) readonly buffer Materials { GpuMaterial materials[]; };
-layout(set = 0, binding = 2) uniform sampler2D depth_tex;
-layout(set = 0, binding = 3) uniform sampler2D albedo_tex;
+layout(set = 0, binding = 2) uniform sampler2D surface_tex;  // depth mm, material id
 layout(set = 0, binding = 4) uniform sampler2D input_tex;
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D output_img;
 layout(set = 0, binding = 6, rgba16f) uniform image2D accum_img;
@@ -32,7 +31,8 @@ void main() {
   int g = int(blur.direction.z);
   bool vertical = dir.y > 0.5;
   vec3 center = texelFetch(input_tex, p, 0).rgb;
-  int id = material_id(texelFetch(albedo_tex, p, 0));
+  vec2 here = surface_at(p);
+  int id = int(here.y);
   bool scatters = id >= 0 && materials[id].reflectance.w > 0.5 &&
                   g < int(materials[id].surface.w);
   if (!scatters) {
@@ -41,7 +41,7 @@ void main() {
     return;
   }
   GpuMaterial m = materials[id];
-  float z = view_depth_mm(p);
+  float z = here.x;
   float sigma_px = sqrt(max(variance(m, g) - variance(m, g - 1), 0.0)) * pixels_per_mm(dir, z);
   vec3 result = center;
   if (sigma_px > 0.05) {
@@ -55,9 +55,9 @@ void main() {
       if (k == 0) continue;
       float offset = float(k * stride);
       ivec2 q = clamp(p + ivec2(dir * offset), ivec2(0), size - 1);
-      vec3 value = follow_surface(texelFetch(input_tex, q, 0).rgb, center,
-                                  material_id(texelFetch(albedo_tex, q, 0)), id,
-                                  view_depth_mm(q), z, m.kernel.y);
+      vec2 there = surface_at(q);
+      vec3 value = follow_surface(texelFetch(input_tex, q, 0).rgb, center, int(there.y), id,
+                                  there.x, z, m.kernel.y);
       float weight = exp(-offset * offset * inv_two_var);
       sum += weight * value;
       weight_sum += weight;

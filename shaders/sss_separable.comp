@@ -11,26 +11,15 @@ layout(local_size_x = SSS_WORKGROUP_2D_X, local_size_y = SSS_WORKGROUP_2D_Y) in;
 
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) readonly buffer Materials { GpuMaterial materials[]; };
-layout(set = 0, binding = 2) uniform sampler2D depth_tex;
-layout(set = 0, binding = 3) uniform sampler2D albedo_tex;
+layout(set = 0, binding = 2) uniform sampler2D surface_tex;  // depth mm, material id
 layout(set = 0, binding = 4) uniform sampler2D input_tex;  // bilinear
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D output_img;
 layout(push_constant) uniform Push { BlurPush blur; };
 
 #include "shared/sss.glsl"
 
-void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = ivec2(frame.viewport.xy);
-  if (any(greaterThanEqual(p, size))) return;
-  vec3 center = texelFetch(input_tex, p, 0).rgb;
-  int id = material_id(texelFetch(albedo_tex, p, 0));
-  if (id < 0 || materials[id].reflectance.w < 0.5) {
-    imageStore(output_img, p, vec4(center, 1.0));
-    return;
-  }
+vec3 convolve(int id, ivec2 p, ivec2 size, float z, vec3 center) {
   vec2 dir = blur.direction.xy;
-  float z = view_depth_mm(p);
   float ppm = pixels_per_mm(dir, z);
   float width_mm = materials[id].kernel.y;
   int taps = int(materials[id].kernel.x);
@@ -40,10 +29,26 @@ void main() {
     vec2 pos = vec2(p) + 0.5 + dir * (tap.w * ppm);
     ivec2 q = clamp(ivec2(floor(pos)), ivec2(0), size - 1);
     vec3 value = textureLod(input_tex, pos * frame.viewport.zw, 0.0).rgb;
-    if (q != p)
-      value = follow_surface(value, center, material_id(texelFetch(albedo_tex, q, 0)), id,
-                             view_depth_mm(q), z, width_mm);
+    if (q != p) {
+      vec2 there = surface_at(q);
+      value = follow_surface(value, center, int(there.y), id, there.x, z, width_mm);
+    }
     sum += tap.rgb * value;
   }
+  return sum;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = ivec2(frame.viewport.xy);
+  if (any(greaterThanEqual(p, size))) return;
+  vec3 center = texelFetch(input_tex, p, 0).rgb;
+  vec2 here = surface_at(p);
+  int id = int(here.y);
+  if (id < 0 || materials[id].reflectance.w < 0.5) {
+    imageStore(output_img, p, vec4(center, 1.0));
+    return;
+  }
+  vec3 sum = convolve(id, p, size, here.x, center);
   imageStore(output_img, p, vec4(sum, 1.0));
 }

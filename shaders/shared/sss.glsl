@@ -3,14 +3,10 @@
 #ifndef SSS_SHADERS_SSS_GLSL
 #define SSS_SHADERS_SSS_GLSL
 
-// Needs: frame (FrameUniforms), depth_tex, albedo_tex.
+// Needs: frame (FrameUniforms), surface_tex (lighting.comp's surface image).
 
-// Distance from the camera plane, in mm.
-float view_depth_mm(ivec2 q) {
-  float d = texelFetch(depth_tex, q, 0).r;
-  vec4 v = frame.inv_proj * vec4(pixel_ndc(vec2(q) + 0.5, frame.viewport), d, 1.0);
-  return -v.z / v.w * frame.scale.x;
-}
+// x: distance from the camera plane in mm, y: material id (-1: background).
+vec2 surface_at(ivec2 q) { return texelFetch(surface_tex, q, 0).xy; }
 
 // Pixels per mm along `dir` at view depth z_mm. Orthographic: width / (2 xmag_mm);
 // perspective: the focal length in pixels over the depth.
