@@ -33,21 +33,22 @@ void main() {
   vec3 L = vec3(0.0);
   float alpha = 0.0;
   if (id >= 0) {
-    GpuMaterial m = materials[id];
+    vec4 reflectance = materials[id].reflectance;  // not the whole GpuMaterial
+    float metallic = materials[id].surface.y;
     vec3 E = texelFetch(irradiance_tex, p, 0).rgb;
     vec3 diffuse;
     int mode = int(frame.options.y);
-    if (m.reflectance.w > 0.5) {
+    if (reflectance.w > 0.5) {
       if (mode == 1)
-        diffuse = m.reflectance.rgb * texelFetch(scattered_tex, p, 0).rgb;
+        diffuse = reflectance.rgb * texelFetch(scattered_tex, p, 0).rgb;
       else if (mode == 2)
         diffuse = texelFetch(accumulated_tex, p, 0).rgb;
       else
-        diffuse = m.reflectance.rgb * E;  // no spread: the total reflectance, locally
+        diffuse = reflectance.rgb * E;  // no spread: the total reflectance, locally
     } else {
       diffuse = E;  // Lambert
     }
-    L = albedo_id.rgb * (1.0 - m.surface.y) * diffuse / kPi + texelFetch(specular_tex, p, 0).rgb;
+    L = albedo_id.rgb * (1.0 - metallic) * diffuse / kPi + texelFetch(specular_tex, p, 0).rgb;
     alpha = 1.0;
   }
   imageStore(hdr_img, p, vec4(L, alpha));

@@ -42,7 +42,7 @@ void main() {
     imageStore(surface_img, p, vec4(0.0, -1.0, 0.0, 0.0));
     return;
   }
-  GpuMaterial m = materials[id];
+  vec4 surface = materials[id].surface;  // not the whole GpuMaterial: lavapipe loads it all
   vec3 albedo = texelFetch(albedo_tex, p, 0).rgb;
   float depth = texelFetch(depth_tex, p, 0).r;
   vec4 w = frame.inv_view_proj * vec4(pixel_ndc(vec2(p) + 0.5, frame.viewport), depth, 1.0);
@@ -53,9 +53,9 @@ void main() {
   vec3 N = normalize(nr.xyz);
   vec3 V = frame.camera.w > 0.5 ? -frame.forward.xyz : normalize(frame.camera.xyz - P);
   float NdotV = max(dot(N, V), 1e-4);
-  float alpha = max(m.surface.z * m.surface.z, 1e-3);
+  float alpha = max(surface.z * surface.z, 1e-3);
   float a2 = alpha * alpha;
-  vec3 F0 = mix(vec3(m.surface.x), albedo, m.surface.y);
+  vec3 F0 = mix(vec3(surface.x), albedo, surface.y);
   bool has_specular = max(F0.r, max(F0.g, F0.b)) > 0.0;
 
   vec3 E = vec3(0.0);

@@ -21,7 +21,7 @@ layout(push_constant) uniform Push { BlurPush blur; };
 
 #include "shared/sss.glsl"
 
-float variance(GpuMaterial m, int g) { return g < 0 ? 0.0 : m.variances[g / 4][g % 4]; }
+float variance(int id, int g) { return g < 0 ? 0.0 : materials[id].variances[g / 4][g % 4]; }
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -40,9 +40,9 @@ void main() {
     if (vertical && g == 0) imageStore(accum_img, p, vec4(0.0));
     return;
   }
-  GpuMaterial m = materials[id];
+  float width_mm = materials[id].kernel.y;
   float z = here.x;
-  float sigma_px = sqrt(max(variance(m, g) - variance(m, g - 1), 0.0)) * pixels_per_mm(dir, z);
+  float sigma_px = sqrt(max(variance(id, g) - variance(id, g - 1), 0.0)) * pixels_per_mm(dir, z);
   vec3 result = center;
   if (sigma_px > 0.05) {
     float reach = 4.0 * sigma_px;  // truncation: 6e-5 of the mass, 0.03% of the variance
@@ -57,7 +57,7 @@ void main() {
       ivec2 q = clamp(p + ivec2(dir * offset), ivec2(0), size - 1);
       vec2 there = surface_at(q);
       vec3 value = follow_surface(texelFetch(input_tex, q, 0).rgb, center, int(there.y), id,
-                                  there.x, z, m.kernel.y);
+                                  there.x, z, width_mm);
       float weight = exp(-offset * offset * inv_two_var);
       sum += weight * value;
       weight_sum += weight;
@@ -67,6 +67,6 @@ void main() {
   imageStore(output_img, p, vec4(result, 1.0));
   if (vertical) {
     vec3 accum = g == 0 ? vec3(0.0) : imageLoad(accum_img, p).rgb;
-    imageStore(accum_img, p, vec4(accum + m.gauss_weights[g].rgb * result, 1.0));
+    imageStore(accum_img, p, vec4(accum + materials[id].gauss_weights[g].rgb * result, 1.0));
   }
 }
