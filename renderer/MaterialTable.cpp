@@ -41,7 +41,9 @@ MaterialData build_material_data(const scene::Scene& scene, int separable_taps) 
         g.gauss_weights[i] = {float(p.fit.weights[i][0]), float(p.fit.weights[i][1]),
                               float(p.fit.weights[i][2]), 0.0f};
       }
-      g.kernel = {float(p.kernel.offsets_mm.size()), float(p.kernel.range_mm), 0.0f, 0.0f};
+      const bool pre_post = m.sss.albedo_mode == scene::AlbedoMode::PrePost;
+      g.kernel = {float(p.kernel.offsets_mm.size()), float(p.kernel.range_mm),
+                  pre_post ? 1.0f : 0.0f, 0.0f};
       for (std::size_t i = 0; i < p.kernel.offsets_mm.size(); ++i)
         g.taps[i] = {float(p.kernel.weights[i][0]), float(p.kernel.weights[i][1]),
                      float(p.kernel.weights[i][2]), float(p.kernel.offsets_mm[i])};

@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Composite: post-scatter albedo x scattered irradiance / pi + specular (linear HDR), and
+// Composite: post-scatter albedo (or the second sqrt(albedo) of pre/post) x scattered
+// irradiance / pi + specular (linear HDR), and
 // the display image (exposure, filmic tonemap, sRGB encoding).
 #include "shared/frame.h"
 #include "shared/common.glsl"
@@ -48,7 +49,8 @@ void main() {
     } else {
       diffuse = E;  // Lambert
     }
-    L = albedo_id.rgb * (1.0 - metallic) * diffuse / kPi + texelFetch(specular_tex, p, 0).rgb;
+    vec3 albedo = materials[id].kernel.z > 0.5 ? sqrt(albedo_id.rgb) : albedo_id.rgb;
+    L = albedo * (1.0 - metallic) * diffuse / kPi + texelFetch(specular_tex, p, 0).rgb;
     alpha = 1.0;
   }
   imageStore(hdr_img, p, vec4(L, alpha));

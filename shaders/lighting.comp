@@ -94,6 +94,8 @@ void main() {
       S += D * vis * F * incident;
     }
   }
+  // Pre/post albedo: sqrt(albedo) enters before scattering, the other half after it.
+  if (materials[id].kernel.z > 0.5) E *= sqrt(albedo);
   imageStore(irradiance_img, p, vec4(E, 1.0));
   imageStore(specular_img, p, vec4(S, 1.0));
 }

@@ -23,8 +23,14 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
   if (args.gaussians && (*args.gaussians < scene::kMinGaussians ||
                          *args.gaussians > scene::kMaxGaussians))
     return FieldError{"--gaussians", "must be in 1..8, got " + std::to_string(*args.gaussians)};
+  std::optional<scene::AlbedoMode> albedo;
+  if (!args.albedo.empty()) {
+    albedo = scene::parse_albedo_mode(args.albedo);
+    if (!albedo)
+      return FieldError{"--albedo", "expected post-scatter or pre-post, got '" + args.albedo + "'"};
+  }
   const bool medium = any_medium(args.medium);
-  if (!model && !args.gaussians && !medium) return 0;
+  if (!model && !args.gaussians && !medium && !albedo) return 0;
 
   int changed = 0;
   for (scene::Material& m : scene.materials) {
@@ -38,7 +44,7 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
       source = scene::CoefficientSource{std::get<ResolvedMedium>(resolved).medium};
     }
     auto made = scene::make_sss_material(source, use_model, args.gaussians.value_or(m.sss.gaussians),
-                                         m.sss.scale, m.sss.albedo_mode);
+                                         m.sss.scale, albedo.value_or(m.sss.albedo_mode));
     if (auto* e = std::get_if<FieldError>(&made)) return *e;
     m.sss = std::get<scene::SssMaterial>(made);
     ++changed;

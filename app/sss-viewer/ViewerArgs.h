@@ -26,6 +26,7 @@ struct ViewerArgs {
   std::string mode = "separable";
   std::string model;
   std::optional<int> gaussians;
+  std::string albedo;  // post-scatter | pre-post
   int taps = 17;
   float exposure = 1.0f;
   bool stats = false;
@@ -33,7 +34,7 @@ struct ViewerArgs {
   MediumArgs medium;
 };
 
-// Applies --model / --gaussians / MEDIUM to every SSS material of the scene. Returns the
+// Applies --model / --gaussians / --albedo / MEDIUM to every SSS material of the scene. Returns the
 // number of materials changed, or the error (which names the option).
 std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
                                                        const ViewerArgs& args);

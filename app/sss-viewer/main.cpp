@@ -65,6 +65,9 @@ int main(int argc, char** argv) {
                  "Profile model for every SSS material: dipole | better-dipole | pbd | burley | "
                  "multipole | mc");
   app.add_option("--gaussians", a.gaussians, "Gaussians per fit, 1..8");
+  app.add_option("--albedo", a.albedo,
+                 "Where SSS materials apply their colour: post-scatter | pre-post (sqrt before "
+                 "and after scattering)");
   app.add_option("--taps", a.taps, "Separable kernel taps (odd, 3..33; default 17)");
   app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1)");
   add_medium_options(app, a.medium);

@@ -64,7 +64,8 @@ struct LightBlock {
 struct GpuMaterial {
   vec4 reflectance;  // rgb total diffuse reflectance T, w 1 when SSS is enabled
   vec4 surface;      // x F0 (0.04 x specular), y metallic, z roughness, w Gaussian count
-  vec4 kernel;       // x separable taps, y range_mm (follow-surface width), z, w
+  vec4 kernel;       // x separable taps, y range_mm (follow-surface width), z 1 = pre/post
+                     // sqrt(albedo) (d'Eon & Luebke 2007), 0 = post-scatter albedo; w
   vec4 variances[SSS_MAX_GAUSSIANS / 4];  // v_i in mm^2, ascending
   vec4 gauss_weights[SSS_MAX_GAUSSIANS];  // rgb w_i (sum = T)
   vec4 taps[SSS_MAX_TAPS];                // rgb weight (sum 1), w offset in mm

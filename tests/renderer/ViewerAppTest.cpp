@@ -67,7 +67,8 @@ TEST(ViewerApp, StatsPrintEveryPassAndTheCpuFrameTime) {
 TEST(ViewerApp, MaterialOverridesAreAccepted) {
   const std::string out = temp_path("override.exr");
   const ViewerRun r = run("builtin:sphere --headless --out " + out +
-                    " --width 48 --height 27 --preset marble --model dipole --gaussians 3");
+                    " --width 48 --height 27 --preset marble --model dipole --gaussians 3"
+                    " --albedo pre-post");
   EXPECT_EQ(r.status, 0) << r.output;
   const ViewerRun c = run("builtin:sphere --headless --out " + out +
                     " --width 48 --height 27 --sigma-a 0.01,0.02,0.03 --sigma-s 1,1,1");
@@ -94,6 +95,7 @@ TEST(ViewerApp, DocumentedErrors) {
       {"builtin:sphere --headless --out " + out + " --gaussians 9", 2, "--gaussians"},
       {"builtin:sphere --headless --out " + out + " --preset nope", 2, "preset"},
       {"builtin:sphere --headless --out " + out + " --taps 4", 2, "--taps"},
+      {"builtin:sphere --headless --out " + out + " --albedo half", 2, "--albedo"},
       {"builtin:nothing --headless --out " + out, 2, "builtin:nothing"},
       {"/nonexistent/scene.gltf --headless --out " + out, 2, "scene.gltf"},
       {"builtin:sphere --headless --out " + out + " --width 0", 2, "width"},
