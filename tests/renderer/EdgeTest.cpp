@@ -85,13 +85,26 @@ double pixel_average(const F& f, double x, double h) {
 
 class EdgeTest : public RenderTest {
  protected:
+  // height_mm > 0: a perspective camera that high above the slab, looking straight down,
+  // whose field of view spans the same [-half_width, half_width] mm on the slab.
   EdgeRun render_edge(const std::string& preset, SssKind kind, double half_width_mm = kHalfWidthMm,
-                      int width = kWidth) {
+                      int width = kWidth, double height_mm = 0.0) {
     scene::EdgeOptions eo;
     eo.preset = preset;
     eo.half_width_mm = half_width_mm;
     EdgeRun run;
     run.scene = scene::edge_scene(eo);
+    if (height_mm > 0.0) {
+      scene::Camera& cam = run.scene.cameras[0];
+      const double aspect = double(width) / kHeight;
+      cam.projection = scene::Projection::Perspective;
+      cam.yfov = float(2.0 * std::atan(half_width_mm / height_mm / aspect));
+      cam.aspect = 0.0f;
+      cam.znear = float(0.1 * height_mm * 1e-3);
+      cam.zfar = float(10.0 * height_mm * 1e-3);
+      cam.world = scene::look_at_world({0.0f, float(height_mm * 1e-3), 0.0f}, glm::vec3(0.0f),
+                                       {0.0f, 0.0f, -1.0f});
+    }
     const Frame f = render(run.scene, small_options(width, kHeight, SssMode::Screen, kind));
     for (int x = 0; x < width; ++x) {
       const float* p = f.hdr.pixel(x, kHeight / 2);
@@ -250,6 +263,33 @@ TEST_F(EdgeTest, ZoomingDoesNotChangeTheProfileInMm) {
     }
     std::printf("[ zoom %s ] worst |wide - zoomed| / T = %.2e\n",
                 std::string(sss_kind_name(kind)).c_str(), worst);
+  }
+}
+
+// Perspective: mm -> pixels comes from the view depth and the focal length. A camera
+// 100 mm or 400 mm above the slab with the field of view that spans the same 40.96 mm
+// sees the slab exactly as the orthographic camera does (a plane facing the camera maps
+// linearly to the image), so the frames must agree to both frames' eps: dollying in or
+// out does not change the look.
+TEST_F(EdgeTest, PerspectiveCameraAtAnyDistanceSeesTheSameProfile) {
+  for (SssKind kind : {SssKind::Separable, SssKind::Gaussians}) {
+    const EdgeRun ortho = render_edge("skin1", kind);
+    const MaterialProfile& mp = *ortho.materials.profiles[0];
+    const double eps = kind == SssKind::Gaussians ? gaussians_eps(mp.fit) : kSeparableEps;
+    const Rgb T = exact_profile(ortho.scene).total_reflectance();
+    for (double height : {100.0, 400.0}) {
+      const EdgeRun persp = render_edge("skin1", kind, kHalfWidthMm, kWidth, height);
+      double worst = 0.0;
+      for (int x = 0; x < kWidth; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const double diff = std::fabs(persp.pi_L[x][c] - ortho.pi_L[x][c]);
+          EXPECT_LE(diff, 2.0 * eps * T[c])
+              << sss_kind_name(kind) << " height " << height << " mm, x=" << pixel_center_mm(x);
+          worst = std::max(worst, diff / T[c]);
+        }
+      std::printf("[ perspective %s, %g mm ] worst |persp - ortho| / T = %.2e\n",
+                  std::string(sss_kind_name(kind)).c_str(), height, worst);
+    }
   }
 }
 
