@@ -30,16 +30,16 @@ void main() {
   vec2 dir = blur.direction.xy;
   int g = int(blur.direction.z);
   bool vertical = dir.y > 0.5;
-  vec3 center = texelFetch(input_tex, p, 0).rgb;
   vec2 here = surface_at(p);
   int id = int(here.y);
   bool scatters = id >= 0 && materials[id].reflectance.w > 0.5 &&
                   g < int(materials[id].surface.w);
-  if (!scatters) {
-    imageStore(output_img, p, vec4(center, 1.0));
-    if (vertical && g == 0) imageStore(accum_img, p, vec4(0.0));
-    return;
-  }
+  // Pixels that do not scatter (at this step) are left unwritten: taps are fetched at
+  // whole pixels, a tap on another material or the background falls back to the centre
+  // value without using its own, a pixel of the same material is in the same state, and
+  // composite reads accum only where a material scatters.
+  if (!scatters) return;
+  vec3 center = texelFetch(input_tex, p, 0).rgb;
   float width_mm = materials[id].kernel.y;
   float z = here.x;
   float sigma_px = sqrt(max(variance(id, g) - variance(id, g - 1), 0.0)) * pixels_per_mm(dir, z);

@@ -42,13 +42,16 @@ void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = ivec2(frame.viewport.xy);
   if (any(greaterThanEqual(p, size))) return;
-  vec3 center = texelFetch(input_tex, p, 0).rgb;
   vec2 here = surface_at(p);
   int id = int(here.y);
+  // Pixels that do not scatter: the horizontal pass copies them (the vertical pass's
+  // bilinear taps may touch them at silhouettes); the vertical pass leaves them unwritten,
+  // as composite reads its output only where a material scatters.
   if (id < 0 || materials[id].reflectance.w < 0.5) {
-    imageStore(output_img, p, vec4(center, 1.0));
+    if (blur.direction.x > 0.5) imageStore(output_img, p, texelFetch(input_tex, p, 0));
     return;
   }
+  vec3 center = texelFetch(input_tex, p, 0).rgb;
   vec3 sum = convolve(id, p, size, here.x, center);
   imageStore(output_img, p, vec4(sum, 1.0));
 }
