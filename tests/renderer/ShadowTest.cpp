@@ -62,5 +62,39 @@ TEST_F(RenderTest, MaskedLightStopsAtItsHalfSpaceWithoutAShadowBlur) {
   EXPECT_NEAR(f.hdr.pixel(3, 4)[1], 1.0f / 3.14159265f, 1e-4f);
 }
 
+// A spot light 50 mm above the slab pointing down (inner cone 10, outer 15 degrees), with
+// a bar 25 mm above the slab across x in [-3, 3] mm: E = I cos(theta) / d^2 inside the
+// inner cone, 0 outside the outer cone, and the bar's shadow (x in [-6, 6] mm on the slab,
+// magnified 2x from the light) black where the camera sees the slab past the bar.
+TEST_F(RenderTest, SpotLightFallsOffWithDistanceAndCastsAPerspectiveShadow) {
+  scene::Scene s = bar_scene();
+  s.meshes[1] = scene::make_box({-3 * kMm, 24 * kMm, -50 * kMm}, {3 * kMm, 25 * kMm, 50 * kMm}, 0);
+  scene::Light spot;
+  spot.name = "spot";
+  spot.type = scene::LightType::Spot;
+  spot.intensity = 0.0025f;  // W/sr: E = 1 straight below at 50 mm
+  spot.inner_cone = 10.0f * 3.14159265f / 180.0f;
+  spot.outer_cone = 15.0f * 3.14159265f / 180.0f;
+  spot.world = scene::look_at_world({0.0f, 50 * kMm, 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
+  s.lights = {spot};
+  const int w = 256, h = 16;
+  const Frame f = render(s, small_options(w, h));
+  const auto expected = [](float x_mm) {
+    const float d2 = (50.0f * 50.0f + x_mm * x_mm) * 1e-6f;
+    const float cos_theta = 50.0f / std::sqrt(50.0f * 50.0f + x_mm * x_mm);
+    return 0.0025f * cos_theta / d2 / 3.14159265f;  // I cos(theta) / d^2 / pi
+  };
+  for (float x_mm : {-8.0f, 7.5f, 8.5f}) {
+    const float px = mm_to_px(x_mm, w);
+    const float x_center = (std::floor(px) + 0.5f) / float(w) * 40.0f - 20.0f;
+    EXPECT_NEAR(f.hdr.pixel(int(px), h / 2)[0], expected(x_center), 2e-3f * expected(x_center))
+        << "lit at x=" << x_center << " mm";
+  }
+  for (float x_mm : {-5.0f, -4.0f, 4.0f, 5.0f})
+    EXPECT_LT(f.hdr.pixel(int(mm_to_px(x_mm, w)), h / 2)[0], 1e-4f) << "shadow at x=" << x_mm;
+  for (float x_mm : {-19.0f, 16.0f, 19.0f})  // beyond atan(15 deg) * 50 mm = 13.4 mm
+    EXPECT_EQ(f.hdr.pixel(int(mm_to_px(x_mm, w)), h / 2)[0], 0.0f) << "outside the cone at " << x_mm;
+}
+
 }  // namespace
 }  // namespace sss::renderer::testing
