@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstddef>
+#include <vector>
 
 namespace sss::renderer {
 
@@ -18,6 +19,8 @@ vk::DescriptorSetLayoutBuilder bindings() {
   vk::DescriptorSetLayoutBuilder b;
   b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
+  b.add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT,
+        shader::kMaxTextures);
   return b;
 }
 }  // namespace
@@ -35,6 +38,9 @@ GBufferPass::GBufferPass(const FrameResources& resources)
                     .vertex_attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT,
                                       offsetof(GpuVertex, position))
                     .vertex_attribute(1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal))
+                    .vertex_attribute(2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv))
+                    .vertex_attribute(3, 0, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                      offsetof(GpuVertex, tangent))
                     .color(kNormalFormat)
                     .color(kAlbedoFormat)
                     .depth(kDepthFormat, vk::DepthTest::Write)
@@ -42,7 +48,12 @@ GBufferPass::GBufferPass(const FrameResources& resources)
                     .build(r_.context, layout_.get(), kName)),
       pool_(r_.context, bindings(), 1, kName) {
   set_ = pool_.allocate(set_layout_.get());
-  vk::DescriptorWriter(set_).uniform_buffer(0, r_.frame_uniforms).update(r_.context);
+  vk::DescriptorWriter writer(set_);
+  writer.uniform_buffer(0, r_.frame_uniforms);
+  const std::vector<VkDescriptorImageInfo> textures = r_.scene.texture_descriptors();
+  for (uint32_t i = 0; i < textures.size(); ++i)
+    writer.image(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures[i], i);
+  writer.update(r_.context);
 }
 
 void GBufferPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {

@@ -1,25 +1,103 @@
 #include "renderer/GpuScene.h"
 
 #include "renderer/CameraSetup.h"
+#include "renderer/vk/Sampler.h"
 #include "renderer/vk/Transfer.h"
 #include "shaders/shared/frame.h"
 
+#include <map>
 #include <span>
+#include <utility>
 
 namespace sss::renderer {
 
+namespace {
+
+VkSamplerAddressMode address(scene::Wrap w) {
+  switch (w) {
+    case scene::Wrap::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    case scene::Wrap::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    case scene::Wrap::Repeat: break;
+  }
+  return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+}
+
+vk::Image upload_rgba8(const vk::Context& context, std::uint32_t w, std::uint32_t h,
+                       std::span<const std::uint8_t> pixels, bool srgb, const std::string& name) {
+  vk::Image image(context, {w, h, srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM,
+                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name});
+  vk::upload_image(context, image, std::as_bytes(pixels), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  return image;
+}
+
+}  // namespace
+
+int GpuScene::add_texture(const vk::Context& context, const scene::Scene& scene,
+                          std::uint32_t texture, bool srgb) {
+  if (texture >= scene.textures.size() || !scene.textures[texture].image) return -1;
+  if (slots_.size() >= shader::kMaxTextures) {
+    warnings_.push_back("texture '" + scene.textures[texture].name + "' ignored: at most " +
+                        std::to_string(shader::kMaxTextures - 1) + " textures are bound");
+    return -1;
+  }
+  const scene::Texture& t = scene.textures[texture];
+  Slot slot;
+  slot.image = upload_rgba8(context, t.image->width, t.image->height, t.image->pixels, srgb,
+                            t.name);
+  vk::SamplerDesc desc(t.sampler.mag == scene::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR,
+                       VK_SAMPLER_MIPMAP_MODE_NEAREST, address(t.sampler.wrap_s));
+  desc.name = t.name;
+  slot.sampler = vk::create_sampler(context, desc);
+  slots_.push_back(std::move(slot));
+  return static_cast<int>(slots_.size()) - 1;
+}
+
 GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
     : instances_(scene.instances), materials_(scene.materials) {
+  // Slot 0: white, bound wherever a slot is unused.
+  const std::uint8_t white[4] = {255, 255, 255, 255};
+  Slot dummy;
+  dummy.image = upload_rgba8(context, 1, 1, white, false, "white");
+  dummy.sampler = vk::create_sampler(context, {});
+  slots_.push_back(std::move(dummy));
+
+  std::map<std::pair<std::uint32_t, bool>, int> slot_of;  // (texture, srgb) -> slot
+  const auto slot_for = [&](std::uint32_t texture, bool srgb) {
+    const auto key = std::make_pair(texture, srgb);
+    auto it = slot_of.find(key);
+    if (it == slot_of.end()) it = slot_of.emplace(key, add_texture(context, scene, texture, srgb)).first;
+    return it->second;
+  };
+
   for (const scene::Mesh& mesh : scene.meshes) {
+    const bool has_uv = mesh.uv0.size() == mesh.positions.size();
+    const bool has_tangents = mesh.tangents.size() == mesh.positions.size();
     std::vector<GpuVertex> vertices(mesh.positions.size());
     for (std::size_t i = 0; i < vertices.size(); ++i) {
       const glm::vec3& p = mesh.positions[i];
       const glm::vec3& n = mesh.normals[i];
-      vertices[i] = {{p.x, p.y, p.z}, {n.x, n.y, n.z}};
+      GpuVertex& v = vertices[i];
+      v = {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 0.0f}};
+      if (has_uv) {
+        v.uv[0] = mesh.uv0[i].x;
+        v.uv[1] = mesh.uv0[i].y;
+      }
+      if (has_tangents)
+        for (int c = 0; c < 4; ++c) v.tangent[c] = mesh.tangents[i][c];
     }
     MeshBuffers b;
     b.index_count = static_cast<std::uint32_t>(mesh.indices.size());
     b.material = mesh.material;
+    if (mesh.material < scene.materials.size()) {
+      const scene::Material& m = scene.materials[mesh.material];
+      if (m.base_color_texture && has_uv) b.base_slot = slot_for(*m.base_color_texture, true);
+      if (m.normal_texture && has_uv && has_tangents)
+        b.normal_slot = slot_for(*m.normal_texture, false);
+      if ((m.base_color_texture || m.normal_texture) && !has_uv)
+        warnings_.push_back("mesh '" + mesh.name + "' has no uv0: its textures are ignored");
+      else if (m.normal_texture && !has_tangents)
+        warnings_.push_back("mesh '" + mesh.name + "' has no tangents: its normal map is ignored");
+    }
     if (!vertices.empty() && !mesh.indices.empty()) {
       b.vertices = vk::Buffer(context, {vertices.size() * sizeof(GpuVertex),
                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
@@ -36,6 +114,15 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
   }
 }
 
+std::vector<VkDescriptorImageInfo> GpuScene::texture_descriptors() const {
+  std::vector<VkDescriptorImageInfo> out;
+  for (std::uint32_t i = 0; i < shader::kMaxTextures; ++i) {
+    const Slot& s = slots_[i < slots_.size() ? i : 0];
+    out.push_back(s.image.descriptor(VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, s.sampler.get()));
+  }
+  return out;
+}
+
 void GpuScene::draw(VkCommandBuffer cmd, VkPipelineLayout layout, int light_index) const {
   for (const scene::Instance& instance : instances_) {
     const MeshBuffers& mesh = meshes_[instance.mesh];
@@ -46,6 +133,7 @@ void GpuScene::draw(VkCommandBuffer cmd, VkPipelineLayout layout, int light_inde
     push.material = {float(mesh.material), float(light_index), material.roughness, 0.0f};
     push.base_color = {material.base_color.r, material.base_color.g, material.base_color.b,
                        material.base_color.a};
+    push.textures = {float(mesh.base_slot), float(mesh.normal_slot), material.normal_scale, 0.0f};
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                        sizeof(push), &push);
     const VkBuffer buffers[] = {mesh.vertices.handle()};

@@ -1,14 +1,19 @@
-// GpuScene: the scene's meshes in device-local vertex and index buffers, and the draw of
-// every instance with its DrawPush (model matrix, material index, roughness, colour).
-// The G-buffer and the shadow maps draw the same list.
+// GpuScene: the scene's meshes in device-local vertex and index buffers, its material
+// textures (base colour as sRGB, normal maps as linear RGBA8, one sampler each, no mips
+// yet), and the draw of every instance with its DrawPush (model matrix, material index,
+// roughness, colour, texture slots). The G-buffer and the shadow maps draw the same list.
 #pragma once
 
 #include "renderer/scene/Scene.h"
 #include "renderer/vk/Buffer.h"
+#include "renderer/vk/Handle.h"
+#include "renderer/vk/Image.h"
 
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace sss::vk {
@@ -20,6 +25,8 @@ namespace sss::renderer {
 struct GpuVertex {
   float position[3];
   float normal[3];
+  float uv[2];
+  float tangent[4];  // xyz, w handedness; zero when the mesh has none
 };
 
 class GpuScene {
@@ -31,16 +38,32 @@ class GpuScene {
   // shadow pass (ignored elsewhere).
   void draw(VkCommandBuffer cmd, VkPipelineLayout layout, int light_index = -1) const;
 
+  // SSS_MAX_TEXTURES descriptors (SHADER_READ_ONLY_OPTIMAL); unused slots hold a white
+  // 1x1 texture.
+  std::vector<VkDescriptorImageInfo> texture_descriptors() const;
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
  private:
   struct MeshBuffers {
     vk::Buffer vertices;
     vk::Buffer indices;
     std::uint32_t index_count = 0;
     std::uint32_t material = 0;
+    int base_slot = -1;    // texture slots usable by this mesh (it has uv0 / tangents)
+    int normal_slot = -1;
   };
+  struct Slot {
+    vk::Image image;
+    vk::SamplerHandle sampler;
+  };
+  int add_texture(const vk::Context& context, const scene::Scene& scene, std::uint32_t texture,
+                  bool srgb);
+
   std::vector<MeshBuffers> meshes_;
   std::vector<scene::Instance> instances_;
   std::vector<scene::Material> materials_;
+  std::vector<Slot> slots_;  // slots_[0] is the white dummy
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace sss::renderer

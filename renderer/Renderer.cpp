@@ -75,6 +75,7 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
       fence_(vk::create_fence(context)),
       timer_(context) {
   warnings_ = lights_.warnings;
+  warnings_.insert(warnings_.end(), scene_.warnings().begin(), scene_.warnings().end());
   const CameraSetup camera = make_camera_setup(scene.cameras.front(), options.width, options.height);
   const shader::FrameUniforms uniforms =
       make_frame_uniforms(camera, options.width, options.height, scene.mm_per_unit,

@@ -21,6 +21,8 @@
 #define SSS_LIGHT_DIRECTIONAL 0
 #define SSS_LIGHT_POINT 1
 #define SSS_LIGHT_SPOT 2
+// Material textures (base colour, normal maps) bound in one frame; more are ignored.
+#define SSS_MAX_TEXTURES 32
 // G-buffer material id: albedo.a = (material index + 1) / 255; 0 is background.
 #define SSS_MAX_MATERIALS 254
 
@@ -76,6 +78,7 @@ struct DrawPush {  // G-buffer and shadow draws (view_proj comes from the unifor
   mat4 model;
   vec4 material;    // x material index, y light index (shadow draws), z roughness
   vec4 base_color;  // linear RGBA factor
+  vec4 textures;    // x base colour slot, y normal map slot (-1: none), z normal scale
 };
 
 struct BlurPush {  // screen-space SSS passes
@@ -87,7 +90,8 @@ static_assert(sizeof(mat4) == 64);
 static_assert(sizeof(FrameUniforms) == 3 * 64 + 5 * 16);
 static_assert(sizeof(GpuLight) == 64 + 5 * 16);
 static_assert(sizeof(GpuMaterial) == 16 * (3 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
-static_assert(sizeof(DrawPush) == 96);
+static_assert(sizeof(DrawPush) == 112);
+inline constexpr uint kMaxTextures = SSS_MAX_TEXTURES;
 inline constexpr uint kMaxLights = SSS_MAX_LIGHTS;
 inline constexpr uint kMaxTaps = SSS_MAX_TAPS;
 inline constexpr uint kMaxMaterials = SSS_MAX_MATERIALS;
