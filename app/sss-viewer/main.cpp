@@ -132,6 +132,9 @@ int main(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     return usage(e.what());
   } catch (const std::exception& e) {
+    // A --device that names no device is bad input, not a runtime failure.
+    if (!a.device.empty() && std::string(e.what()).find("no Vulkan device matches") != std::string::npos)
+      return usage(e.what());
     std::cerr << "sss-viewer: error: " << e.what() << '\n';
     return kExitRuntime;
   }

@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #ifdef SSS_VIEWER_EXE
@@ -76,6 +77,12 @@ TEST(ViewerApp, MaterialOverridesAreAccepted) {
   std::filesystem::remove(out);
 }
 
+std::string broken_gltf() {
+  const std::string path = temp_path("broken.gltf");
+  std::ofstream(path) << "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ { \"mesh\": 7 } ] }";
+  return path;
+}
+
 TEST(ViewerApp, DocumentedErrors) {
   const std::string out = temp_path("error.png");
   struct Case {
@@ -99,6 +106,8 @@ TEST(ViewerApp, DocumentedErrors) {
       {"builtin:nothing --headless --out " + out, 2, "builtin:nothing"},
       {"/nonexistent/scene.gltf --headless --out " + out, 2, "scene.gltf"},
       {"builtin:sphere --headless --out " + out + " --width 0", 2, "width"},
+      {"builtin:sphere --headless --out " + out + " --device nonesuch", 2, "nonesuch"},
+      {broken_gltf() + " --headless --out " + out, 2, "broken.gltf"},
   };
   for (const Case& c : cases) {
     const ViewerRun r = run(c.args);
