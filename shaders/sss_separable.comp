@@ -26,13 +26,23 @@ vec3 convolve(int id, ivec2 p, ivec2 size, float z, vec3 center) {
   vec3 sum = vec3(0.0);
   for (int i = 0; i < taps; ++i) {
     vec4 tap = materials[id].taps[i];
-    vec2 pos = vec2(p) + 0.5 + dir * (tap.w * ppm);
-    ivec2 q = clamp(ivec2(floor(pos)), ivec2(0), size - 1);
-    vec3 value = textureLod(input_tex, pos * frame.viewport.zw, 0.0).rgb;
-    if (q != p) {
-      vec2 there = surface_at(q);
-      value = follow_surface(value, center, int(there.y), id, there.x, z, width_mm);
+    // Linear interpolation along dir between the two texels around the tap (the tap
+    // sits on the pixel row or column, so this is the bilinear sample); a texel of
+    // another material or the background is replaced by the centre value first.
+    float t = tap.w * ppm;  // in pixels from p
+    float f = floor(t);
+    ivec2 q0 = clamp(p + ivec2(dir * f), ivec2(0), size - 1);
+    ivec2 q1 = clamp(p + ivec2(dir * (f + 1.0)), ivec2(0), size - 1);
+    vec3 v0 = center, v1 = center;
+    if (q0 != p) {
+      vec2 there = surface_at(q0);
+      v0 = follow_surface(texelFetch(input_tex, q0, 0).rgb, center, int(there.y), id, there.x, z, width_mm);
     }
+    if (q1 != p) {
+      vec2 there = surface_at(q1);
+      v1 = follow_surface(texelFetch(input_tex, q1, 0).rgb, center, int(there.y), id, there.x, z, width_mm);
+    }
+    vec3 value = mix(v0, v1, t - f);
     sum += tap.rgb * value;
   }
   return sum;
@@ -47,10 +57,7 @@ void main() {
   // Pixels that do not scatter: the horizontal pass copies them (the vertical pass's
   // bilinear taps may touch them at silhouettes); the vertical pass leaves them unwritten,
   // as composite reads its output only where a material scatters.
-  if (id < 0 || materials[id].reflectance.w < 0.5) {
-    if (blur.direction.x > 0.5) imageStore(output_img, p, texelFetch(input_tex, p, 0));
-    return;
-  }
+  if (id < 0 || materials[id].reflectance.w < 0.5) return;
   vec3 center = texelFetch(input_tex, p, 0).rgb;
   vec3 sum = convolve(id, p, size, here.x, center);
   imageStore(output_img, p, vec4(sum, 1.0));
