@@ -88,12 +88,13 @@ class EdgeTest : public RenderTest {
   // height_mm > 0: a perspective camera that high above the slab, looking straight down,
   // whose field of view spans the same [-half_width, half_width] mm on the slab.
   EdgeRun render_edge(const std::string& preset, SssKind kind, double half_width_mm = kHalfWidthMm,
-                      int width = kWidth, double height_mm = 0.0) {
+                      int width = kWidth, double height_mm = 0.0, double material_scale = 1.0) {
     scene::EdgeOptions eo;
     eo.preset = preset;
     eo.half_width_mm = half_width_mm;
     EdgeRun run;
     run.scene = scene::edge_scene(eo);
+    run.scene.materials[0].sss.scale = material_scale;
     if (height_mm > 0.0) {
       scene::Camera& cam = run.scene.cameras[0];
       const double aspect = double(width) / kHeight;
@@ -290,6 +291,36 @@ TEST_F(EdgeTest, PerspectiveCameraAtAnyDistanceSeesTheSameProfile) {
       std::printf("[ perspective %s, %g mm ] worst |persp - ortho| / T = %.2e\n",
                   std::string(sss_kind_name(kind)).c_str(), height, worst);
     }
+  }
+}
+
+// Material scale: a slab with scale 2 scatters as if it were twice as large, so its
+// profile is R_2(r) = 4 R(2r) and its edge response M(2x). Rendered over [-20.48, 20.48] mm
+// it must equal the unscaled slab rendered over twice the width, pixel for pixel (both
+// frames' eps; gaussians also the difference between the two fits, which fit_gaussians
+// makes on scaled sample grids, measured here from the fits themselves).
+TEST_F(EdgeTest, MaterialScaleScattersAsIfTheObjectWereLarger) {
+  for (SssKind kind : {SssKind::Separable, SssKind::Gaussians}) {
+    const EdgeRun scaled = render_edge("skin1", kind, kHalfWidthMm, kWidth, 0.0, 2.0);
+    const EdgeRun wide = render_edge("skin1", kind, 2.0 * kHalfWidthMm);
+    const MaterialProfile& a = *scaled.materials.profiles[0];
+    const MaterialProfile& b = *wide.materials.profiles[0];
+    const double eps = kind == SssKind::Gaussians ? gaussians_eps(a.fit) : kSeparableEps;
+    const Rgb T = exact_profile(wide.scene).total_reflectance();
+    double worst = 0.0;
+    for (int x = 0; x < kWidth; ++x) {
+      const double xc = pixel_center_mm(x);
+      const Rgb fa = profiles::edge_response(a.fit, xc), fb = profiles::edge_response(b.fit, 2.0 * xc);
+      for (int c = 0; c < 3; ++c) {
+        const double fit_gap = kind == SssKind::Gaussians ? std::fabs(fa[c] - fb[c]) : 0.0;
+        const double diff = std::fabs(scaled.pi_L[x][c] - wide.pi_L[x][c]);
+        EXPECT_LE(diff, 2.0 * eps * T[c] + fit_gap)
+            << sss_kind_name(kind) << " x=" << xc << " mm channel " << c;
+        worst = std::max(worst, diff / T[c]);
+      }
+    }
+    std::printf("[ scale 2 %s ] worst |scaled - wide| / T = %.2e\n",
+                std::string(sss_kind_name(kind)).c_str(), worst);
   }
 }
 
