@@ -60,9 +60,10 @@ std::variant<Scene, LoadError> load_scene(std::string_view scene) {
 }
 
 // The bunny faces -x (its head), its ears rise toward -z; it stands on y = 0, 150 mm
-// tall (scripts/make_bunny_glb.mjs). The camera looks at it from the front left; the key
-// light comes from behind it (+x), above and to the side, so it crosses the ears toward
-// the camera and they glow red; a weak fill from the camera side shows the front.
+// tall (scripts/make_bunny_glb.mjs). The camera sees it three-quarters from the front
+// left; the key light (E = 3) comes from behind it (+x), above and to the side, so it
+// crosses the ears toward the camera and they glow red; a fill (E = 1) from the camera
+// side shows the front.
 std::variant<Scene, LoadError> bunny_scene() {
   LoadOptions options;
   options.add_camera_if_missing = false;
@@ -74,8 +75,9 @@ std::variant<Scene, LoadError> bunny_scene() {
   s.lights.clear();
   s.cameras.clear();
   s.lights.push_back(directional_light("key (behind, side)", {-0.75f, -0.45f, 0.5f}, 3.0f));
-  s.lights.push_back(directional_light("fill", {0.8f, -0.3f, -0.55f}, 0.4f));
-  s.cameras.push_back(frame_bounds(s.bounds(), {0.8f, -0.25f, -0.55f}, 0.5f));
+  s.lights.push_back(directional_light("fill", {0.9f, -0.3f, -0.3f}, 1.0f));
+  // The bounding sphere is loose around the bunny: 0.8 of it still shows all of it.
+  s.cameras.push_back(frame_bounds(s.bounds(), {0.7f, -0.2f, -0.7f}, 0.5f, 0.8f));
   return s;
 }
 

@@ -24,16 +24,14 @@ glm::mat4 look_at_world(const glm::vec3& eye, const glm::vec3& target, const glm
   return m;
 }
 
-Camera frame_bounds(const Bounds& bounds, const glm::vec3& direction, float yfov) {
+Camera frame_bounds(const Bounds& bounds, const glm::vec3& direction, float yfov, float margin) {
   Camera cam;
   cam.name = "framed";
   cam.projection = Projection::Perspective;
   cam.yfov = yfov;
   const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
   const float radius = std::max(bounds.radius(), 1e-3f);
-  // The sphere fits the vertical field of view with 10% margin; images wider than tall
-  // see more horizontally.
-  const float distance = 1.1f * radius / std::sin(0.5f * yfov);
+  const float distance = margin * radius / std::sin(0.5f * yfov);
   const glm::vec3 dir = glm::normalize(direction);
   const glm::vec3 up = std::fabs(dir.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
   cam.world = look_at_world(center - dir * distance, center, up);

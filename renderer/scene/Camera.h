@@ -41,10 +41,11 @@ struct Camera {
 // A rigid transform at `eye` looking at `target`; `up` must not be parallel to the view.
 glm::mat4 look_at_world(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up);
 
-// A perspective camera that sees the whole of `bounds` (its bounding sphere) for any
-// image at least as wide as tall, looking along `direction` (world, need not be unit).
-// Near and far planes bracket the sphere.
+// A perspective camera looking along `direction` (world, need not be unit) at the
+// centre of `bounds`, far enough that the bounding sphere, scaled by `margin`, fits the
+// vertical field of view (so the whole box is seen, for any image at least as wide as
+// tall, when margin >= 1). Near and far planes bracket the sphere.
 Camera frame_bounds(const Bounds& bounds, const glm::vec3& direction = {-0.4f, -0.35f, -1.0f},
-                    float yfov = 0.6f);
+                    float yfov = 0.6f, float margin = 1.1f);
 
 }  // namespace sss::scene
