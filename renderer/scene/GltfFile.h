@@ -22,6 +22,7 @@ std::variant<std::vector<unsigned char>, std::string> read_file_capped(const std
 
 bool has_glb_magic(std::span<const unsigned char> bytes);
 
+// Views into the bytes given to parse_glb(): they must outlive it.
 struct GlbLayout {
   std::string_view json;               // chunk 0 payload, trailing padding removed
   std::span<const unsigned char> bin;  // chunk 1 payload; empty when there is none

@@ -15,7 +15,7 @@ namespace sss::scene {
 namespace {
 
 std::vector<unsigned char> glb(std::uint32_t json_len, std::uint32_t total, std::size_t real) {
-  std::vector<unsigned char> b(std::max<std::size_t>(real, 20), ' ');
+  std::vector<unsigned char> b(std::max<std::size_t>(real, 24), ' ');
   const auto put = [&](std::size_t at, std::uint32_t v) {
     for (int i = 0; i < 4; ++i) b[at + std::size_t(i)] = static_cast<unsigned char>(v >> (8 * i));
   };
@@ -31,7 +31,8 @@ std::vector<unsigned char> glb(std::uint32_t json_len, std::uint32_t total, std:
 }
 
 TEST(GlbContainer, Layout) {
-  auto ok = parse_glb(glb(8, 28, 28));
+  const auto bytes28 = glb(8, 28, 28);  // the layout views into these bytes
+  auto ok = parse_glb(bytes28);
   ASSERT_TRUE(std::holds_alternative<GlbLayout>(ok));
   EXPECT_EQ(std::get<GlbLayout>(ok).json, "{}");  // padding removed
   EXPECT_TRUE(std::get<GlbLayout>(ok).bin.empty());
