@@ -6,6 +6,7 @@
 #include "renderer/scene/GltfJson.h"
 #include "renderer/scene/GltfLoader.h"
 
+#include <glm/mat4x4.hpp>
 #include <tiny_gltf.h>
 
 #include <cstdint>
@@ -68,6 +69,12 @@ Status read_attribute(GltfContext& ctx, int index, const AttributeRule& rule,
 // checks every value < vertex_count.
 Status read_indices(GltfContext& ctx, int index, std::size_t vertex_count,
                     const std::string& object, std::vector<std::uint32_t>& out);
+
+// A camera or light placed by a node at `world` (scale removed). `node` names the
+// referencing node for errors.
+Status add_camera(GltfContext& ctx, int index, const glm::dmat4& world, const std::string& node);
+Status add_light(GltfContext& ctx, const tinygltf::Value& extension, const glm::dmat4& world,
+                 const std::string& node);
 
 Status convert_meshes(GltfContext& ctx);
 Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts);
