@@ -134,7 +134,7 @@ TEST(JsonDepth, CountsOutsideStrings) {
 }
 
 TEST(LoadOptions, CapsAreEnforced) {
-  const auto dir = testing::test_dir("caps");
+  const testing::TempDir dir("caps");
   testing::GltfTestWriter w;
   std::vector<float> pos;
   for (int i = 0; i < 3000; ++i) pos.insert(pos.end(), {float(i), 0, 0, float(i), 1, 0, float(i), 0, 1});

@@ -16,7 +16,7 @@ namespace sss::scene {
 namespace {
 
 using testing::GltfTestWriter;
-using testing::test_dir;
+using testing::TempDir;
 
 Scene load_ok(const std::filesystem::path& path) {
   auto r = load_gltf(path.string());
@@ -119,13 +119,13 @@ void check_hierarchy_scene(const Scene& s) {
 }
 
 TEST(GltfLoader, HierarchyEmbeddedBuffer) {
-  const auto dir = test_dir("hierarchy_embedded");
+  const TempDir dir("hierarchy_embedded");
   hierarchy_file().write_gltf(dir / "h.gltf");
   check_hierarchy_scene(load_ok(dir / "h.gltf"));
 }
 
 TEST(GltfLoader, HierarchyExternalBuffer) {
-  const auto dir = test_dir("hierarchy_external");
+  const TempDir dir("hierarchy_external");
   std::filesystem::create_directories(dir / "data");
   hierarchy_file().write_gltf_external(dir / "h.gltf", "data/h%20buffer.bin");
   std::filesystem::rename(dir / "data/h%20buffer.bin", dir / "data/h buffer.bin");
@@ -133,19 +133,19 @@ TEST(GltfLoader, HierarchyExternalBuffer) {
 }
 
 TEST(GltfLoader, HierarchyGlb) {
-  const auto dir = test_dir("hierarchy_glb");
+  const TempDir dir("hierarchy_glb");
   hierarchy_file().write_glb(dir / "h.glb");
   check_hierarchy_scene(load_ok(dir / "h.glb"));
 }
 
 TEST(GltfLoader, GlbWithNulPaddingAndAnUnknownChunk) {
-  const auto dir = test_dir("hierarchy_glb_odd");
+  const TempDir dir("hierarchy_glb_odd");
   hierarchy_file().write_glb(dir / "h.glb", '\0', true);
   check_hierarchy_scene(load_ok(dir / "h.glb"));
 }
 
 TEST(GltfLoader, MissingExternalBufferIsAnError) {
-  const auto dir = test_dir("missing_bin");
+  const TempDir dir("missing_bin");
   hierarchy_file().write_gltf_external(dir / "h.gltf", "h.bin");
   std::filesystem::remove(dir / "h.bin");
   const std::string e = load_error(dir / "h.gltf");
@@ -154,7 +154,7 @@ TEST(GltfLoader, MissingExternalBufferIsAnError) {
 }
 
 TEST(GltfLoader, StripsFansPointsAndU8Indices) {
-  const auto dir = test_dir("modes");
+  const TempDir dir("modes");
   GltfTestWriter w;
   const int pos = w.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, "VEC3", 3);
   const int idx = w.indices(std::vector<std::uint8_t>{0, 1, 2, 3});
@@ -176,7 +176,7 @@ TEST(GltfLoader, StripsFansPointsAndU8Indices) {
 }
 
 TEST(GltfLoader, TextureSamplerAndTexcoords) {
-  const auto dir = test_dir("texture");
+  const TempDir dir("texture");
   std::vector<unsigned char> png;
   const unsigned char pixels[2 * 2 * 3] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
   stbi_write_png_to_func(
@@ -223,7 +223,7 @@ TEST(GltfLoader, TextureSamplerAndTexcoords) {
 }
 
 TEST(GltfLoader, SssCoefficientsAndArtistModes) {
-  const auto dir = test_dir("sss_modes");
+  const TempDir dir("sss_modes");
   GltfTestWriter w;
   const int pos = w.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);
   w.push("materials", {{"extras", {{"sss", {{"sigma_a", {0.01, 0.02, 0.03}}, {"sigma_s", 2.0},
