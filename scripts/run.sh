@@ -1,14 +1,21 @@
 #!/usr/bin/env bash
-# The README's main command. Until the viewer lands (issue 5) the main job is sss-fit on
-# the default material: fit skin1 (Jensen 2001) with 6 Gaussians, print the fit, write
-# the kernel (JSON and C header) and a plot of the profile against the fit and Monte Carlo.
+# The README's main command: renders the default scene (builtin:bunny, the Stanford bunny
+# in skin1, screen-space SSS) headlessly to out/bunny.png and out/bunny.exr with per-pass
+# timings, then fits skin1's profile with 6 Gaussians (out/skin1-fit.svg, kernel JSON and
+# C header). The interactive window arrives with issue 5; until then rendering is
+# headless (lavapipe when there is no GPU). Extra arguments go to sss-viewer, e.g.
+#   scripts/run.sh --mode gaussians --width 1280 --height 720
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 OUT="${SSS_OUT:-out}"
 mkdir -p "$OUT"
+build/app/sss-viewer/sss-viewer builtin:bunny --headless --out "$OUT/bunny.png" --stats "$@"
+build/app/sss-viewer/sss-viewer builtin:bunny --headless --out "$OUT/bunny.exr" "$@" >/dev/null
+echo "wrote $OUT/bunny.png (tonemapped) and $OUT/bunny.exr (linear radiance)"
+echo
 build/app/sss-fit/sss-fit fit --preset skin1 --model better-dipole --gaussians 6 --taps 17 \
-  --out "$OUT/skin1-kernel.json" --plot "$OUT/skin1-fit.svg" --plot-mc --photons 200000 "$@"
+  --out "$OUT/skin1-kernel.json" --plot "$OUT/skin1-fit.svg" --plot-mc --photons 200000
 build/app/sss-fit/sss-fit fit --preset skin1 --model better-dipole --gaussians 6 --taps 17 \
   --out "$OUT/skin1-kernel.h" --json >/dev/null
-echo "Open $OUT/skin1-fit.svg to see r*R(r) of the model, the fit and Monte Carlo."
+echo "Open $OUT/bunny.png, and $OUT/skin1-fit.svg for r*R(r) of the model, the fit and Monte Carlo."
