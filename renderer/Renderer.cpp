@@ -137,22 +137,9 @@ void Renderer::record(VkCommandBuffer cmd) {
 void Renderer::render_frame() {
   const auto start = std::chrono::steady_clock::now();
   VK_CHECK(vkResetCommandBuffer(cmd_, 0));
-  VkCommandBufferBeginInfo begin{};
-  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(cmd_, &begin));
-  record(cmd_);
-  VK_CHECK(vkEndCommandBuffer(cmd_));
-  VkCommandBufferSubmitInfo cmd_info{};
-  cmd_info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
-  cmd_info.commandBuffer = cmd_;
-  VkSubmitInfo2 submit{};
-  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
-  submit.commandBufferInfoCount = 1;
-  submit.pCommandBufferInfos = &cmd_info;
   VkFence fence = fence_.get();
   VK_CHECK(vkResetFences(context_.device(), 1, &fence));
-  context_.submit({&submit, 1}, fence);
+  vk::record_and_submit(context_, cmd_, fence, [this](VkCommandBuffer cmd) { record(cmd); });
   vk::wait_for_fence(context_, fence, std::chrono::seconds(600));
   const auto end = std::chrono::steady_clock::now();
   stats_.passes = timer_.resolve();

@@ -52,13 +52,8 @@ void wait_for_fence(const Context& context, VkFence fence, std::chrono::nanoseco
   }
 }
 
-void submit_once(const Context& context, const std::function<void(VkCommandBuffer)>& record) {
-  // A pool per call keeps this free of shared state (it may be called from any thread);
-  // setup work is rare enough that the cost does not matter.
-  const CommandPoolHandle pool = create_command_pool(context, VK_COMMAND_POOL_CREATE_TRANSIENT_BIT);
-  const VkCommandBuffer cmd = allocate_command_buffer(context, pool.get());
-  const FenceHandle fence = create_fence(context);
-
+void record_and_submit(const Context& context, VkCommandBuffer cmd, VkFence fence,
+                       const std::function<void(VkCommandBuffer)>& record) {
   VkCommandBufferBeginInfo begin{};
   begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -73,7 +68,17 @@ void submit_once(const Context& context, const std::function<void(VkCommandBuffe
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cmd_info;
-  context.submit({&submit, 1}, fence.get());
+  context.submit({&submit, 1}, fence);
+}
+
+void submit_once(const Context& context, const std::function<void(VkCommandBuffer)>& record) {
+  // A pool per call keeps this free of shared state (it may be called from any thread);
+  // setup work is rare enough that the cost does not matter.
+  const CommandPoolHandle pool = create_command_pool(context, VK_COMMAND_POOL_CREATE_TRANSIENT_BIT);
+  const VkCommandBuffer cmd = allocate_command_buffer(context, pool.get());
+  const FenceHandle fence = create_fence(context);
+
+  record_and_submit(context, cmd, fence.get(), record);
   // If the wait throws, the pool and fence would be destroyed while the GPU may still
   // use them; wait for the device before unwinding.
   try {

@@ -33,4 +33,10 @@ void wait_for_fence(const Context& context, VkFence fence,
 // stalls the CPU until the GPU is done.
 void submit_once(const Context& context, const std::function<void(VkCommandBuffer)>& record);
 
+// Begins `cmd` for one-time submission, records it through `record`, ends it and submits
+// it to the context's queue signalling `fence` (which must be unsignalled). Does not wait.
+// submit_once and the renderer's frame both go through this.
+void record_and_submit(const Context& context, VkCommandBuffer cmd, VkFence fence,
+                       const std::function<void(VkCommandBuffer)>& record);
+
 }  // namespace sss::vk
