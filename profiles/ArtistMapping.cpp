@@ -20,11 +20,7 @@ double total_at(Model model, double alpha_p, double eta, double g, double thickn
       ->total_reflectance();
 }
 
-std::string str(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
+const auto str = sss::message_number;
 
 }  // namespace
 

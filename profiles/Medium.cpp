@@ -3,16 +3,20 @@
 #include <cmath>
 #include <sstream>
 
-namespace sss::profiles {
+namespace sss {
 
-namespace {
-
-std::string number(double v) {
+std::string message_number(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
 }
 
+}  // namespace sss
+
+namespace sss::profiles {
+
+namespace {
+const auto number = message_number;
 }  // namespace
 
 double Coefficients::sigma_tr_classical() const {

@@ -22,6 +22,9 @@ struct FieldError {
   std::string what() const { return field + ": " + message; }
 };
 
+// A number as error messages print it (shortest iostream form: 0.5, 1e-06, nan, inf).
+std::string message_number(double v);
+
 }  // namespace sss
 
 namespace sss::profiles {

@@ -19,11 +19,7 @@ std::optional<std::string> out_of_range(const char* array, long long index, std:
          std::to_string(size) + ")";
 }
 
-std::string number_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
+std::string number_text(double v) { return sss::message_number(v); }
 
 Status check_buffer_views(GltfContext& ctx) {
   for (std::size_t i = 0; i < ctx.model.bufferViews.size(); ++i) {

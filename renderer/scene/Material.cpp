@@ -10,11 +10,7 @@ namespace sss::scene {
 
 namespace {
 
-std::string str(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
+const auto str = sss::message_number;
 
 }  // namespace
 

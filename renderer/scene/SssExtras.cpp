@@ -20,11 +20,7 @@ constexpr std::array<std::string_view, 13> kKeys = {
     "enabled", "preset", "sigma_a", "sigma_s", "g", "eta", "color",
     "mfp", "thickness", "model", "gaussians", "scale", "albedo_mode"};
 
-std::string str(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
+const auto str = sss::message_number;
 
 std::string key_list() {
   std::string s;
