@@ -1,6 +1,5 @@
 #include "renderer/CameraSetup.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 
 #include <cmath>
@@ -10,20 +9,11 @@ namespace sss::renderer {
 CameraSetup make_camera_setup(const scene::Camera& camera, std::uint32_t width,
                               std::uint32_t height) {
   CameraSetup c;
-  const float aspect = float(width) / float(height);
   c.view = camera.view();
   c.position = camera.position();
   c.forward = camera.forward();
-  if (camera.projection == scene::Projection::Orthographic) {
-    c.orthographic = true;
-    const glm::vec2 half = camera.ortho_half_extent(aspect);
-    c.proj = glm::orthoRH_ZO(-half.x, half.x, -half.y, half.y, camera.znear, camera.zfar);
-  } else {
-    const float a = camera.aspect > 0.0f ? camera.aspect : aspect;
-    const float zfar = camera.zfar > 0.0f ? camera.zfar : camera.znear * 1.0e5f;
-    c.proj = glm::perspectiveRH_ZO(camera.yfov, a, camera.znear, zfar);
-  }
-  c.proj[1][1] = -c.proj[1][1];  // Vulkan: image y points down
+  c.orthographic = camera.projection == scene::Projection::Orthographic;
+  c.proj = scene::clip_from_view(camera, width, height);
   return c;
 }
 

@@ -9,6 +9,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libvulkan-dev glslang-tools mesa-vulkan-drivers vulkan-validationlayers
   libglm-dev libtinygltf-dev libstb-dev libtinyexr-dev
+  libembree-dev libtbb-dev
   assimp-testmodels
 )
 

@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Composite: post-scatter albedo (or the second sqrt(albedo) of pre/post) x scattered
 // irradiance / pi + specular (linear HDR), and
-// the display image (exposure, filmic tonemap, sRGB encoding).
+// the display image (exposure, filmic tonemap, sRGB encoding; alpha 0 where there is no
+// geometry, so PNG comparisons can mask the background).
 #include "shared/frame.h"
 #include "shared/common.glsl"
 
@@ -54,5 +55,5 @@ void main() {
     alpha = 1.0;
   }
   imageStore(hdr_img, p, vec4(L, alpha));
-  imageStore(display_img, p, vec4(srgb_encode(filmic(L * frame.scale.w)), 1.0));
+  imageStore(display_img, p, vec4(srgb_encode(filmic(L * frame.scale.w)), alpha));
 }

@@ -2,14 +2,13 @@
 // or input (message on stderr), 1 a runtime failure such as an unwritable output file.
 #pragma once
 
+#include "ExitCodes.h"
 #include "MediumArgs.h"
 
 #include <cstdint>
 #include <string>
 
 namespace sss::app {
-
-inline constexpr int kExitOk = 0, kExitRuntime = 1, kExitUsage = 2;
 
 struct CommonArgs {
   MediumArgs medium;

@@ -1,8 +1,9 @@
 // The sss-viewer command line (DESIGN.md §4) as a plain struct, and what it changes in a
-// loaded scene: --model, --gaussians and the MEDIUM flags override every SSS material.
+// loaded scene: --model, --gaussians, --albedo and the MEDIUM flags override every SSS
+// material (MaterialOverrides.h).
 #pragma once
 
-#include "MediumArgs.h"
+#include "MaterialOverrides.h"
 
 #include "renderer/RenderOptions.h"
 #include "renderer/scene/Scene.h"
@@ -11,8 +12,6 @@
 #include <string>
 
 namespace sss::app {
-
-inline constexpr int kExitOk = 0, kExitRuntime = 1, kExitUsage = 2;
 
 struct ViewerArgs {
   std::string scene = "builtin:bunny";
@@ -24,19 +23,11 @@ struct ViewerArgs {
   int frames = 1;
   std::string sss = "screen";
   std::string mode = "separable";
-  std::string model;
-  std::optional<int> gaussians;
-  std::string albedo;  // post-scatter | pre-post
+  MaterialOverrideArgs material;  // --model, --gaussians, --albedo, MEDIUM
   int taps = 17;
   float exposure = 1.0f;
   bool stats = false;
   std::string device;
-  MediumArgs medium;
 };
-
-// Applies --model / --gaussians / --albedo / MEDIUM to every SSS material of the scene. Returns the
-// number of materials changed, or the error (which names the option).
-std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
-                                                       const ViewerArgs& args);
 
 }  // namespace sss::app

@@ -61,16 +61,9 @@ int main(int argc, char** argv) {
   app.add_option("--frames", a.frames, "Frames to render (default 1)")->check(CLI::Range(1, 100000));
   app.add_option("--sss", a.sss, "off | screen | texture (default screen)");
   app.add_option("--mode", a.mode, "separable | gaussians (default separable)");
-  app.add_option("--model", a.model,
-                 "Profile model for every SSS material: dipole | better-dipole | pbd | burley | "
-                 "multipole | mc");
-  app.add_option("--gaussians", a.gaussians, "Gaussians per fit, 1..8");
-  app.add_option("--albedo", a.albedo,
-                 "Where SSS materials apply their colour: post-scatter | pre-post (sqrt before "
-                 "and after scattering)");
+  add_material_override_options(app, a.material);
   app.add_option("--taps", a.taps, "Separable kernel taps (odd, 3..33; default 17)");
   app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1)");
-  add_medium_options(app, a.medium);
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
   try {
@@ -109,7 +102,7 @@ int main(int argc, char** argv) {
   scene::Scene scene = std::move(std::get<scene::Scene>(loaded));
   scene::add_camera_if_missing(scene);
   scene::add_light_if_missing(scene);
-  auto overridden = apply_material_overrides(scene, a);
+  auto overridden = apply_material_overrides(scene, a.material);
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
   for (const std::string& w : scene.warnings) std::cerr << "sss-viewer: warning: " << w << '\n';
 

@@ -1,6 +1,7 @@
 #include "renderer/scene/Camera.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 
 #include <algorithm>
@@ -11,6 +12,21 @@ namespace sss::scene {
 glm::vec3 Camera::forward() const { return glm::normalize(-glm::vec3(world[2])); }
 glm::vec3 Camera::up() const { return glm::normalize(glm::vec3(world[1])); }
 glm::mat4 Camera::view() const { return glm::inverse(world); }
+
+glm::mat4 clip_from_view(const Camera& camera, std::uint32_t width, std::uint32_t height) {
+  const float aspect = float(width) / float(height);
+  glm::mat4 proj;
+  if (camera.projection == Projection::Orthographic) {
+    const glm::vec2 half = camera.ortho_half_extent(aspect);
+    proj = glm::orthoRH_ZO(-half.x, half.x, -half.y, half.y, camera.znear, camera.zfar);
+  } else {
+    const float a = camera.aspect > 0.0f ? camera.aspect : aspect;
+    const float zfar = camera.zfar > 0.0f ? camera.zfar : camera.znear * 1.0e5f;
+    proj = glm::perspectiveRH_ZO(camera.yfov, a, camera.znear, zfar);
+  }
+  proj[1][1] = -proj[1][1];  // Vulkan: image y points down
+  return proj;
+}
 
 glm::mat4 look_at_world(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up) {
   const glm::vec3 back = glm::normalize(eye - target);  // local +Z

@@ -13,6 +13,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <cstdint>
 #include <string>
 
 namespace sss::scene {
@@ -37,6 +38,11 @@ struct Camera {
   // Orthographic half extents for an image of this aspect (width / height).
   glm::vec2 ortho_half_extent(float image_aspect) const { return {xmag, xmag / image_aspect}; }
 };
+
+// The projection both renderers use for an image of width x height pixels: Vulkan clip
+// space (image y down, depth in [0, 1]; an infinite far plane becomes znear * 1e5).
+// Pixel (x, y) of the image covers NDC [2x/w - 1, 2(x+1)/w - 1] x [2y/h - 1, ...].
+glm::mat4 clip_from_view(const Camera& camera, std::uint32_t width, std::uint32_t height);
 
 // A rigid transform at `eye` looking at `target`; `up` must not be parallel to the view.
 glm::mat4 look_at_world(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up);

@@ -1,4 +1,4 @@
-#include "ViewerArgs.h"
+#include "MaterialOverrides.h"
 
 #include "profiles/Presets.h"
 
@@ -11,8 +11,19 @@ bool any_medium(const MediumArgs& m) {
 }
 }  // namespace
 
+void add_material_override_options(CLI::App& app, MaterialOverrideArgs& args) {
+  app.add_option("--model", args.model,
+                 "Profile model for every SSS material: dipole | better-dipole | pbd | burley | "
+                 "multipole | mc");
+  app.add_option("--gaussians", args.gaussians, "Gaussians per fit, 1..8");
+  app.add_option("--albedo", args.albedo,
+                 "Where SSS materials apply their colour: post-scatter | pre-post (sqrt before "
+                 "and after scattering)");
+  add_medium_options(app, args.medium);
+}
+
 std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
-                                                       const ViewerArgs& args) {
+                                                       const MaterialOverrideArgs& args) {
   std::optional<profiles::Model> model;
   if (!args.model.empty()) {
     model = profiles::parse_model(args.model);

@@ -1,0 +1,53 @@
+// Irradiance sample points on the surfaces of one scattering group (Jensen & Buhler
+// 2002, §3.1): area-uniform, with blue-noise spacing, each standing for an equal share of
+// the surface area.
+//
+// Method: weighted sample elimination (Yuksel 2015, "Sample Elimination for Generating
+// Poisson Disk Sample Sets"): draw 5N area-uniform candidates, then remove the candidate
+// with the most crowded neighbourhood until N remain. N = ceil(area / spacing²), so the
+// spacing is the side of the square each point stands for. Distances are Euclidean in 3D.
+// Deterministic for a given seed.
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace sss::reference {
+
+// The triangles of one group (every instance of one SSS material) in world mm,
+// unindexed: corners 3t, 3t+1, 3t+2 of triangle t.
+struct TriangleSoup {
+  std::vector<glm::vec3> positions_mm;
+  std::vector<glm::vec3> normals;  // unit shading normals at the corners
+  std::size_t triangle_count() const { return positions_mm.size() / 3; }
+};
+
+struct SampledPoint {
+  glm::vec3 position_mm{0.0f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};  // interpolated shading normal, unit
+  std::uint32_t triangle = 0;          // index into the soup
+  glm::vec2 barycentric{0.0f};         // weights of corners 1 and 2 (corner 0: 1 - x - y)
+};
+
+struct SamplingOptions {
+  double spacing_mm = 0.5;  // > 0; each point stands for spacing² of surface
+  std::uint64_t seed = 1;
+  std::size_t max_points = 8'000'000;  // refuse to allocate beyond this
+};
+
+struct SampledSurface {
+  std::vector<SampledPoint> points;
+  double area_mm2 = 0.0;        // total area of the soup
+  double point_area_mm2 = 0.0;  // area_mm2 / points.size() (every point the same)
+};
+
+// Throws std::invalid_argument for a spacing that is not finite and > 0 ("spacing"), or
+// when N would exceed max_points (the message gives N, the area and the spacing, and
+// says to raise the spacing). An empty soup or zero area gives no points.
+SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& options);
+
+}  // namespace sss::reference
