@@ -1,0 +1,176 @@
+#include "renderer/image/HeatMap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace sss::image {
+
+namespace {
+
+// Viridis sampled at t = 0, 0.1, …, 1 (8-bit sRGB), as published with matplotlib's
+// colour map and the R package viridis (viridis(11)).
+constexpr std::array<std::array<int, 3>, 11> kViridis = {{
+    {68, 1, 84},    {72, 37, 118},  {65, 68, 135},  {53, 96, 141},   {42, 120, 142}, {33, 144, 140},
+    {34, 168, 132}, {67, 191, 113}, {122, 209, 81}, {187, 223, 39},  {253, 231, 37},
+}};
+
+struct Glyph {
+  char c;
+  const char* rows[kGlyphHeight];  // '#' = ink
+};
+
+// A 5×7 font drawn for this file (digits after the classic 5×7 LED/LCD matrix shapes).
+constexpr Glyph kFont[] = {
+    {'0', {".###.", "#...#", "#..##", "#.#.#", "##..#", "#...#", ".###."}},
+    {'1', {"..#..", ".##..", "..#..", "..#..", "..#..", "..#..", ".###."}},
+    {'2', {".###.", "#...#", "....#", "...#.", "..#..", ".#...", "#####"}},
+    {'3', {"#####", "...#.", "..#..", "...#.", "....#", "#...#", ".###."}},
+    {'4', {"...#.", "..##.", ".#.#.", "#..#.", "#####", "...#.", "...#."}},
+    {'5', {"#####", "#....", "####.", "....#", "....#", "#...#", ".###."}},
+    {'6', {"..##.", ".#...", "#....", "####.", "#...#", "#...#", ".###."}},
+    {'7', {"#####", "....#", "...#.", "..#..", ".#...", ".#...", ".#..."}},
+    {'8', {".###.", "#...#", "#...#", ".###.", "#...#", "#...#", ".###."}},
+    {'9', {".###.", "#...#", "#...#", ".####", "....#", "...#.", ".##.."}},
+    {'.', {".....", ".....", ".....", ".....", ".....", ".##..", ".##.."}},
+    {'e', {".....", ".....", ".###.", "#...#", "#####", "#....", ".###."}},
+    {'-', {".....", ".....", ".....", "#####", ".....", ".....", "....."}},
+    {'+', {".....", "..#..", "..#..", "#####", "..#..", "..#..", "....."}},
+    {'%', {"##...", "##..#", "...#.", "..#..", ".#...", "#..##", "...##"}},
+    {' ', {".....", ".....", ".....", ".....", ".....", ".....", "....."}},
+};
+
+const Glyph* find_glyph(char c) {
+  for (const Glyph& g : kFont)
+    if (g.c == c) return &g;
+  return nullptr;
+}
+
+void fill(Image& img, int x0, int y0, int w, int h, const Rgb& color) {
+  for (int y = std::max(0, y0); y < std::min(img.height, y0 + h); ++y)
+    for (int x = std::max(0, x0); x < std::min(img.width, x0 + w); ++x) {
+      float* p = img.pixel(x, y);
+      p[0] = color[0];
+      p[1] = color[1];
+      p[2] = color[2];
+      p[3] = 1.0f;
+    }
+}
+
+std::string strip_zeros(std::string s) {
+  if (s.find('.') == std::string::npos) return s;
+  while (!s.empty() && s.back() == '0') s.pop_back();
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+Rgb viridis(double t) {
+  if (!(t > 0.0)) t = 0.0;
+  t = std::min(t, 1.0);
+  const double f = t * (kViridis.size() - 1);
+  const std::size_t i = std::min(static_cast<std::size_t>(f), kViridis.size() - 2);
+  const double u = f - static_cast<double>(i);
+  Rgb out{};
+  for (int c = 0; c < 3; ++c)
+    out[c] = static_cast<float>(((1.0 - u) * kViridis[i][c] + u * kViridis[i + 1][c]) / 255.0);
+  return out;
+}
+
+bool has_glyph(char c) { return find_glyph(c) != nullptr; }
+
+int text_width(std::string_view text, int scale) {
+  if (text.empty()) return 0;
+  return (static_cast<int>(text.size()) * kGlyphAdvance - (kGlyphAdvance - kGlyphWidth)) * scale;
+}
+
+void draw_text(Image& img, int x, int y, std::string_view text, int scale, const Rgb& color) {
+  if (scale < 1) throw std::invalid_argument("draw_text: scale must be >= 1");
+  for (char c : text) {
+    const Glyph* g = find_glyph(c);
+    if (!g) throw std::invalid_argument(std::string("draw_text: no glyph for '") + c + "'");
+    for (int row = 0; row < kGlyphHeight; ++row)
+      for (int col = 0; col < kGlyphWidth; ++col)
+        if (g->rows[row][col] == '#') fill(img, x + col * scale, y + row * scale, scale, scale, color);
+    x += kGlyphAdvance * scale;
+  }
+}
+
+std::string format_tick(double value) {
+  if (value == 0.0 || !std::isfinite(value)) return "0";
+  const double av = std::fabs(value);
+  char buf[64];
+  if (av >= 1e-3 && av < 1e5) {
+    const int decimals = std::clamp(2 - static_cast<int>(std::floor(std::log10(av))), 0, 5);
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
+    return strip_zeros(buf);
+  }
+  std::snprintf(buf, sizeof buf, "%.2e", value);
+  const std::string s = buf;
+  const std::size_t e = s.find('e');
+  return strip_zeros(s.substr(0, e)) + "e" + std::to_string(std::atoi(s.c_str() + e + 1));
+}
+
+HeatMapLayout heatmap_layout(int width, int height, double max_value) {
+  if (width < 1 || height < 1)
+    throw std::invalid_argument("heat map: image size must be at least 1x1");
+  if (!std::isfinite(max_value) || !(max_value > 0.0))
+    throw std::invalid_argument("heat map: the scale maximum must be finite and > 0");
+  HeatMapLayout l;
+  l.image_width = width;
+  l.image_height = height;
+  l.max_value = max_value;
+  const int s = std::clamp(height / 180, 1, 4);
+  l.scale = s;
+  const int pad = 4 * s, text_h = kGlyphHeight * s;
+  const int margin = pad + text_h / 2 + 1;  // room for the top and bottom labels
+  int label_w = 0;
+  for (int i = 0; i < kHeatMapTicks; ++i) {
+    l.tick_values[i] = max_value * i / (kHeatMapTicks - 1);
+    l.labels[i] = format_tick(l.tick_values[i]);
+    label_w = std::max(label_w, text_width(l.labels[i], s));
+  }
+  l.bar_x = width + pad;
+  l.bar_width = 10 * s;
+  l.tick_x = l.bar_x + l.bar_width;
+  l.tick_length = 3 * s;
+  l.label_x = l.tick_x + l.tick_length + s;
+  l.width = l.label_x + label_w + pad;
+  l.height = std::max(height, 40 * s + 2 * margin);
+  l.bar_y = margin;
+  l.bar_height = l.height - 2 * margin;
+  for (int i = 0; i < kHeatMapTicks; ++i)
+    l.tick_y[i] = l.bar_y + static_cast<int>(std::lround((l.bar_height - 1) *
+                                                         (1.0 - double(i) / (kHeatMapTicks - 1))));
+  return l;
+}
+
+Image render_heatmap(const std::vector<float>& error, const std::vector<std::uint8_t>& mask,
+                     int width, int height, double max_value) {
+  const HeatMapLayout l = heatmap_layout(width, height, max_value);
+  const std::size_t n = static_cast<std::size_t>(width) * height;
+  if (error.size() != n || mask.size() != n)
+    throw std::invalid_argument("heat map: error or mask does not match the image size");
+  Image img(l.width, l.height);
+  fill(img, 0, 0, l.width, l.height, kHeatMapBackground);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * width + x;
+      fill(img, x, y, 1, 1, mask[i] ? viridis(error[i] / max_value) : kHeatMapMasked);
+    }
+  for (int y = 0; y < l.bar_height; ++y) {
+    const double t = l.bar_height > 1 ? double(l.bar_height - 1 - y) / (l.bar_height - 1) : 1.0;
+    fill(img, l.bar_x, l.bar_y + y, l.bar_width, 1, viridis(t));
+  }
+  const int text_h = kGlyphHeight * l.scale;
+  for (int i = 0; i < kHeatMapTicks; ++i) {
+    fill(img, l.tick_x, l.tick_y[i], l.tick_length, l.scale, kHeatMapText);
+    draw_text(img, l.label_x, l.tick_y[i] - text_h / 2, l.labels[i], l.scale, kHeatMapText);
+  }
+  return img;
+}
+
+}  // namespace sss::image
