@@ -20,11 +20,12 @@ struct Entry {
   std::function<std::variant<Scene, LoadError>()> make;
 };
 
-const std::array<Entry, 4>& registry() {
-  static const std::array<Entry, 4> entries = {{
+const std::array<Entry, 5>& registry() {
+  static const std::array<Entry, 5> entries = {{
       {"bunny", [] { return bunny_scene(); }},
       {"edge", []() -> std::variant<Scene, LoadError> { return edge_scene(); }},
       {"materials", []() -> std::variant<Scene, LoadError> { return materials_scene(); }},
+      {"slab", []() -> std::variant<Scene, LoadError> { return slab_scene(); }},
       {"sphere", []() -> std::variant<Scene, LoadError> { return sphere_scene(); }},
   }};
   return entries;

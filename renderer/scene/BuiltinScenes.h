@@ -5,6 +5,9 @@
 //                      normal-incidence directional light of irradiance 1 masked to x < 0
 //   builtin:sphere     a 30 mm skin1 sphere, a key light, a framing camera
 //   builtin:materials  one 15 mm sphere per usable preset (11), each its own profile
+//   builtin:slab       transmission (issue 6): a 30 x 30 x 2 mm skin2 slab (multipole,
+//                      thickness 2 mm) lit from behind at normal incidence (E = 3), no
+//                      fill, seen from the front slightly obliquely (SlabScene.cpp)
 //   builtin:bunny      the default: the Stanford bunny (assets/bunny.glb, 150 mm, skin1)
 //                      back-lit from the side so the ears glow, plus a fill light
 #pragma once
@@ -40,6 +43,7 @@ Scene edge_scene(const EdgeOptions& options = {});
 
 Scene sphere_scene();
 Scene materials_scene();
+Scene slab_scene();
 std::variant<Scene, LoadError> bunny_scene();
 
 }  // namespace sss::scene
