@@ -43,7 +43,7 @@ void expect_valid(const Scene& s) {
 TEST(BuiltinScenes, NamesAndUnknown) {
   const auto names = builtin_scene_names();
   EXPECT_EQ(names, (std::vector<std::string>{"builtin:bunny", "builtin:edge", "builtin:materials",
-                                             "builtin:sphere"}));
+                                             "builtin:slab", "builtin:sphere"}));
   auto r = builtin_scene("builtin:teapot");
   ASSERT_TRUE(std::holds_alternative<LoadError>(r));
   const std::string what = std::get<LoadError>(r).what();
