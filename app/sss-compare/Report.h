@@ -1,0 +1,53 @@
+// What sss-compare prints: the limits that decide pass or fail, and the report as a table
+// or as one JSON document.
+#pragma once
+
+#include "renderer/image/Metrics.h"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sss::app {
+
+struct InputInfo {
+  std::string path;
+  int width = 0, height = 0;
+  image::Encoding encoding = image::Encoding::Display;
+  bool tonemapped = false;  // a linear image compared with a display one
+};
+
+// One limit on one metric: value <= limit, or value >= limit for SSIM.
+struct Check {
+  std::string metric;  // the JSON name of the metric
+  std::string label;   // its name in the table
+  double value = 0.0, limit = 0.0;
+  bool at_least = false;  // ">=" (SSIM) instead of "<="
+  bool pass = false;
+};
+
+struct Limits {
+  double tolerance = 0.01;  // on the relative RMSE, always applied
+  std::optional<double> max_abs, max_fraction, min_ssim;
+};
+
+std::vector<Check> evaluate(const image::Metrics& m, const Limits& limits);
+bool all_pass(const std::vector<Check>& checks);
+
+struct Report {
+  InputInfo a, b;
+  image::Encoding space = image::Encoding::Display;  // where the metrics were taken
+  float exposure = 1.0f;
+  image::Metrics metrics;
+  Limits limits;
+  std::vector<Check> checks;
+  std::optional<std::string> heatmap;  // the file written, if any
+  double heatmap_max = 0.0;
+};
+
+nlohmann::ordered_json to_json(const Report& r);
+std::string to_table(const Report& r);
+
+}  // namespace sss::app

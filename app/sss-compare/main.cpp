@@ -1,0 +1,221 @@
+// sss-compare: error metrics between two renders, an optional heat map, and a verdict.
+//   sss-compare A B [--heatmap FILE.png] [--json] [--tolerance T] [--max-abs E]
+//               [--max-fraction F] [--min-ssim S] [--threshold T] [--exposure X]
+// B is the reference. The metrics are defined in renderer/image/Metrics.h. The command-line
+// contract is DESIGN.md §4. Exit codes: 0 the images agree within the limits, 3 they do
+// not, 2 bad usage or input, 1 a runtime failure (e.g. the heat map cannot be written).
+#include "Report.h"
+
+#include "renderer/image/AtomicFile.h"
+#include "renderer/image/HeatMap.h"
+#include "renderer/image/Image.h"
+#include "renderer/image/Metrics.h"
+#include "renderer/image/Tonemap.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <initializer_list>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <variant>
+
+using namespace sss;
+using namespace sss::app;
+
+namespace {
+
+// DESIGN.md §4 (0, 1, 2), plus 3: the images were compared and differ beyond the limits.
+constexpr int kExitOk = 0, kExitRuntime = 1, kExitUsage = 2, kExitDiffer = 3;
+
+int usage(const std::string& message) {
+  std::cerr << "sss-compare: error: " << message << "\nRun 'sss-compare --help' for usage.\n";
+  return kExitUsage;
+}
+
+int input_error(const std::string& message) {
+  std::cerr << "sss-compare: error: " << message << '\n';
+  return kExitUsage;
+}
+
+bool ends_with_png(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s.size() >= 4 && s.compare(s.size() - 4, 4, ".png") == 0;
+}
+
+// read_image chooses by magic bytes; so does this (an EXR holds linear values).
+image::Encoding encoding_of(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  unsigned char magic[4] = {};
+  f.read(reinterpret_cast<char*>(magic), 4);
+  static const unsigned char kExr[4] = {0x76, 0x2f, 0x31, 0x01};
+  return f && std::memcmp(magic, kExr, 4) == 0 ? image::Encoding::Linear : image::Encoding::Display;
+}
+
+std::string size_text(const image::Image& img) {
+  return std::to_string(img.width) + "x" + std::to_string(img.height);
+}
+
+std::size_t geometry_pixels(const image::Image& img) {
+  std::size_t n = 0;
+  for (std::size_t i = 3; i < img.rgba.size(); i += 4) n += img.rgba[i] > image::kGeometryAlpha;
+  return n;
+}
+
+struct Args {
+  std::string a, b, heatmap;
+  double heatmap_max = 0.0;
+  bool json = false;
+  double tolerance = 0.01, threshold = 0.05, max_abs = 0.0, max_fraction = 0.0, min_ssim = 0.0;
+  float exposure = 1.0f;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "sss-compare: error metrics between a test image A and a reference image B (PNG or EXR), "
+      "over the pixels where both have geometry (alpha > 0.5).\n"
+      "Metrics: relative RMSE sqrt(sum (a-b)^2 / sum b^2) over R, G, B; RMSE; PSNR (peak 1 "
+      "for PNG, the largest value of B for EXR); max abs error; the fraction of pixels whose "
+      "error max_c |a-b| exceeds --threshold x peak; SSIM of the luma (EXR tonemapped first).",
+      "sss-compare"};
+  app.footer(
+      "Exit status: 0 the images agree (relative RMSE <= --tolerance and every other limit "
+      "given holds), 3 they do not, 2 bad usage or input, 1 runtime failure.\n"
+      "A PNG compared with an EXR: the EXR is tonemapped (--exposure) and both are compared "
+      "as display values.");
+  Args a;
+  app.add_option("A", a.a, "The image under test (PNG or EXR)")->required();
+  app.add_option("B", a.b, "The reference image (PNG or EXR), same size as A")->required();
+  auto* heatmap = app.add_option("--heatmap", a.heatmap,
+                                 "Write a heat map of the per-pixel error max_c |a-b| (FILE.png)");
+  auto* heatmap_max =
+      app.add_option("--heatmap-max", a.heatmap_max, "Top of the heat map's scale (default: max error)")
+          ->needs(heatmap);
+  app.add_flag("--json", a.json, "Print one JSON document on stdout and nothing else");
+  app.add_option("--tolerance", a.tolerance, "Largest relative RMSE that passes (default 0.01)");
+  auto* max_abs = app.add_option("--max-abs", a.max_abs, "Also require max abs error <= E");
+  auto* max_fraction = app.add_option("--max-fraction", a.max_fraction,
+                                      "Also require the fraction over --threshold <= F");
+  auto* min_ssim = app.add_option("--min-ssim", a.min_ssim, "Also require SSIM >= S");
+  app.add_option("--threshold", a.threshold,
+                 "Per-pixel error threshold, a fraction of the peak (default 0.05)");
+  app.add_option("--exposure", a.exposure, "Exposure when tonemapping an EXR (default 1)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return usage(e.what());
+  }
+
+  auto non_negative = [](const char* name, double v) -> std::optional<int> {
+    if (std::isfinite(v) && v >= 0.0) return std::nullopt;
+    std::ostringstream s;
+    s << name << ": expected a finite number >= 0, got " << v;
+    return usage(s.str());
+  };
+  const std::initializer_list<std::pair<const char*, double>> non_negatives = {
+      {"--tolerance", a.tolerance},
+      {"--threshold", a.threshold},
+      {"--max-abs", a.max_abs},
+      {"--max-fraction", a.max_fraction}};
+  for (const auto& [name, v] : non_negatives)
+    if (auto code = non_negative(name, v)) return *code;
+  if (a.max_fraction > 1.0)
+    return usage("--max-fraction: expected a fraction in [0, 1], got " + std::to_string(a.max_fraction));
+  if (!(a.min_ssim >= -1.0 && a.min_ssim <= 1.0))
+    return usage("--min-ssim: expected a number in [-1, 1], got " + std::to_string(a.min_ssim));
+  if (!(std::isfinite(a.exposure) && a.exposure > 0.0f))
+    return usage("--exposure: expected a finite number > 0, got " + std::to_string(a.exposure));
+  if (heatmap_max->count() && !(std::isfinite(a.heatmap_max) && a.heatmap_max > 0.0))
+    return usage("--heatmap-max: expected a finite number > 0, got " + std::to_string(a.heatmap_max));
+  if (heatmap->count() && !ends_with_png(a.heatmap))
+    return usage("--heatmap: expected a .png file name, got '" + a.heatmap + "'");
+
+  // Inputs: read, same size, bring to one encoding.
+  image::Image img[2];
+  InputInfo info[2];
+  for (int i = 0; i < 2; ++i) {
+    const std::string& path = i == 0 ? a.a : a.b;
+    auto read = image::read_image(path);
+    if (auto* e = std::get_if<image::ImageError>(&read)) return input_error(e->what());
+    img[i] = std::move(std::get<image::Image>(read));
+    info[i] = {path, img[i].width, img[i].height, encoding_of(path), false};
+  }
+  if (img[0].width != img[1].width || img[0].height != img[1].height)
+    return input_error("images differ in size: " + a.a + " is " + size_text(img[0]) + ", " + a.b +
+                       " is " + size_text(img[1]));
+  const std::vector<std::uint8_t> mask = image::geometry_mask(img[0], img[1]);
+  const std::size_t compared = image::count_compared(mask);
+  if (compared == 0)
+    return input_error("no pixel to compare: " + a.a + " has geometry (alpha > 0.5) in " +
+                       std::to_string(geometry_pixels(img[0])) + " pixels, " + a.b + " in " +
+                       std::to_string(geometry_pixels(img[1])) + ", and no pixel has it in both");
+  for (int i = 0; i < 2; ++i)
+    if (auto bad = image::first_non_finite(img[i], mask))
+      return input_error(info[i].path + ": pixel (" + std::to_string(bad->first) + ", " +
+                         std::to_string(bad->second) + ") has a non-finite R, G or B value");
+  image::Encoding space = image::Encoding::Linear;
+  if (info[0].encoding != info[1].encoding) {
+    space = image::Encoding::Display;
+    for (int i = 0; i < 2; ++i)
+      if (info[i].encoding == image::Encoding::Linear) {
+        img[i] = image::tonemap(img[i], a.exposure);
+        info[i].tonemapped = true;
+      }
+  } else {
+    space = info[0].encoding;
+  }
+
+  Report report;
+  report.a = info[0];
+  report.b = info[1];
+  report.space = space;
+  report.exposure = a.exposure;
+  report.limits.tolerance = a.tolerance;
+  if (max_abs->count()) report.limits.max_abs = a.max_abs;
+  if (max_fraction->count()) report.limits.max_fraction = a.max_fraction;
+  if (min_ssim->count()) report.limits.min_ssim = a.min_ssim;
+
+  try {
+    image::CompareOptions options;
+    options.encoding = space;
+    options.threshold = a.threshold;
+    options.exposure = a.exposure;
+    report.metrics = image::compare(img[0], img[1], options);
+    report.checks = evaluate(report.metrics, report.limits);
+    if (heatmap->count()) {
+      double top = a.heatmap_max;
+      if (!heatmap_max->count()) top = report.metrics.max_abs_error > 0.0 ? report.metrics.max_abs_error : 1.0;
+      const image::Image map = image::render_heatmap(image::pixel_errors(img[0], img[1]), mask,
+                                                     img[0].width, img[0].height, top);
+      image::write_png(a.heatmap, map);
+      report.heatmap = a.heatmap;
+      report.heatmap_max = top;
+    }
+  } catch (const std::invalid_argument& e) {
+    return input_error(e.what());
+  } catch (const std::exception& e) {
+    std::cerr << "sss-compare: error: " << e.what() << '\n';
+    return kExitRuntime;
+  }
+
+  if (a.json)
+    std::cout << to_json(report).dump(2) << '\n';
+  else
+    std::cout << to_table(report);
+  std::cout.flush();
+  if (!std::cout) {
+    std::cerr << "sss-compare: error: cannot write to stdout\n";
+    return kExitRuntime;
+  }
+  return all_pass(report.checks) ? kExitOk : kExitDiffer;
+}

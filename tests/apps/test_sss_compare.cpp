@@ -1,0 +1,511 @@
+// Every documented sss-compare command and every documented error (DESIGN.md §4, README
+// "sss-compare"): exit 0 when the images agree, 3 when they do not, 2 for bad usage or
+// input with the file or option named on stderr, 1 for a runtime failure (the heat map
+// cannot be written, and then no file is left); --json prints exactly one JSON document.
+//
+// The inputs are written here by a minimal PNG encoder (stored deflate blocks) and a
+// minimal uncompressed OpenEXR encoder, independent of the code under test.
+#ifdef SSS_COMPARE_EXE
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Pixels {
+  int w = 0, h = 0;
+  std::vector<float> rgba;  // row-major, 4 per pixel
+  float* at(int x, int y) { return &rgba[(static_cast<std::size_t>(y) * w + x) * 4]; }
+};
+
+Pixels make(int w, int h, const std::function<std::array<float, 4>(int, int)>& f) {
+  Pixels p{w, h, std::vector<float>(static_cast<std::size_t>(w) * h * 4)};
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const auto v = f(x, y);
+      std::copy(v.begin(), v.end(), p.at(x, y));
+    }
+  return p;
+}
+
+// A textured image in [0.2, 0.7] with alpha 1.
+Pixels texture(int w, int h) {
+  return make(w, h, [](int x, int y) -> std::array<float, 4> {
+    const float v = 0.45f + 0.25f * std::sin(0.7f * x) * std::cos(0.45f * y);
+    return {v, 0.9f * v, 0.8f * v + 0.05f, 1.0f};
+  });
+}
+
+Pixels scaled(Pixels p, float k) {
+  for (std::size_t i = 0; i < p.rgba.size(); ++i)
+    if (i % 4 != 3) p.rgba[i] *= k;
+  return p;
+}
+
+void put32be(std::string& s, std::uint32_t v) {
+  for (int i = 3; i >= 0; --i) s += static_cast<char>((v >> (8 * i)) & 0xff);
+}
+
+std::uint32_t crc32(const std::string& bytes) {
+  std::uint32_t crc = 0xffffffffu;
+  for (unsigned char b : bytes) {
+    crc ^= b;
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+void chunk(std::string& png, const char* type, const std::string& data) {
+  put32be(png, static_cast<std::uint32_t>(data.size()));
+  const std::string body = std::string(type, 4) + data;
+  png += body;
+  put32be(png, crc32(body));
+}
+
+// 8-bit PNG, RGBA or (with_alpha false) RGB; values clamped to [0, 1] and rounded.
+void write_png(const fs::path& path, const Pixels& p, bool with_alpha = true) {
+  const int channels = with_alpha ? 4 : 3;
+  std::string raw;
+  for (int y = 0; y < p.h; ++y) {
+    raw += '\0';  // filter: none
+    for (int x = 0; x < p.w; ++x)
+      for (int c = 0; c < channels; ++c) {
+        const float v = std::clamp(p.rgba[(static_cast<std::size_t>(y) * p.w + x) * 4 + c], 0.0f, 1.0f);
+        raw += static_cast<char>(static_cast<unsigned char>(std::lround(v * 255.0f)));
+      }
+  }
+  std::string z = "\x78\x01";  // zlib header, then stored deflate blocks
+  for (std::size_t off = 0; off < raw.size() || off == 0; off += 65535) {
+    const std::size_t n = std::min<std::size_t>(65535, raw.size() - off);
+    z += static_cast<char>(off + n >= raw.size() ? 1 : 0);
+    for (std::uint32_t v : {static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(~n & 0xffff)}) {
+      z += static_cast<char>(v & 0xff);
+      z += static_cast<char>((v >> 8) & 0xff);
+    }
+    z += raw.substr(off, n);
+    if (n == 0) break;
+  }
+  std::uint32_t a = 1, b = 0;
+  for (unsigned char c : raw) {
+    a = (a + c) % 65521;
+    b = (b + a) % 65521;
+  }
+  put32be(z, (b << 16) | a);
+  std::string png = "\x89PNG\r\n\x1a\n";
+  std::string ihdr;
+  put32be(ihdr, static_cast<std::uint32_t>(p.w));
+  put32be(ihdr, static_cast<std::uint32_t>(p.h));
+  ihdr += std::string{'\x08', with_alpha ? '\x06' : '\x02', '\0', '\0', '\0'};
+  chunk(png, "IHDR", ihdr);
+  chunk(png, "IDAT", z);
+  chunk(png, "IEND", "");
+  std::ofstream(path, std::ios::binary) << png;
+}
+
+template <class T>
+void put_le(std::string& s, T v) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));  // the test machines are little-endian, as EXR is
+  s.append(b, sizeof(T));
+}
+
+void attribute(std::string& s, const char* name, const char* type, const std::string& value) {
+  s += name;
+  s += '\0';
+  s += type;
+  s += '\0';
+  put_le<std::int32_t>(s, static_cast<std::int32_t>(value.size()));
+  s += value;
+}
+
+// Uncompressed scanline OpenEXR with 32-bit float channels A (if with_alpha), B, G, R.
+void write_exr(const fs::path& path, const Pixels& p, bool with_alpha = true) {
+  const std::vector<std::pair<char, int>> channels =
+      with_alpha ? std::vector<std::pair<char, int>>{{'A', 3}, {'B', 2}, {'G', 1}, {'R', 0}}
+                 : std::vector<std::pair<char, int>>{{'B', 2}, {'G', 1}, {'R', 0}};
+  std::string chlist;
+  for (const auto& ch : channels) {
+    chlist += ch.first;
+    chlist += '\0';
+    put_le<std::int32_t>(chlist, 2);  // FLOAT
+    chlist += std::string(4, '\0');   // pLinear, reserved
+    put_le<std::int32_t>(chlist, 1);
+    put_le<std::int32_t>(chlist, 1);
+  }
+  chlist += '\0';
+  std::string box;
+  for (std::int32_t v : {0, 0, p.w - 1, p.h - 1}) put_le(box, v);
+  std::string one, center;
+  put_le(one, 1.0f);
+  put_le(center, 0.0f);
+  put_le(center, 0.0f);
+  std::string exr = std::string("\x76\x2f\x31\x01", 4) + std::string("\x02\0\0\0", 4);
+  attribute(exr, "channels", "chlist", chlist);
+  attribute(exr, "compression", "compression", std::string(1, '\0'));
+  attribute(exr, "dataWindow", "box2i", box);
+  attribute(exr, "displayWindow", "box2i", box);
+  attribute(exr, "lineOrder", "lineOrder", std::string(1, '\0'));
+  attribute(exr, "pixelAspectRatio", "float", one);
+  attribute(exr, "screenWindowCenter", "v2f", center);
+  attribute(exr, "screenWindowWidth", "float", one);
+  exr += '\0';
+  const std::size_t line = static_cast<std::size_t>(p.w) * channels.size() * 4;
+  const std::size_t table_end = exr.size() + 8 * static_cast<std::size_t>(p.h);
+  for (int y = 0; y < p.h; ++y) put_le<std::uint64_t>(exr, table_end + y * (8 + line));
+  for (int y = 0; y < p.h; ++y) {
+    put_le<std::int32_t>(exr, y);
+    put_le<std::int32_t>(exr, static_cast<std::int32_t>(line));
+    for (const auto& ch : channels)
+      for (int x = 0; x < p.w; ++x)
+        put_le(exr, p.rgba[(static_cast<std::size_t>(y) * p.w + x) * 4 + ch.second]);
+  }
+  std::ofstream(path, std::ios::binary) << exr;
+}
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// A fresh folder per test, removed when the test ends.
+class SssCompare : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("sss-compare-test-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  CliRun run(const std::string& args) const {
+    const fs::path err = dir_ / "stderr.txt";
+    const std::string cmd = std::string(SSS_COMPARE_EXE) + " " + args + " 2>" + err.string();
+    CliRun r;
+    FILE* p = ::popen(cmd.c_str(), "r");
+    if (!p) return r;
+    std::array<char, 4096> buf;
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    const int status = ::pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.err = slurp(err);
+    fs::remove(err);
+    return r;
+  }
+
+  // Only temporaries and what the test wrote itself may be in the folder.
+  bool no_temporaries() const {
+    for (const auto& e : fs::directory_iterator(dir_))
+      if (e.path().filename().string().find(".tmp") != std::string::npos) return false;
+    return true;
+  }
+
+  fs::path dir_;
+};
+
+bool contains(const std::string& s, const std::string& what) { return s.find(what) != std::string::npos; }
+
+// Width and height from a PNG's IHDR.
+std::pair<int, int> png_size(const std::string& bytes) {
+  auto be = [&](std::size_t off) {
+    return (static_cast<unsigned char>(bytes[off]) << 24) | (static_cast<unsigned char>(bytes[off + 1]) << 16) |
+           (static_cast<unsigned char>(bytes[off + 2]) << 8) | static_cast<unsigned char>(bytes[off + 3]);
+  };
+  if (bytes.size() < 24 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0) return {0, 0};
+  return {be(16), be(20)};
+}
+
+}  // namespace
+
+TEST_F(SssCompare, HelpDocumentsOptionsAndExitCodes) {
+  const CliRun r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* s : {"--heatmap", "--heatmap-max", "--json", "--tolerance", "--max-abs",
+                        "--max-fraction", "--min-ssim", "--threshold", "--exposure", "3 they do not"})
+    EXPECT_TRUE(contains(r.out, s)) << s;
+}
+
+TEST_F(SssCompare, IdenticalPngsPass) {
+  write_png(path("a.png"), texture(24, 16));
+  const CliRun r = run(path("a.png") + " " + path("a.png"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  for (const char* s : {"relative RMSE", "RMSE", "PSNR", "max abs error", "over threshold", "SSIM",
+                        "compared 384 of 384 pixels", "result: PASS", "inf"})
+    EXPECT_TRUE(contains(r.out, s)) << s << "\n" << r.out;
+}
+
+TEST_F(SssCompare, JsonIsOneDocumentWithTheContract) {
+  write_png(path("a.png"), texture(24, 16));
+  const CliRun r = run(path("a.png") + " " + path("a.png") + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);  // throws unless exactly one document
+  EXPECT_EQ(doc["pass"], true);
+  EXPECT_EQ(doc["space"], "display");
+  EXPECT_EQ(doc["a"]["width"], 24);
+  EXPECT_EQ(doc["a"]["encoding"], "display");
+  EXPECT_EQ(doc["pixels"]["compared"], 384);
+  EXPECT_EQ(doc["pixels"]["total"], 384);
+  EXPECT_EQ(doc["pixels"]["excluded"], 0);
+  EXPECT_DOUBLE_EQ(doc["threshold"].get<double>(), 0.05);
+  EXPECT_DOUBLE_EQ(doc["tolerance"].get<double>(), 0.01);
+  const auto& m = doc["metrics"];
+  EXPECT_EQ(m["rmse"].get<double>(), 0.0);
+  EXPECT_EQ(m["relative_rmse"].get<double>(), 0.0);
+  EXPECT_TRUE(m["psnr_db"].is_null());  // +∞
+  EXPECT_EQ(m["max_abs_error"].get<double>(), 0.0);
+  EXPECT_EQ(m["fraction_over_threshold"].get<double>(), 0.0);
+  EXPECT_EQ(m["ssim"].get<double>(), 1.0);
+  EXPECT_EQ(m["peak"].get<double>(), 1.0);
+  ASSERT_EQ(doc["limits"].size(), 1u);
+  EXPECT_EQ(doc["limits"][0]["metric"], "relative_rmse");
+  EXPECT_TRUE(doc["heatmap"].is_null());
+}
+
+TEST_F(SssCompare, DifferentImagesExitThreeAndTheToleranceDecides) {
+  write_png(path("b.png"), texture(24, 16));
+  write_png(path("a.png"), scaled(texture(24, 16), 1.1f));
+  const std::string ab = path("a.png") + " " + path("b.png");
+  const CliRun r = run(ab + " --json");
+  EXPECT_EQ(r.code, 3) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["pass"], false);
+  EXPECT_EQ(doc["limits"][0]["pass"], false);
+  const double rel = doc["metrics"]["relative_rmse"].get<double>();
+  EXPECT_NEAR(rel, 0.1, 0.01);  // A = 1.1 B, within 8-bit rounding
+  const CliRun text = run(ab);
+  EXPECT_EQ(text.code, 3);
+  EXPECT_TRUE(contains(text.out, "result: FAIL (relative RMSE")) << text.out;
+  EXPECT_EQ(run(ab + " --tolerance 0.15").code, 0);
+  EXPECT_EQ(run(ab + " --tolerance 0.05").code, 3);
+}
+
+TEST_F(SssCompare, ExtraLimitsEachFailOnTheirOwn) {
+  write_png(path("b.png"), texture(24, 16));
+  Pixels a = texture(24, 16);
+  for (int x = 0; x < 4; ++x) a.at(x, 3)[0] += 0.2f;  // 4 pixels with error 0.2 (~1%)
+  write_png(path("a.png"), a);
+  const std::string ab = path("a.png") + " " + path("b.png") + " --tolerance 0.5 --json ";
+  const auto base = nlohmann::json::parse(run(ab).out);
+  EXPECT_EQ(base["pass"], true);
+  EXPECT_NEAR(base["metrics"]["max_abs_error"].get<double>(), 0.2, 1.0 / 255);
+  EXPECT_EQ(base["metrics"]["pixels_over_threshold"], 4);
+  EXPECT_LT(base["metrics"]["max_abs_error_at"][0].get<int>(), 4);
+  EXPECT_EQ(base["metrics"]["max_abs_error_at"][1], 3);
+  struct Case {
+    std::string flags, metric;
+    int code;
+  };
+  for (const Case& c : {Case{"--max-abs 0.1", "max_abs_error", 3}, Case{"--max-abs 0.3", "max_abs_error", 0},
+                        Case{"--max-fraction 0.005", "fraction_over_threshold", 3},
+                        Case{"--max-fraction 0.05", "fraction_over_threshold", 0},
+                        Case{"--min-ssim 0.9999", "ssim", 3}, Case{"--min-ssim 0.5", "ssim", 0},
+                        Case{"--threshold 0.5 --max-fraction 0", "fraction_over_threshold", 0}}) {
+    const CliRun r = run(ab + c.flags);
+    EXPECT_EQ(r.code, c.code) << c.flags << r.err;
+    const auto doc = nlohmann::json::parse(r.out);
+    ASSERT_EQ(doc["limits"].size(), 2u) << c.flags;
+    EXPECT_EQ(doc["limits"][1]["metric"], c.metric);
+    EXPECT_EQ(doc["limits"][1]["pass"], c.code == 0) << c.flags;
+  }
+}
+
+TEST_F(SssCompare, ExrPairIsComparedLinearlyAgainstTheReferencePeak) {
+  Pixels b = texture(20, 12);
+  b.at(2, 2)[1] = 8.0f;  // HDR: the reference's peak
+  write_exr(path("b.exr"), b);
+  write_exr(path("a.exr"), scaled(b, 1.25f));
+  const CliRun r = run(path("a.exr") + " " + path("b.exr") + " --json --tolerance 0.3");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["space"], "linear");
+  EXPECT_EQ(doc["b"]["encoding"], "linear");
+  EXPECT_DOUBLE_EQ(doc["metrics"]["peak"].get<double>(), 8.0);
+  EXPECT_NEAR(doc["metrics"]["relative_rmse"].get<double>(), 0.25, 1e-6);  // float data: exact
+  EXPECT_NEAR(doc["metrics"]["max_abs_error"].get<double>(), 2.0, 1e-6);
+  EXPECT_LT(doc["metrics"]["ssim"].get<double>(), 1.0);
+}
+
+TEST_F(SssCompare, PngAgainstExrTonemapsTheExr) {
+  const Pixels hdr = texture(16, 16);
+  write_exr(path("ref.exr"), hdr);
+  write_png(path("a.png"), hdr);
+  const CliRun r = run(path("a.png") + " " + path("ref.exr") + " --json --tolerance 1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["space"], "display");
+  EXPECT_EQ(doc["a"]["tonemapped"], false);
+  EXPECT_EQ(doc["b"]["tonemapped"], true);
+  EXPECT_EQ(doc["b"]["encoding"], "linear");
+  EXPECT_GT(doc["metrics"]["rmse"].get<double>(), 0.0);  // the filmic curve changed B
+  const CliRun text = run(path("a.png") + " " + path("ref.exr") + " --tolerance 1 --exposure 2");
+  EXPECT_EQ(text.code, 0) << text.err;
+  EXPECT_TRUE(contains(text.out, "tonemapped at exposure 2")) << text.out;
+}
+
+TEST_F(SssCompare, BackgroundIsExcludedAndCounted) {
+  const Pixels ref = texture(20, 10);
+  Pixels a = ref, b = ref;
+  for (int y = 0; y < 10; ++y)
+    for (int x = 0; x < 5; ++x) {
+      a.at(x, y)[3] = 0.0f;  // A: no geometry in columns 0..4, and garbage there
+      a.at(x, y)[0] = 1.0f - a.at(x, y)[0];
+    }
+  for (int x = 0; x < 20; ++x) b.at(x, 9)[3] = 0.0f;  // B: none in the last row
+  for (auto [ext, writer] : {std::pair{".png", &write_png}, {".exr", &write_exr}}) {
+    writer(path(std::string("a") + ext), a, true);
+    writer(path(std::string("b") + ext), b, true);
+    const CliRun r = run(path(std::string("a") + ext) + " " + path(std::string("b") + ext) + " --json");
+    ASSERT_EQ(r.code, 0) << ext << r.err;
+    const auto doc = nlohmann::json::parse(r.out);
+    EXPECT_EQ(doc["pixels"]["compared"], 15 * 9) << ext;
+    EXPECT_EQ(doc["pixels"]["excluded"], 200 - 15 * 9) << ext;
+    EXPECT_EQ(doc["metrics"]["rmse"].get<double>(), 0.0) << ext;
+    EXPECT_EQ(doc["metrics"]["ssim"].get<double>(), 1.0) << ext;
+  }
+}
+
+TEST_F(SssCompare, ImagesWithoutAlphaAreAllGeometry) {
+  write_png(path("a.png"), texture(8, 8), false);
+  write_exr(path("b.exr"), texture(8, 8), false);
+  for (const std::string& f : {path("a.png"), path("b.exr")}) {
+    const CliRun r = run(f + " " + f + " --json");
+    ASSERT_EQ(r.code, 0) << f << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["pixels"]["compared"], 64) << f;
+  }
+}
+
+TEST_F(SssCompare, HeatMapIsWrittenWithItsColourBar) {
+  write_png(path("b.png"), texture(40, 30));
+  write_png(path("a.png"), scaled(texture(40, 30), 1.2f));
+  const std::string heat = path("heat.png");
+  const CliRun r = run(path("a.png") + " " + path("b.png") + " --heatmap " + heat + " --json");
+  EXPECT_EQ(r.code, 3) << r.err;  // the heat map is written whether or not they agree
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["heatmap"]["path"], heat);
+  EXPECT_DOUBLE_EQ(doc["heatmap"]["max"].get<double>(), doc["metrics"]["max_abs_error"].get<double>());
+  const auto [w, h] = png_size(slurp(heat));
+  EXPECT_GT(w, 40 + 20);  // the image, then the bar and its labels to its right
+  EXPECT_GE(h, 30);
+  EXPECT_TRUE(no_temporaries());
+  const CliRun fixed = run(path("a.png") + " " + path("b.png") + " --heatmap " + heat + " --heatmap-max 0.5");
+  EXPECT_EQ(fixed.code, 3);
+  EXPECT_TRUE(contains(fixed.out, "heat map: " + heat + " (error 0 to 0.5)")) << fixed.out;
+}
+
+TEST_F(SssCompare, HeatMapThatCannotBeWrittenIsARuntimeFailure) {
+  write_png(path("a.png"), texture(8, 8));
+  const std::string heat = path("no-such-folder/heat.png");
+  const CliRun r = run(path("a.png") + " " + path("a.png") + " --heatmap " + heat + " --json");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_TRUE(contains(r.err, heat)) << r.err;
+  EXPECT_FALSE(fs::exists(heat));
+  EXPECT_TRUE(no_temporaries());
+}
+
+TEST_F(SssCompare, SizeMismatchNamesBothFilesAndSizes) {
+  write_png(path("a.png"), texture(8, 8));
+  write_exr(path("b.exr"), texture(9, 7));
+  const CliRun r = run(path("a.png") + " " + path("b.exr") + " --heatmap " + path("heat.png"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(r.out.empty());
+  for (const std::string& s : {path("a.png") + " is 8x8", path("b.exr") + " is 9x7"})
+    EXPECT_TRUE(contains(r.err, s)) << r.err;
+  EXPECT_FALSE(fs::exists(path("heat.png")));  // nothing written on bad input
+}
+
+TEST_F(SssCompare, MissingAndCorruptFilesAreNamed) {
+  write_png(path("a.png"), texture(8, 8));
+  std::ofstream(path("corrupt.png"), std::ios::binary) << "\x89PNG\r\n\x1a\n garbage";
+  std::ofstream(path("corrupt.exr"), std::ios::binary) << std::string("\x76\x2f\x31\x01", 4) << "junkjunkjunk";
+  std::ofstream(path("text.png")) << "not an image at all";
+  for (const std::string& bad : {path("missing.png"), path("corrupt.png"), path("corrupt.exr"), path("text.png")}) {
+    for (const std::string& args : {path("a.png") + " " + bad, bad + " " + path("a.png")}) {
+      const CliRun r = run(args + " --json");
+      EXPECT_EQ(r.code, 2) << args;
+      EXPECT_TRUE(r.out.empty()) << r.out;
+      EXPECT_TRUE(contains(r.err, bad)) << r.err;
+    }
+  }
+}
+
+TEST_F(SssCompare, NoCommonGeometryIsBadInput) {
+  Pixels a = texture(8, 8), b = texture(8, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) (x < 4 ? a : b).at(x, y)[3] = 0.0f;
+  write_png(path("a.png"), a);
+  write_png(path("b.png"), b);
+  const CliRun r = run(path("a.png") + " " + path("b.png"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.err, "no pixel to compare")) << r.err;
+  EXPECT_TRUE(contains(r.err, path("a.png") + " has geometry (alpha > 0.5) in 32 pixels")) << r.err;
+}
+
+TEST_F(SssCompare, NonFiniteValuesAreNamed) {
+  Pixels a = texture(8, 8);
+  a.at(3, 5)[1] = std::numeric_limits<float>::quiet_NaN();
+  write_exr(path("nan.exr"), a);
+  write_exr(path("b.exr"), texture(8, 8));
+  const CliRun r = run(path("nan.exr") + " " + path("b.exr"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.err, path("nan.exr") + ": pixel (3, 5)")) << r.err;
+  // In the background it does not matter.
+  a.at(3, 5)[3] = 0.0f;
+  write_exr(path("nan.exr"), a);
+  EXPECT_EQ(run(path("nan.exr") + " " + path("b.exr")).code, 0);
+}
+
+TEST_F(SssCompare, BadUsageExitsTwoAndNamesTheOption) {
+  write_png(path("a.png"), texture(8, 8));
+  const std::string aa = path("a.png") + " " + path("a.png") + " ";
+  struct Case {
+    std::string args, named;
+  };
+  for (const Case& c : {Case{"", "A"}, Case{path("a.png"), "B"}, Case{aa + "--bogus", "--bogus"},
+                        Case{aa + "--tolerance -1", "--tolerance"}, Case{aa + "--tolerance abc", "--tolerance"},
+                        Case{aa + "--threshold nan", "--threshold"}, Case{aa + "--max-abs -0.1", "--max-abs"},
+                        Case{aa + "--max-fraction 2", "--max-fraction"}, Case{aa + "--min-ssim 3", "--min-ssim"},
+                        Case{aa + "--exposure 0", "--exposure"},
+                        Case{aa + "--heatmap " + path("h.png") + " --heatmap-max 0", "--heatmap-max"},
+                        Case{aa + "--heatmap-max 1", "--heatmap"},
+                        Case{aa + "--heatmap " + path("h.jpg"), "--heatmap"}}) {
+    const CliRun r = run(c.args + " --json");
+    EXPECT_EQ(r.code, 2) << c.args;
+    EXPECT_TRUE(r.out.empty()) << c.args << r.out;
+    EXPECT_TRUE(contains(r.err, c.named)) << c.args << "\n" << r.err;
+  }
+  EXPECT_FALSE(fs::exists(path("h.png")));
+  EXPECT_FALSE(fs::exists(path("h.jpg")));
+}
+
+#endif  // SSS_COMPARE_EXE
