@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds in Release and runs the benchmarks. Arguments go to Google Benchmark, e.g.
 #   scripts/bench.sh --benchmark_filter=Fit
+# (each program runs the filter over its own benchmarks: bench_profiles, bench_reference)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SSS_BUILD_DIR=build-release SSS_BUILD_TYPE=Release scripts/build.sh >/dev/null
 build-release/bench/bench_profiles "$@"
+if [ -x build-release/bench/bench_reference ]; then build-release/bench/bench_reference "$@"; fi

@@ -4,6 +4,7 @@
 // B is the reference. The metrics are defined in renderer/image/Metrics.h. The command-line
 // contract is DESIGN.md §4. Exit codes: 0 the images agree within the limits, 3 they do
 // not, 2 bad usage or input, 1 a runtime failure (e.g. the heat map cannot be written).
+#include "ExitCodes.h"
 #include "Report.h"
 
 #include "renderer/image/AtomicFile.h"
@@ -29,9 +30,6 @@ using namespace sss;
 using namespace sss::app;
 
 namespace {
-
-// DESIGN.md §4 (0, 1, 2), plus 3: the images were compared and differ beyond the limits.
-constexpr int kExitOk = 0, kExitRuntime = 1, kExitUsage = 2, kExitDiffer = 3;
 
 int usage(const std::string& message) {
   std::cerr << "sss-compare: error: " << message << "\nRun 'sss-compare --help' for usage.\n";

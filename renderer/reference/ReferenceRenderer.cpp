@@ -1,0 +1,295 @@
+#include "renderer/reference/ReferenceRenderer.h"
+
+#include "renderer/image/Tonemap.h"
+#include "renderer/reference/RayScene.h"
+#include "renderer/reference/Shading.h"
+#include "renderer/reference/SurfaceSampling.h"
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+namespace sss::reference {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// One SSS material: its exact profile, its points and their octree.
+struct Group {
+  std::uint32_t material = 0;
+  std::unique_ptr<profiles::RgbProfile> profile;
+  double spacing_mm = 0.0;
+  TriangleSoup soup;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> source;  // soup triangle -> (instance, triangle)
+  SampledSurface surface;
+  std::unique_ptr<ScatterKernel> kernel;
+  std::vector<IrradiancePoint> points_for_octree;
+  std::unique_ptr<PointOctree> octree;
+};
+
+class Reporter {
+ public:
+  Reporter(const ProgressFn& fn, const std::atomic<bool>* cancel) : fn_(fn), cancel_(cancel) {}
+  void report(const char* stage, double fraction) {
+    if (!fn_) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    fn_(stage, fraction);
+  }
+  bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
+  void check() const {
+    if (cancelled()) throw Cancelled();
+  }
+
+ private:
+  const ProgressFn& fn_;
+  const std::atomic<bool>* cancel_;
+  std::mutex mutex_;
+};
+
+void check_options(const ReferenceOptions& o) {
+  if (o.width == 0 || o.height == 0)
+    throw std::invalid_argument("width/height: the image must be at least 1x1, got " +
+                                std::to_string(o.width) + "x" + std::to_string(o.height));
+  if (o.width > 16384 || o.height > 16384)
+    throw std::invalid_argument("width/height: at most 16384 pixels a side");
+  if (!(std::isfinite(o.spacing_mfp) && o.spacing_mfp > 0.0))
+    throw std::invalid_argument("spacing: must be finite and > 0, got " + message_number(o.spacing_mfp));
+  if (!(std::isfinite(o.max_solid_angle) && o.max_solid_angle >= 0.0))
+    throw std::invalid_argument("error bound: the maximum solid angle must be finite and >= 0, got " +
+                                message_number(o.max_solid_angle));
+  if (!(std::isfinite(o.exposure) && o.exposure >= 0.0f))
+    throw std::invalid_argument("exposure: must be finite and >= 0, got " + message_number(o.exposure));
+  if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
+}
+
+double smallest_mfp(const profiles::Medium& m) {
+  double mfp = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < 3; ++c) mfp = std::min(mfp, m.channel(c).mfp_reduced());
+  return mfp;
+}
+
+std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, const ReferenceOptions& o,
+                               Reporter& reporter) {
+  std::vector<Group> groups;
+  std::vector<int> group_of(s.materials.size(), -1);
+  for (std::uint32_t m = 0; m < s.materials.size(); ++m) {
+    if (!s.materials[m].sss.enabled) continue;
+    group_of[m] = int(groups.size());
+    Group g;
+    g.material = m;
+    groups.push_back(std::move(g));
+  }
+  for (std::uint32_t i = 0; i < s.instances.size(); ++i) {
+    const scene::Mesh& mesh = s.meshes[s.instances[i].mesh];
+    const int gi = group_of[mesh.material];
+    if (gi < 0) continue;
+    Group& g = groups[std::size_t(gi)];
+    const std::vector<glm::vec3>& world = rays.world_positions(i);
+    const glm::mat3& nm = rays.normal_matrix(i);
+    for (std::uint32_t t = 0; t < mesh.triangle_count(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = mesh.indices[3 * t + k];
+        g.soup.positions_mm.push_back(world[v]);
+        const glm::vec3 n = nm * mesh.normals[v];
+        const float len = glm::length(n);
+        g.soup.normals.push_back(len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f));
+      }
+      g.source.emplace_back(i, t);
+    }
+  }
+  // Profiles first (the Monte Carlo model takes a while), then the spacing they imply.
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    reporter.check();
+    Group& g = groups[k];
+    const scene::SssMaterial& sss = s.materials[g.material].sss;
+    const profiles::Medium medium = sss.effective_medium();
+    g.profile = std::make_unique<profiles::RgbProfile>(sss.model, medium, o.model_options);
+    g.spacing_mm = o.spacing_mfp * smallest_mfp(medium);
+    reporter.report("profiles", double(k + 1) / double(groups.size()));
+  }
+  return groups;
+}
+
+}  // namespace
+
+ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o,
+                                const ProgressFn& progress, const std::atomic<bool>* cancel) {
+  check_options(o);
+  if (s.cameras.empty()) throw std::invalid_argument("scene '" + s.name + "' has no camera");
+  const auto t_start = Clock::now();
+  Reporter reporter(progress, cancel);
+  tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
+  ReferenceImage out;
+  ReferenceStats& stats = out.stats;
+
+  RayScene rays(s);
+  auto t0 = Clock::now();
+  std::vector<Group> groups = make_groups(s, rays, o, reporter);
+  stats.profile_ms = ms_since(t0);
+
+  // Points: check the total before sampling anything.
+  t0 = Clock::now();
+  std::size_t planned = 0;
+  for (Group& g : groups) {
+    double area = 0.0;
+    for (std::size_t t = 0; t < g.soup.triangle_count(); ++t) {
+      const glm::vec3* p = &g.soup.positions_mm[3 * t];
+      area += 0.5 * double(glm::length(glm::cross(p[1] - p[0], p[2] - p[0])));
+    }
+    planned += std::size_t(std::ceil(area / (g.spacing_mm * g.spacing_mm)));
+  }
+  if (planned > o.max_points)
+    throw std::invalid_argument(
+        "spacing: " + std::to_string(planned) + " irradiance points at spacing " +
+        message_number(o.spacing_mfp) + " mfp exceed the limit of " + std::to_string(o.max_points) +
+        " (raise the spacing or the point limit)");
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t k) {
+      Group& g = groups[k];
+      SamplingOptions so;
+      so.spacing_mm = g.spacing_mm;
+      so.seed = o.seed + k;
+      so.max_points = o.max_points;
+      g.surface = sample_surface(g.soup, so);
+    });
+  });
+  for (const Group& g : groups) stats.points += g.surface.points.size();
+  reporter.report("points", 1.0);
+  stats.sampling_ms = ms_since(t0);
+  reporter.check();
+
+  // Irradiance at every point, then one octree per group.
+  t0 = Clock::now();
+  std::atomic<std::size_t> lit{0};
+  for (Group& g : groups) {
+    const scene::SssMaterial& sss = s.materials[g.material].sss;
+    const bool pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
+    std::vector<IrradiancePoint> points(g.surface.points.size());
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          if (reporter.cancelled()) return;
+                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                            const SampledPoint& sp = g.surface.points[i];
+                            const auto [instance, tri] = g.source[sp.triangle];
+                            SurfacePoint p = surface_at(s, rays, instance, tri, sp.barycentric);
+                            p.position_mm = sp.position_mm;
+                            const DirectLight d = direct_light(s, rays, p, sp.normal, nullptr);
+                            glm::dvec3 e = d.irradiance;
+                            if (pre_post) e *= glm::sqrt(glm::dvec3(base_colour(s, p)));
+                            points[i] = {sp.position_mm, sp.normal, glm::vec3(e)};
+                          }
+                          const std::size_t done = lit.fetch_add(r.size()) + r.size();
+                          reporter.report("irradiance", double(done) / double(std::max<std::size_t>(stats.points, 1)));
+                        });
+    });
+    reporter.check();
+    g.kernel = std::make_unique<ScatterKernel>(*g.profile, std::max(g.surface.point_area_mm2, 1e-12));
+    g.points_for_octree = std::move(points);
+  }
+  stats.irradiance_ms = ms_since(t0);
+  t0 = Clock::now();
+  for (Group& g : groups) {
+    OctreeOptions oo;
+    oo.max_solid_angle = o.max_solid_angle;
+    g.octree = std::make_unique<PointOctree>(std::move(g.points_for_octree),
+                                             std::max(g.surface.point_area_mm2, 1e-12), oo);
+    GroupStats gs;
+    gs.material = s.materials[g.material].name;
+    gs.points = g.surface.points.size();
+    gs.spacing_mm = g.spacing_mm;
+    gs.area_mm2 = g.surface.area_mm2;
+    gs.octree = g.octree->stats();
+    stats.groups.push_back(gs);
+  }
+  reporter.report("octree", 1.0);
+  stats.octree_ms = ms_since(t0);
+  reporter.check();
+
+  // One primary ray per pixel centre.
+  t0 = Clock::now();
+  const scene::Camera& cam = s.cameras[0];
+  const glm::mat4 inv_view_proj = glm::inverse(scene::clip_from_view(cam, o.width, o.height) * cam.view());
+  const float mm = float(s.mm_per_unit);
+  const bool ortho = cam.projection == scene::Projection::Orthographic;
+  std::vector<int> group_of(s.materials.size(), -1);
+  for (std::size_t k = 0; k < groups.size(); ++k) group_of[groups[k].material] = int(k);
+  out.hdr = image::Image(int(o.width), int(o.height));
+  std::atomic<std::uint32_t> rows_done{0};
+  arena.execute([&] {
+    tbb::parallel_for(std::uint32_t(0), o.height, [&](std::uint32_t y) {
+      if (reporter.cancelled()) return;
+      for (std::uint32_t x = 0; x < o.width; ++x) {
+        const glm::vec2 ndc((float(x) + 0.5f) / float(o.width) * 2.0f - 1.0f,
+                            (float(y) + 0.5f) / float(o.height) * 2.0f - 1.0f);
+        glm::vec4 a = inv_view_proj * glm::vec4(ndc, 0.0f, 1.0f);
+        glm::vec4 b = inv_view_proj * glm::vec4(ndc, 1.0f, 1.0f);
+        const glm::vec3 near = glm::vec3(a) / a.w * mm, far = glm::vec3(b) / b.w * mm;
+        const glm::vec3 dir = glm::normalize(far - near);
+        const std::optional<Hit> hit = rays.intersect(near, dir, 0.0f, glm::length(far - near));
+        float* px = out.hdr.pixel(int(x), int(y));
+        if (!hit) continue;
+        const SurfacePoint p = surface_at(s, rays, hit->instance, hit->triangle, hit->barycentric);
+        const scene::Material& m = s.materials[p.material];
+        const glm::vec3 to_eye = ortho ? -cam.forward() : -dir;
+        const glm::vec3 n = shading_normal(s, p, to_eye);
+        const glm::vec3 albedo = base_colour(s, p);
+        const int gi = group_of[p.material];
+        SpecularInputs spec;
+        spec.to_eye = to_eye;
+        spec.f0 = glm::mix(glm::vec3(0.04f * m.specular), albedo, m.metallic);
+        spec.roughness = m.roughness;
+        const bool want_specular = !o.diffuse_only && std::max({spec.f0.x, spec.f0.y, spec.f0.z}) > 0.0f;
+        glm::dvec3 diffuse(0.0);
+        glm::dvec3 specular(0.0);
+        if (gi >= 0) {
+          const Group& g = groups[std::size_t(gi)];
+          diffuse = o.brute_force ? g.octree->gather_brute_force(p.position_mm, n, *g.kernel)
+                                  : g.octree->gather(p.position_mm, n, *g.kernel);
+          if (want_specular) specular = direct_light(s, rays, p, n, &spec).specular;
+        } else if (!o.diffuse_only) {
+          const DirectLight d = direct_light(s, rays, p, n, want_specular ? &spec : nullptr);
+          diffuse = d.irradiance;
+          specular = d.specular;
+        }
+        glm::dvec3 L;
+        if (o.diffuse_only) {
+          L = diffuse / kPi;
+        } else {
+          const bool pre_post = gi >= 0 && m.sss.albedo_mode == scene::AlbedoMode::PrePost;
+          const glm::dvec3 out_albedo = pre_post ? glm::sqrt(glm::dvec3(albedo)) : glm::dvec3(albedo);
+          L = out_albedo * (1.0 - double(m.metallic)) * diffuse / kPi + specular;
+        }
+        px[0] = float(L.x);
+        px[1] = float(L.y);
+        px[2] = float(L.z);
+        px[3] = 1.0f;
+      }
+      const std::uint32_t done = rows_done.fetch_add(1) + 1;
+      reporter.report("render", double(done) / double(o.height));
+    });
+  });
+  reporter.check();
+  stats.render_ms = ms_since(t0);
+  out.display = image::tonemap(out.hdr, o.exposure);
+  stats.total_ms = ms_since(t_start);
+  return out;
+}
+
+}  // namespace sss::reference

@@ -1,0 +1,87 @@
+// The offline CPU reference (DESIGN.md §6): the same Scene, Material and camera as the
+// real-time renderer, with every real-time approximation replaced by the exact thing.
+//
+//   1. For each SSS material (a "scattering group": every instance that uses it),
+//      irradiance points are spread over its surfaces (SurfaceSampling.h: area-uniform,
+//      blue noise) at a spacing of `spacing_mfp` times the smallest reduced mean free path
+//      1/σt' of the material's effective medium over R, G, B. Lower spacing_mfp for more
+//      points; `max_points` caps the total.
+//   2. Each point's irradiance comes from the scene's lights with ray-traced shadows
+//      (Shading.h), times √albedo there for pre/post albedo materials.
+//   3. The points go into a Jensen–Buhler octree (PointOctree.h) and the exact model
+//      profile R(r), averaged over each point's disc (ScatterKernel.h), is summed at each
+//      pixel's visible point: M(x_o) = Σ K(|x_o − x_i|) E_i A. Far-side points of slabs
+//      contribute through the profile's transmittance. No Gaussian fit is involved.
+//   4. Composite as shaders/composite.comp: L = albedo·(1 − metallic)·M/π + specular for
+//      SSS materials, albedo·(1 − metallic)·E/π + specular for opaque ones; the display
+//      image is tonemapped as on the GPU (image::tonemap).
+//
+// One ray per pixel centre, as the rasterizer samples. Parallel over rows with TBB.
+#pragma once
+
+#include "renderer/image/Image.h"
+#include "renderer/reference/PointOctree.h"
+#include "renderer/scene/Scene.h"
+
+#include "profiles/Profile.h"
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sss::reference {
+
+struct ReferenceOptions {
+  std::uint32_t width = 640;
+  std::uint32_t height = 360;
+  float exposure = 1.0f;         // display image only
+  double spacing_mfp = 0.5;      // point spacing, in smallest reduced mean free paths
+  std::size_t max_points = 8'000'000;  // over all groups
+  double max_solid_angle = 0.1;  // Jensen–Buhler ε (steradians)
+  bool brute_force = false;      // sum every point (tests and benchmarks of the octree)
+  bool diffuse_only = false;     // hdr = M/π (before albedo), no specular, opaque surfaces 0
+  int threads = 0;               // 0: every hardware thread
+  std::uint64_t seed = 1;        // of the point sets
+  profiles::ModelOptions model_options;
+};
+
+struct GroupStats {
+  std::string material;
+  std::size_t points = 0;
+  double spacing_mm = 0.0;
+  double area_mm2 = 0.0;
+  OctreeStats octree;
+};
+
+struct ReferenceStats {
+  std::vector<GroupStats> groups;
+  std::size_t points = 0;
+  double profile_ms = 0.0, sampling_ms = 0.0, irradiance_ms = 0.0, octree_ms = 0.0,
+         render_ms = 0.0, total_ms = 0.0;
+};
+
+struct ReferenceImage {
+  image::Image hdr;      // linear radiance, alpha 1 on geometry, 0 on background
+  image::Image display;  // tonemapped, sRGB codes / 255
+  ReferenceStats stats;
+};
+
+// The stage ("profiles", "points", "irradiance", "octree", "render") and its completed
+// fraction. Called from one thread at a time (the renderer serialises the calls).
+using ProgressFn = std::function<void(const char* stage, double fraction)>;
+
+struct Cancelled : std::runtime_error {
+  Cancelled() : std::runtime_error("cancelled") {}
+};
+
+// Throws std::invalid_argument for unusable options or scenes (no camera, zero size,
+// bad spacing, too many points; the message names the option), Cancelled when `cancel`
+// becomes true (checked between rows and stages), std::runtime_error for Embree failures.
+ReferenceImage render_reference(const scene::Scene& scene, const ReferenceOptions& options,
+                                const ProgressFn& progress = {},
+                                const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace sss::reference

@@ -1,0 +1,176 @@
+#include "renderer/reference/Shading.h"
+
+#include "renderer/image/Image.h"
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sss::reference {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+float wrap_coord(float u, scene::Wrap wrap) {
+  switch (wrap) {
+    case scene::Wrap::ClampToEdge: return std::clamp(u, 0.0f, 1.0f);
+    case scene::Wrap::MirroredRepeat: {
+      const float f = u - 2.0f * std::floor(0.5f * u);  // [0, 2)
+      return f > 1.0f ? 2.0f - f : f;
+    }
+    case scene::Wrap::Repeat: break;
+  }
+  return u - std::floor(u);
+}
+
+int wrap_texel(int i, int n, scene::Wrap wrap) {
+  if (wrap == scene::Wrap::Repeat) return ((i % n) + n) % n;
+  if (wrap == scene::Wrap::MirroredRepeat) {
+    const int period = 2 * n;
+    int m = ((i % period) + period) % period;
+    return m < n ? m : period - 1 - m;
+  }
+  return std::clamp(i, 0, n - 1);
+}
+
+// Bilinear (or nearest) lookup at level 0; `srgb` decodes each texel before filtering,
+// as an sRGB image view does.
+glm::vec4 sample(const scene::Texture& t, glm::vec2 uv, bool srgb) {
+  const scene::ImageRgba8& img = *t.image;
+  const int w = int(img.width), h = int(img.height);
+  auto texel = [&](int x, int y) {
+    x = wrap_texel(x, w, t.sampler.wrap_s);
+    y = wrap_texel(y, h, t.sampler.wrap_t);
+    const std::uint8_t* p = &img.pixels[(std::size_t(y) * w + x) * 4];
+    glm::vec4 c;
+    for (int k = 0; k < 4; ++k) {
+      const float v = float(p[k]) / 255.0f;
+      c[k] = (srgb && k < 3) ? image::srgb_decode(v) : v;
+    }
+    return c;
+  };
+  const float u = wrap_coord(uv.x, t.sampler.wrap_s) * float(w) - 0.5f;
+  const float v = wrap_coord(uv.y, t.sampler.wrap_t) * float(h) - 0.5f;
+  if (t.sampler.mag == scene::Filter::Nearest)
+    return texel(int(std::floor(u + 0.5f)), int(std::floor(v + 0.5f)));
+  const int x0 = int(std::floor(u)), y0 = int(std::floor(v));
+  const float fx = u - float(x0), fy = v - float(y0);
+  return (texel(x0, y0) * (1.0f - fx) + texel(x0 + 1, y0) * fx) * (1.0f - fy) +
+         (texel(x0, y0 + 1) * (1.0f - fx) + texel(x0 + 1, y0 + 1) * fx) * fy;
+}
+
+}  // namespace
+
+SurfacePoint surface_at(const scene::Scene& s, const RayScene& rays, std::uint32_t instance,
+                        std::uint32_t triangle, const glm::vec2& b) {
+  const scene::Instance& inst = s.instances[instance];
+  const scene::Mesh& mesh = s.meshes[inst.mesh];
+  const std::uint32_t i0 = mesh.indices[3 * triangle], i1 = mesh.indices[3 * triangle + 1],
+                      i2 = mesh.indices[3 * triangle + 2];
+  const float w0 = 1.0f - b.x - b.y;
+  const std::vector<glm::vec3>& world = rays.world_positions(instance);
+  SurfacePoint p;
+  p.material = mesh.material;
+  p.position_mm = world[i0] * w0 + world[i1] * b.x + world[i2] * b.y;
+  const glm::vec3 gn = glm::cross(world[i1] - world[i0], world[i2] - world[i0]);
+  const float gl = glm::length(gn);
+  p.geometric_normal = gl > 0.0f ? gn / gl : glm::vec3(0.0f, 0.0f, 1.0f);
+  const glm::mat3& nm = rays.normal_matrix(instance);
+  const glm::vec3 n = nm * (mesh.normals[i0] * w0 + mesh.normals[i1] * b.x + mesh.normals[i2] * b.y);
+  const float nl = glm::length(n);
+  p.normal = nl > 0.0f ? n / nl : p.geometric_normal;
+  if (!mesh.uv0.empty()) {
+    p.has_uv = true;
+    p.uv = mesh.uv0[i0] * w0 + mesh.uv0[i1] * b.x + mesh.uv0[i2] * b.y;
+  }
+  if (!mesh.tangents.empty()) {
+    const glm::vec4 t = mesh.tangents[i0] * w0 + mesh.tangents[i1] * b.x + mesh.tangents[i2] * b.y;
+    p.tangent = glm::vec4(glm::mat3(inst.world) * glm::vec3(t), mesh.tangents[i0].w);
+  }
+  return p;
+}
+
+glm::vec3 base_colour(const scene::Scene& s, const SurfacePoint& p) {
+  const scene::Material& m = s.materials[p.material];
+  glm::vec3 c(m.base_color);
+  if (m.base_color_texture && p.has_uv)
+    c *= glm::vec3(sample(s.textures[*m.base_color_texture], p.uv, true));
+  return glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
+}
+
+glm::vec3 shading_normal(const scene::Scene& s, const SurfacePoint& p, const glm::vec3& to_eye) {
+  glm::vec3 n = p.normal;
+  const float facing = glm::dot(n, to_eye) < 0.0f ? -1.0f : 1.0f;
+  n *= facing;
+  const scene::Material& m = s.materials[p.material];
+  if (m.normal_texture && p.has_uv && glm::dot(glm::vec3(p.tangent), glm::vec3(p.tangent)) > 0.0f) {
+    const glm::vec3 tan(p.tangent);
+    const glm::vec3 t = glm::normalize(tan - n * glm::dot(n, tan));
+    const glm::vec3 bt = glm::cross(n, t) * p.tangent.w * facing;
+    glm::vec3 mn = glm::vec3(sample(s.textures[*m.normal_texture], p.uv, false)) * 2.0f - 1.0f;
+    mn.x *= m.normal_scale;
+    mn.y *= m.normal_scale;
+    n = glm::normalize(t * mn.x + bt * mn.y + n * std::max(mn.z, 1e-4f));
+  }
+  return n;
+}
+
+DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const SurfacePoint& p,
+                         const glm::vec3& n, const SpecularInputs* spec) {
+  DirectLight out;
+  const float mm_per_unit = float(s.mm_per_unit);
+  const glm::vec3 p_scene = p.position_mm / mm_per_unit;
+  // Shadow rays leave from just off the surface, on the side the light is on.
+  const float offset = 1e-4f * std::max(1.0f, glm::length(p.position_mm)) + 1e-4f;
+  for (const scene::Light& light : s.lights) {
+    if (!light.reaches(p_scene)) continue;
+    glm::vec3 l;
+    glm::dvec3 radiance = glm::dvec3(light.color) * double(light.intensity);
+    float distance = std::numeric_limits<float>::infinity();
+    if (light.type == scene::LightType::Directional) {
+      l = -light.direction();
+    } else {
+      const glm::vec3 d = light.position() * mm_per_unit - p.position_mm;  // mm
+      distance = glm::length(d);
+      if (!(distance > 0.0f)) continue;
+      l = d / distance;
+      const double d_units = double(distance) / double(mm_per_unit);
+      radiance /= std::max(d_units * d_units, 1e-8);
+      if (light.type == scene::LightType::Spot) {
+        const double lo = std::cos(light.outer_cone), hi = std::cos(light.inner_cone);
+        const double c = glm::dot(-l, light.direction());
+        const double t = std::clamp((c - lo) / std::max(hi - lo, 1e-9), 0.0, 1.0);
+        radiance *= t * t * (3.0 - 2.0 * t);  // GLSL smoothstep
+      }
+    }
+    const float n_dot_l = glm::dot(n, l);
+    if (n_dot_l <= 0.0f) continue;
+    const glm::vec3 side = glm::dot(p.geometric_normal, l) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
+    if (rays.occluded(p.position_mm + side * offset, l, 0.0f, distance - 2.0f * offset)) continue;
+    const glm::dvec3 incident = radiance * double(n_dot_l);
+    out.irradiance += incident;
+    if (spec) {
+      const glm::vec3& v = spec->to_eye;
+      const double n_dot_v = std::max(double(glm::dot(n, v)), 1e-4);
+      const double alpha = std::max(double(spec->roughness) * spec->roughness, 1e-3);
+      const double a2 = alpha * alpha;
+      const glm::vec3 h = glm::normalize(l + v);
+      const double n_dot_h = std::max(double(glm::dot(n, h)), 0.0);
+      const double v_dot_h = std::max(double(glm::dot(v, h)), 0.0);
+      const double dd = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
+      const double D = a2 / (kPi * dd * dd);
+      const double nl = n_dot_l;
+      const double vis = 0.5 / (nl * std::sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2) +
+                                n_dot_v * std::sqrt(nl * nl * (1.0 - a2) + a2));
+      const glm::dvec3 f0(spec->f0);
+      const glm::dvec3 F = f0 + (1.0 - f0) * std::pow(1.0 - v_dot_h, 5.0);
+      out.specular += D * vis * F * incident;
+    }
+  }
+  return out;
+}
+
+}  // namespace sss::reference

@@ -1,0 +1,59 @@
+// What the reference renderer knows about a surface point, computed as the real-time
+// G-buffer and lighting passes compute it (shaders/gbuffer.*, shaders/lighting.comp), so
+// the two images differ only where an approximation differs:
+//   * the interpolated vertex normal, turned to face the viewer, perturbed by the normal
+//     map; base colour = factor × texture (sRGB decoded, bilinear, level 0: the GPU's
+//     mipmaps blur minified textures a little more);
+//   * direct light from every scene light: irradiance E = radiance · max(n·l, 0) · V,
+//     with V from a shadow ray (hard, exact) where the GPU filters a shadow map, and the
+//     half-space light masks; GGX specular (Smith height-correlated visibility, Schlick
+//     Fresnel, F0 = mix(0.04·specular, base colour, metallic)), as the GPU evaluates it.
+#pragma once
+
+#include "renderer/reference/RayScene.h"
+#include "renderer/scene/Scene.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+
+namespace sss::reference {
+
+struct SurfacePoint {
+  glm::vec3 position_mm{0.0f};
+  glm::vec3 geometric_normal{0.0f, 0.0f, 1.0f};  // unit, the triangle's winding
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};            // unit interpolated vertex normal
+  glm::vec2 uv{0.0f};
+  glm::vec4 tangent{0.0f};  // xyz world, w sign; zero when the mesh has none
+  bool has_uv = false;
+  std::uint32_t material = 0;
+};
+
+SurfacePoint surface_at(const scene::Scene& scene, const RayScene& rays, std::uint32_t instance,
+                        std::uint32_t triangle, const glm::vec2& barycentric);
+
+// Base colour (linear RGB, clamped to [0, 1]) at the point, factor × texture.
+glm::vec3 base_colour(const scene::Scene& scene, const SurfacePoint& p);
+
+// The shading normal seen from `to_eye`: the interpolated normal flipped to face the
+// viewer, then the material's normal map if it has one (and the mesh has tangents).
+glm::vec3 shading_normal(const scene::Scene& scene, const SurfacePoint& p, const glm::vec3& to_eye);
+
+struct DirectLight {
+  glm::dvec3 irradiance{0.0};  // E, before any albedo
+  glm::dvec3 specular{0.0};    // radiance towards the eye (zero when not asked)
+};
+
+struct SpecularInputs {
+  glm::vec3 to_eye{0.0f};  // unit
+  glm::vec3 f0{0.04f};
+  float roughness = 1.0f;
+};
+
+// Direct light at p with normal n (unit). `specular` null: irradiance only.
+DirectLight direct_light(const scene::Scene& scene, const RayScene& rays, const SurfacePoint& p,
+                         const glm::vec3& n, const SpecularInputs* specular);
+
+}  // namespace sss::reference

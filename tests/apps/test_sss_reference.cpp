@@ -1,0 +1,147 @@
+// sss-reference's documented commands and errors (DESIGN.md §4): exit 0 with the file
+// written, 2 for bad usage or input naming the option or file, 130 when interrupted,
+// and never a partial output file.
+#ifdef SSS_REFERENCE_EXE
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliResult {
+  int code = -1;
+  std::string out, err;
+};
+
+fs::path scratch() {
+  static const fs::path dir = [] {
+    fs::path d = fs::temp_directory_path() / ("sss-reference-test-" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+CliResult reference(const std::string& args) {
+  const fs::path err = scratch() / "stderr.txt";
+  const std::string cmd = std::string(SSS_REFERENCE_EXE) + " " + args + " 2>" + err.string();
+  CliResult r;
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int status = ::pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.err = slurp(err);
+  return r;
+}
+
+bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+
+TEST(SssReferenceApp, HelpListsTheOptions) {
+  const CliResult r = reference("--help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* opt : {"--out", "--width", "--model", "--spacing", "--error-bound", "--brute-force",
+                          "--threads", "--diffuse-only", "--preset"})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+}
+
+TEST(SssReferenceApp, RendersExrAndPng) {
+  const fs::path exr = scratch() / "sphere.exr", png = scratch() / "sphere.png";
+  const CliResult r = reference("builtin:sphere --out " + exr.string() + " --png " + png.string() +
+                          " --width 32 --height 18 --spacing 2 --stats");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(starts_with(slurp(exr), "\x76\x2f\x31\x01"));  // OpenEXR magic
+  EXPECT_TRUE(starts_with(slurp(png), "\x89PNG"));
+  EXPECT_NE(r.err.find("irradiance points"), std::string::npos);  // --stats
+  EXPECT_NE(r.err.find("render done"), std::string::npos);        // progress (not a tty)
+}
+
+TEST(SssReferenceApp, MaterialOptionsOverrideTheScene) {
+  const fs::path exr = scratch() / "marble.exr";
+  const CliResult r = reference("builtin:sphere --out " + exr.string() +
+                          " --width 16 --height 9 --spacing 2 --preset marble --model pbd --quiet");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;  // --quiet: no progress
+}
+
+TEST(SssReferenceApp, BadInputExitsTwoNamingTheProblem) {
+  const fs::path out = scratch() / "bad.exr";
+  struct Case {
+    std::string args, expect;
+  };
+  const Case cases[] = {
+      {"builtin:sphere", "--out"},
+      {"builtin:sphere --out " + out.string() + " --width 0", "--width"},
+      {"builtin:sphere --out " + (scratch() / "x.jpg").string(), "--out"},
+      {"builtin:nope --out " + out.string(), "builtin:nope"},
+      {(scratch() / "missing.glb").string() + " --out " + out.string(), "missing.glb"},
+      {"builtin:sphere --out " + out.string() + " --model magic", "--model"},
+      {"builtin:sphere --out " + out.string() + " --sigma-a -1 --sigma-s 1", "--sigma-a"},
+      {"builtin:sphere --out " + out.string() + " --spacing 0", "spacing"},
+      {"builtin:sphere --out " + out.string() + " --spacing 0.5 --max-points 10", "exceed"},
+      {"builtin:sphere --out " + out.string() + " --error-bound -1", "error bound"},
+  };
+  for (const Case& c : cases) {
+    const CliResult r = reference(c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << c.args << "\n" << r.err;
+  }
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(SssReferenceApp, UnwritableOutputIsARuntimeFailure) {
+  const CliResult r = reference("builtin:sphere --out /nonexistent-dir/x.exr --width 8 --height 8 --spacing 3 --quiet");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("/nonexistent-dir/x.exr"), std::string::npos) << r.err;
+}
+
+TEST(SssReferenceApp, CtrlCStopsWithoutWritingAFile) {
+  // A render long enough to interrupt (builtin:sphere at 0.25 mfp, 640x360); SIGINT
+  // after the process has started. Exit 130 and no output file (nor a temporary).
+  const fs::path out = scratch() / "interrupted.exr";
+  const std::string exe = SSS_REFERENCE_EXE;
+  const std::string o = out.string();
+  std::vector<std::string> args = {exe, "builtin:sphere", "--out", o, "--spacing", "0.25", "--quiet", "--threads", "1"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(::posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal instead of stopping cleanly";
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(scratch()))
+    EXPECT_EQ(e.path().filename().string().find("interrupted"), std::string::npos) << e.path();
+}
+
+}  // namespace
+
+#endif  // SSS_REFERENCE_EXE
