@@ -11,10 +11,23 @@
 // reproduces ∫ R dA without needing s ≪ the mean free path. Σ_i K(|x_o − x_i|) A over a
 // plane of points tends to the total reflectance.
 //
-// Tabulated per channel at construction (the profile is evaluated once, not per pixel):
-// log-spaced nodes in d with log-log interpolation, dense enough that the table agrees
-// with the integral above to 1e-3 relative wherever K > 1e-6 K(0). Beyond the profile's
-// support radius K is 0.
+// Tabulated per channel at construction (the profile is evaluated once, not per pixel).
+// Quadrature (ScatterKernel.cpp): the θ = π part is a cumulative ∫ 2πs R ds over
+// geometric panels; the band |a − d| < s < a + d is integrated in u, s = c − h cos u
+// (c, h the band's centre and half-width), which absorbs θ's square-root ends, on
+// Gauss–Legendre panels between geometric break points (R's own scales, and the scale
+// |a − d| near the kink d = a). PBD's and the multipole's R and T (~4 µs and ~1 µs a
+// call) are first tabulated on 64 nodes per decade (cubic in log-log, ~1e-6).
+// Table: K has a kink at d = a, where the disc's rim crosses x_o (for profiles with a
+// 1/r peak, PBD and Burley, K' is logarithmically singular there). So the table is in
+// y = |d/a − 1|, one part inside the rim and one outside, each with cells uniform
+// within every octave of y, 16 per octave (edges 2^e (1 + k/16), found from the bits of
+// y without a logarithm): log-spaced towards the kink from both sides and log-spaced in
+// d far from it. Each cell holds the cubic through K at t = 0, 1/3, 2/3, 1; closer than
+// 2^-20 a to the kink K is K(a). The table agrees with the integral above to 1e-3
+// relative wherever K > 1e-6 K(0) (measured in tests/reference/test_scatter_kernel.cpp).
+// R is taken as 0 beyond the profile's support radius S, so K is exactly 0 beyond
+// support_radius() = S + a.
 //
 // Transmission (slabs): transmit(ρ) is the same disc average of the profile's
 // transmittance T (RadialProfile::transmittance), ρ the lateral distance. It is 0 when
@@ -25,6 +38,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstdint>
 #include <vector>
 
 namespace sss::reference {
@@ -41,11 +55,15 @@ class ScatterKernel {
   double point_area() const { return point_area_mm2_; }
 
  private:
+  // Cubic per cell; coefficients c0..c3 for R, G, B, padded to one 64-byte line.
   struct Table {
-    double log_d0 = 0.0, inv_step = 0.0;  // nodes at exp(log_d0 + i / inv_step)
-    std::vector<glm::dvec3> log_value;    // log K per channel (-inf as a large negative)
-    glm::dvec3 at_zero{0.0};              // K(d) for d below the first node
-    glm::dvec3 eval(double d, double support) const;
+    double inv_a = 1.0;                // 1/a: cells are in y = |d/a − 1|
+    double end = 0.0;                  // (S + a)/a: K = 0 from there on
+    std::uint64_t base = 0;            // key of the first cell edge, y = 2^-20
+    std::uint32_t inner_cells = 0;     // cells of y = 1 − d/a; then those of d/a − 1
+    std::vector<float> coef;           // 16 per cell: c_k of channel c at [4k + c]
+    glm::dvec3 at_kink{0.0};           // K(a), for |d/a − 1| < 2^-20
+    glm::dvec3 eval(double d) const;
   };
   Table reflect_, transmit_;
   bool has_transmittance_ = false;

@@ -1,8 +1,8 @@
 // Golden frames of the built-in scenes: the display image (tonemapped, sRGB, 8-bit)
-// compared with tests/renderer/golden/NAME.png under the per-test tolerances of
-// golden/tolerances.json. On failure the actual, expected and diff (x8) images are written
+// compared with tests/golden/regression/NAME.png under the per-test tolerances of
+// tests/golden/regression/tolerances.json. On failure the actual, expected and diff (x8) images are written
 // next to the test binary (golden-out/) and named in the message. Bless with
-// tests/renderer/bless.sh after looking at the new images.
+// tests/golden/bless.sh after looking at the new images.
 #include "RenderTest.h"
 
 #include "renderer/scene/BuiltinScenes.h"
@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kGoldenDir = fs::path(SSS_SOURCE_DIR) / "tests" / "renderer" / "golden";
+const fs::path kGoldenDir = fs::path(SSS_SOURCE_DIR) / "tests" / "golden" / "regression";
 
 struct GoldenCase {
   const char* name;
@@ -69,7 +69,7 @@ TEST_P(GoldenTest, DisplayImageMatchesTheGolden) {
 
   auto expected_or = image::read_image(golden.string());
   ASSERT_TRUE(std::holds_alternative<image::Image>(expected_or))
-      << "missing golden " << golden << ": run tests/renderer/bless.sh";
+      << "missing golden " << golden << ": run tests/golden/bless.sh";
   const image::Image& expected = std::get<image::Image>(expected_or);
   ASSERT_EQ(expected.width, f.display.width);
   ASSERT_EQ(expected.height, f.display.height);
