@@ -280,7 +280,34 @@ glm::dvec3 ScatterKernel::Table::eval(double d) const {
           c[2] + t * (c[6] + t * (c[10] + t * double(c[14])))};
 }
 
+ScatterKernel::Jet ScatterKernel::Table::jet(double d) const {
+  Jet j;
+  const double x = std::fabs(d) * inv_a;
+  if (!(x < end)) return j;
+  const bool outside = x >= 1.0;
+  const double y = outside ? x - 1.0 : 1.0 - x;
+  if (y < kKinkGap) {
+    j.value = at_kink;
+    return j;
+  }
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(y);
+  const std::uint64_t key = bits >> kShift;
+  const float* c = coef.data() + 16 * (std::size_t(key - base) + (outside ? inner_cells : 0));
+  const double t = double(bits & kMask) * kInvCell;
+  // dK/dd = dK/dt · dt/dy · dy/dd, with dt/dy = 1/(cell width in y), dy/dd = ±1/a.
+  const double dt_dd = (outside ? inv_a : -inv_a) / (edge(key + 1) - edge(key));
+  for (int ch = 0; ch < 3; ++ch) {
+    const double c0 = c[ch], c1 = c[4 + ch], c2 = c[8 + ch], c3 = c[12 + ch];
+    j.value[ch] = c0 + t * (c1 + t * (c2 + t * c3));
+    j.first[ch] = (c1 + t * (2.0 * c2 + 3.0 * t * c3)) * dt_dd;
+    j.second[ch] = (2.0 * c2 + 6.0 * t * c3) * dt_dd * dt_dd;
+  }
+  return j;
+}
+
 glm::dvec3 ScatterKernel::reflect(double d_mm) const { return reflect_.eval(d_mm); }
+ScatterKernel::Jet ScatterKernel::reflect_jet(double d_mm) const { return reflect_.jet(d_mm); }
+ScatterKernel::Jet ScatterKernel::transmit_jet(double rho_mm) const { return transmit_.jet(rho_mm); }
 glm::dvec3 ScatterKernel::transmit(double rho_mm) const { return transmit_.eval(rho_mm); }
 
 }  // namespace sss::reference

@@ -50,6 +50,15 @@ class ScatterKernel {
 
   glm::dvec3 reflect(double d_mm) const;     // K(d), mm^-2
   glm::dvec3 transmit(double rho_mm) const;  // disc-averaged T(ρ), mm^-2
+  // K with its first and second derivatives in d (mm^-3, mm^-4), from the same cubic
+  // cells (so only as smooth as the table: derivatives good to ~1e-2 relative), for
+  // the octree's second-order estimate of a node. Zero derivatives closer than 2^-20 a
+  // to the kink at d = a, and beyond the support.
+  struct Jet {
+    glm::dvec3 value{0.0}, first{0.0}, second{0.0};
+  };
+  Jet reflect_jet(double d_mm) const;
+  Jet transmit_jet(double rho_mm) const;
   bool has_transmittance() const { return has_transmittance_; }
   double support_radius() const { return support_mm_; }
   double point_area() const { return point_area_mm2_; }
@@ -64,6 +73,7 @@ class ScatterKernel {
     std::vector<float> coef;           // 16 per cell: c_k of channel c at [4k + c]
     glm::dvec3 at_kink{0.0};           // K(a), for |d/a − 1| < 2^-20
     glm::dvec3 eval(double d) const;
+    Jet jet(double d) const;
   };
   Table reflect_, transmit_;
   bool has_transmittance_ = false;

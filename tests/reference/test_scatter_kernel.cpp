@@ -444,6 +444,47 @@ TEST(ScatterKernel, SlabTransmitsAndSemiInfiniteDoesNot) {
   EXPECT_EQ(bd.transmit(1.0), glm::dvec3(0.0));
 }
 
+TEST(ScatterKernel, JetIsTheTablesDerivative) {
+  // reflect_jet's derivatives are those of the cubic cells: central differences of
+  // reflect() with a step of 1e-6 d stay inside one cell (cells are 1/16 octave of
+  // |d/a − 1| wide) at these distances, where the cubic is a polynomial evaluated in
+  // double: truncation ~(1e-6)² relative, rounding ~1e-16/1e-6; 1e-5 relative covers
+  // both with room for points near a cell edge (where the one-sided cell changes).
+  // And they are K's own: against central differences (step δ = 0.01 d, truncation
+  // ~(σδ)²/6 < 1e-3) of the polar disc integral. A cubic through 4 points of a cell of
+  // width h loses one order of accuracy per derivative: with σ = |K'/K| the local decay
+  // rate, the error of K' is ~(σh)³/24 and of K'' ~(σh)²/12 relative; tolerance twice
+  // that, plus 1% and 3% (measured < 0.1% and < 0.5% where σh is small).
+  const RgbProfile p(Model::BetterDipole, preset("skin1"));
+  const double area = 0.25, a = disc_radius(area);
+  const ScatterKernel k(p, area);
+  for (const double d : {0.3 * a, 0.77 * a, 1.6 * a, 3.3, 11.0, 40.0}) {
+    const double h = 1e-6 * d;
+    const ScatterKernel::Jet j = k.reflect_jet(d);
+    const glm::dvec3 kp = k.reflect(d + h), k0 = k.reflect(d), km = k.reflect(d - h);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(j.value[c], k0[c]);
+      const double first = (kp[c] - km[c]) / (2.0 * h);
+      EXPECT_NEAR(j.first[c], first, 1e-5 * std::fabs(first) + 1e-9 * k0[c] / a) << d;
+      if (d != 3.3 && d != 11.0) continue;
+      const double dd = 0.01 * d;
+      const double pp = polar_disc_average(p.channel(c), false, a, d + dd);
+      const double p0 = polar_disc_average(p.channel(c), false, a, d);
+      const double pm = polar_disc_average(p.channel(c), false, a, d - dd);
+      const double r1 = (pp - pm) / (2.0 * dd), r2 = (pp - 2.0 * p0 + pm) / (dd * dd);
+      const double y = d / a - 1.0;
+      const double cell = a * std::exp2(std::floor(std::log2(y))) / 16.0;
+      const double sh = std::fabs(r1 / p0) * cell;
+      EXPECT_NEAR(j.first[c], r1, (0.01 + sh * sh * sh / 12.0) * std::fabs(r1))
+          << "channel " << c << " d " << d;
+      EXPECT_NEAR(j.second[c], r2, (0.03 + sh * sh / 6.0) * std::fabs(r2))
+          << "channel " << c << " d " << d;
+    }
+  }
+  EXPECT_EQ(k.reflect_jet(k.support_radius() + 1.0).value, glm::dvec3(0.0));
+  EXPECT_EQ(k.transmit_jet(1.0).value, glm::dvec3(0.0));  // no transmittance
+}
+
 TEST(ScatterKernel, EvaluationCost) {
   // Informational: ns per reflect() call over distances spread like a gather's (log-
   // uniform over the table). No assertion on time (shared machines).
