@@ -6,7 +6,15 @@
 // Poisson Disk Sample Sets"): draw 5N area-uniform candidates, then remove the candidate
 // with the most crowded neighbourhood until N remain. N = ceil(area / spacing²), so the
 // spacing is the side of the square each point stands for. Distances are Euclidean in 3D.
-// Deterministic for a given seed.
+// Deterministic for a given seed (xoshiro256**, profiles/Random.h). Details in the .cpp:
+// - the weights are ordered to 1/65536 of the largest (a bucket queue);
+// - near an open rim (edges of one triangle only, matched by corner positions) weights
+//   are divided by the fraction of the weight kernel inside the surface, which brings the
+//   density within one spacing of the rim from 1.18x to 1.10x of the mean;
+// - measured on a plane: nearest-neighbour distance >= 0.74 spacing, mean 0.85 spacing
+//   (independent points: mean 0.5; hexagonal packing: 1.07 for all); 1M points take
+//   ~9 s and ~400 MB on one core of the development VM (the elimination is bound by
+//   memory latency: each removal updates ~18 neighbours among ~53 candidates).
 #pragma once
 
 #include <glm/vec2.hpp>
@@ -22,7 +30,7 @@ namespace sss::reference {
 // unindexed: corners 3t, 3t+1, 3t+2 of triangle t.
 struct TriangleSoup {
   std::vector<glm::vec3> positions_mm;
-  std::vector<glm::vec3> normals;  // unit shading normals at the corners
+  std::vector<glm::vec3> normals;  // unit shading normals at the corners (or none)
   std::size_t triangle_count() const { return positions_mm.size() / 3; }
 };
 
@@ -47,7 +55,11 @@ struct SampledSurface {
 
 // Throws std::invalid_argument for a spacing that is not finite and > 0 ("spacing"), or
 // when N would exceed max_points (the message gives N, the area and the spacing, and
-// says to raise the spacing). An empty soup or zero area gives no points.
+// says to raise the spacing); also for a soup whose corners are not a whole number of
+// triangles ("positions_mm"), that has a non-finite corner ("positions_mm: triangle t"),
+// or whose normals are neither empty nor one per corner ("normals"). An empty soup or
+// zero area gives no points. Without normals, or where the interpolated normal vanishes,
+// a point takes its triangle's geometric normal (counter-clockwise corners).
 SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& options);
 
 }  // namespace sss::reference

@@ -77,23 +77,33 @@ struct ErrorStats {
   double ns_tree = 0.0, ns_brute = 0.0;  // per gather
 };
 
-// RMS and max relative error (vector norm over RGB) of gather against the brute force
-// at the first `queries` points of `pts` (they are random), and the time of each.
+// The brute-force sums at the first `queries` points of `pts` (they are random), and
+// the time per gather.
+std::vector<glm::dvec3> brute_force(const PointOctree& tree, const std::vector<IrradiancePoint>& pts,
+                                    const ScatterKernel& k, std::size_t queries, double& ns) {
+  std::vector<glm::dvec3> out(queries);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t q = 0; q < queries; ++q)
+    out[q] = tree.gather_brute_force(pts[q].position_mm, pts[q].normal, k);
+  ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count() /
+       double(queries);
+  return out;
+}
+
+// RMS and max relative error (vector norm over RGB) of gather at ε against `brute`.
 ErrorStats compare(const std::vector<IrradiancePoint>& pts, double area, double eps,
-                   const ScatterKernel& k, std::size_t queries) {
+                   const ScatterKernel& k, const std::vector<glm::dvec3>& brute) {
   OctreeOptions o;
   o.max_solid_angle = eps;
   const PointOctree tree(pts, area, o);
   ErrorStats s;
-  std::vector<glm::dvec3> brute(queries);
-  auto t0 = std::chrono::steady_clock::now();
-  for (std::size_t q = 0; q < queries; ++q)
-    brute[q] = tree.gather_brute_force(pts[q].position_mm, pts[q].normal, k);
-  auto t1 = std::chrono::steady_clock::now();
+  const std::size_t queries = brute.size();
   std::vector<glm::dvec3> fast(queries);
+  const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t q = 0; q < queries; ++q)
     fast[q] = tree.gather(pts[q].position_mm, pts[q].normal, k);
-  auto t2 = std::chrono::steady_clock::now();
+  s.ns_tree = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count() /
+              double(queries);
   for (std::size_t q = 0; q < queries; ++q) {
     s.bias += (fast[q].x - brute[q].x) / brute[q].x / double(queries);
     const double e = rel(fast[q], brute[q]);
@@ -101,8 +111,6 @@ ErrorStats compare(const std::vector<IrradiancePoint>& pts, double area, double 
     s.max = std::max(s.max, e);
   }
   s.rms = std::sqrt(s.rms / double(queries));
-  s.ns_brute = std::chrono::duration<double, std::nano>(t1 - t0).count() / double(queries);
-  s.ns_tree = std::chrono::duration<double, std::nano>(t2 - t1).count() / double(queries);
   return s;
 }
 
@@ -206,7 +214,7 @@ TEST(PointOctree, ZeroSolidAngleIsTheBruteForce) {
 TEST(PointOctree, HierarchyErrorAgainstSolidAngle) {
   // 80k random points on a sphere of radius 15 mm and on a 60 mm square, skin1
   // (better dipole), varying irradiance (gradient, shadow edge, spot). Acceptance: at the
-  // default ε = 0.1 the RMS relative error over 400 random query points is below 1%
+  // default ε = 0.1 the RMS relative error over 300 random query points is below 1%
   // (DESIGN.md §6 asks the hierarchy to agree with the brute force; 1% is the budget
   // the reference renderer's tests allot to it). The other ε are reported, and the error
   // must grow with ε (monotone within noise: 20% slack).
@@ -221,9 +229,12 @@ TEST(PointOctree, HierarchyErrorAgainstSolidAngle) {
   scenes.push_back({"plane", plane_points(80000, 60.0f, 12), 3600.0 / 80000.0});
   for (const Scene& sc : scenes) {
     const ScatterKernel k(profile, sc.area);
+    double ns_brute = 0.0;
+    const std::vector<glm::dvec3> brute = brute_force(PointOctree(sc.pts, sc.area), sc.pts, k, 300, ns_brute);
     double previous = 0.0;
     for (const double eps : {0.01, 0.05, 0.1, 0.3}) {
-      const ErrorStats s = compare(sc.pts, sc.area, eps, k, 400);
+      ErrorStats s = compare(sc.pts, sc.area, eps, k, brute);
+      s.ns_brute = ns_brute;
       std::printf("[ info ] %s, %zu points, eps %.2f: RMS %.1e, max %.1e, bias %+.1e; gather "
                   "%.1f us, brute force %.0f us (x%.0f)\n",
                   sc.name, sc.pts.size(), eps, s.rms, s.max, s.bias, s.ns_tree * 1e-3,
