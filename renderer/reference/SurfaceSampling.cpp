@@ -35,6 +35,7 @@ constexpr double kBeta = 0.65, kGamma = 1.5;
 
 struct Weight {
   double d_min, d_max, d_max2;
+  float d_min_f, inv_d_max_f;  // for fast()
   double operator()(double d2) const {
     const double x = 1.0 - std::max(std::sqrt(d2), d_min) / d_max;
     const double x2 = x * x, x4 = x2 * x2;
@@ -42,7 +43,10 @@ struct Weight {
   }
   // The same in float, 0 from d_max on, without branches (the elimination's inner loop).
   float fast(float d2) const {
-    const float x = std::max(0.0f, 1.0f - std::max(std::sqrt(d2), float(d_min)) * float(1.0 / d_max));
+    const float r = std::sqrt(d2);
+    const float d = r > d_min_f ? r : d_min_f;  // both selects compile to maxss
+    const float y = 1.0f - d * inv_d_max_f;
+    const float x = y > 0.0f ? y : 0.0f;
     const float x2 = x * x, x4 = x2 * x2;
     return x4 * x4;
   }
@@ -379,6 +383,8 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
   weight.d_max = 2.0 * std::sqrt(area / (2.0 * std::sqrt(3.0) * double(N)));
   weight.d_min = weight.d_max * kBeta * (1.0 - std::pow(double(N) / double(M), kGamma));
   weight.d_max2 = weight.d_max * weight.d_max;
+  weight.d_min_f = float(weight.d_min);
+  weight.inv_d_max_f = float(1.0 / weight.d_max);
   const NeighbourGrid grid(cand, weight.d_max);  // reorders cand by grid cube
 
   // Each candidate's weights are scaled by 1/F(distance to the rim) (1 inside).
@@ -394,67 +400,66 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
     }
   }
 
-  // What the elimination touches per candidate, in one 32-byte record (one cache miss
-  // per candidate instead of one per array): position, weight scale, weight, cube.
+  // What the elimination reads for every neighbour, in one 16-byte record: position,
+  // and the unscaled weight u = Σ_j w_ij (the queue orders by u·scale; scale is read per
+  // popped candidate only). Dead candidates are marked with u = -inf.
   struct Hot {
     glm::vec3 p;
-    float scale;
-    double w;
-    std::uint32_t cell;
-    bool alive;
+    float u;
   };
   std::vector<Hot> hot(M);
-  for (std::uint32_t i = 0; i < M; ++i) hot[i] = {cand[i].p, scale[i], 0.0, grid.cell_of(i), true};
-  scale = {};
-  // The same weight function (fast) as the elimination removes again below.
+  std::vector<double> u(M, 0.0);
   grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) {
-    const glm::vec3 e = hot[j].p - hot[i].p;
+    const glm::vec3 e = cand[j].p - cand[i].p;
     const float d2 = glm::dot(e, e);
     if (double(d2) < weight.d_max2) {
       const double wij = double(weight.fast(d2));
-      hot[i].w += wij * double(hot[i].scale);
-      hot[j].w += wij * double(hot[j].scale);
+      u[i] += wij;
+      u[j] += wij;
     }
   });
+  for (std::uint32_t i = 0; i < M; ++i) hot[i] = {cand[i].p, float(u[i])};
 
   // Eliminate the M − N candidates with the largest weight, one at a time, removing each
   // one's weight from its neighbours (Yuksel 2015, §3). The queue is lazy: an entry's key
   // is the weight its candidate had when it was queued, an upper bound of its weight now;
   // a popped entry whose key is stale goes back with the current weight, and one whose
-  // key is current is the true maximum (to float precision; ties in queue order).
-  std::vector<double> w(M);
-  for (std::size_t i = 0; i < M; ++i) w[i] = hot[i].w;
-  BucketQueue queue(w);
-  w = {};
+  // key is current is the true maximum (to the queue's resolution; ties in queue order).
+  for (std::size_t i = 0; i < M; ++i) u[i] *= double(scale[i]);
+  BucketQueue queue(u);
+  u = {};
   for (std::size_t count = M; count > N;) {
     const auto [key, i] = queue.pop();
-    queue.peek(4, [&](std::uint32_t j) { __builtin_prefetch(&hot[j]); });
+    queue.peek(4, [&](std::uint32_t j) {
+      __builtin_prefetch(&hot[j]);
+      __builtin_prefetch(&scale[j]);
+    });
     Hot& h = hot[i];
-    const std::uint32_t current = queue.level(h.w);
+    const std::uint32_t current = queue.level(double(h.u) * double(scale[i]));
     if (key != current) {  // stale: the weight has dropped since
       queue.push(current, i);
       continue;
     }
-    h.alive = false;
+    h.u = -std::numeric_limits<float>::infinity();
     --count;
     // Branch-free: the weight is 0 beyond d_max, and updating the weights of candidates
-    // already eliminated is harmless (they are never read again).
+    // already eliminated is harmless (-inf stays -inf).
     // The neighbour cubes lie in several places in memory: fetch them all at once.
-    const std::span<const NeighbourGrid::Range> near = grid.near(h.cell);
+    const std::span<const NeighbourGrid::Range> near = grid.near(grid.cell_of(i));
     for (const NeighbourGrid::Range& r : near)
-      for (std::uint32_t j = r.begin; j < r.end; j += 2) __builtin_prefetch(&hot[j]);
+      for (std::uint32_t j = r.begin; j < r.end; j += 4) __builtin_prefetch(&hot[j]);
     for (const NeighbourGrid::Range& r : near)
       for (std::uint32_t j = r.begin; j < r.end; ++j) {
         Hot& n = hot[j];
         const glm::vec3 e = n.p - h.p;
-        n.w -= double(weight.fast(glm::dot(e, e)) * n.scale);
+        n.u -= weight.fast(glm::dot(e, e));
       }
   }
 
   // The survivors in grid order (spatially coherent), with interpolated normals.
   out.points.reserve(N);
   for (std::uint32_t i = 0; i < M; ++i) {
-    if (!hot[i].alive) continue;
+    if (hot[i].u == -std::numeric_limits<float>::infinity()) continue;
     const Candidate& c = cand[i];
     const std::size_t t = c.triangle;
     SampledPoint sp;
