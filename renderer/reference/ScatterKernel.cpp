@@ -222,7 +222,8 @@ ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_a
   const double inv_a = 1.0 / a;
   const std::uint64_t base = key_of(kKinkGap);
   const std::size_t inner_cells = std::size_t(key_of(1.0) - base) + 1;
-  const std::size_t cells = inner_cells + std::size_t(key_of(S * inv_a) - base) + 1;
+  const std::size_t cells =
+      inner_cells + std::size_t(key_of(std::max(S * inv_a, kKinkGap)) - base) + 1;
   // The two models whose profile is costly (PBD: 64 beam samples; the multipole: up to
   // hundreds of dipole pairs) are read through a log-log interpolant (ProfileSampler).
   const bool interpolate =

@@ -329,3 +329,4 @@ TEST(PointOctree, GatherIsThreadSafe) {
   for (std::thread& th : threads) th.join();
   for (std::size_t q = 0; q < 64; ++q) EXPECT_EQ(serial[q], parallel[q]) << q;
 }
+

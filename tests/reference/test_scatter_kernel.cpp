@@ -444,6 +444,26 @@ TEST(ScatterKernel, SlabTransmitsAndSemiInfiniteDoesNot) {
   EXPECT_EQ(bd.transmit(1.0), glm::dvec3(0.0));
 }
 
+TEST(ScatterKernel, ExtremePointAreas) {
+  // A point area far below the mean free path (the renderer's floor, 1e-12 mm²) and one
+  // far above the support (a = 564 mm): the table still integrates to the total (1e-3,
+  // the contract), K is R far from a tiny disc (1e-3 + (a²/8)|ΔR|/R, negligible here),
+  // and a disc holding all of R inside gives K(0) = total/(πa²) (R beyond S: 1e-8).
+  const RgbProfile p(Model::BetterDipole, preset("skin1"));
+  const Rgb total = p.total_reflectance();
+  const ScatterKernel tiny(p, 1e-12), huge(p, 1e6);
+  const double a = disc_radius(1e6);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(plane_integral(tiny, false, c), total[c], 1e-3 * total[c]) << c;
+    EXPECT_NEAR(plane_integral(huge, false, c), total[c], 1e-3 * total[c]) << c;
+    for (const double d : {0.01, 1.0, 5.0}) {
+      const double R = p.channel(c).reflectance(d);
+      EXPECT_NEAR(tiny.reflect(d)[c], R, 1e-3 * R) << "channel " << c << " d " << d;
+    }
+    EXPECT_NEAR(huge.reflect(0.0)[c], total[c] / (kPi * a * a), (1e-3 + 1e-8) * total[c] / (kPi * a * a));
+  }
+}
+
 TEST(ScatterKernel, JetIsTheTablesDerivative) {
   // reflect_jet's derivatives are those of the cubic cells: central differences of
   // reflect() with a step of 1e-6 d stay inside one cell (cells are 1/16 octave of
