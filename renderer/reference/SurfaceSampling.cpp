@@ -25,11 +25,13 @@ namespace {
 // Weighted sample elimination (Yuksel 2015, "Sample Elimination for Generating Poisson
 // Disk Sample Sets", Computer Graphics Forum 34(2)):
 // - r_max, the largest Poisson-disk radius N points can have on an area A (hexagonal
-//   packing, §3): r_max = √(A / (2√3 N)) in 2D, used with A the surface area since the
-//   points live on a surface (as the author's cySampleElim does for surfaces in 3D);
-// - the weight of a neighbour at distance d < 2 r_max: w = (1 − d̂ / (2 r_max))^α, α = 8;
-// - weight limiting (§4): d̂ = max(d, d_min), d_min = 2 r_max β (1 − (N/M)^γ),
-//   β = 0.65, γ = 1.5, so that close pairs among the M = 5N candidates do not dominate.
+//   packing of discs of radius r_max): r_max = √(A / (2√3 N)) in 2D, used with A the
+//   surface area since the points live on a surface (as the author's cySampleElim,
+//   GetMaxPoissonDiskRadius with 2 dimensions, does for surfaces in 3D);
+// - the weight of a neighbour at distance d < 2 r_max (the neighbour radius is twice
+//   r_max, the packing's nearest-neighbour distance): w = (1 − d̂ / (2 r_max))^α, α = 8;
+// - weight limiting: d̂ = max(d, d_min), d_min = 2 r_max β (1 − (N/M)^γ), β = 0.65,
+//   γ = 1.5, so that close pairs among the M = 5N candidates do not dominate.
 constexpr int kCandidatesPerPoint = 5;
 constexpr double kBeta = 0.65, kGamma = 1.5;
 
@@ -421,7 +423,7 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
   for (std::uint32_t i = 0; i < M; ++i) hot[i] = {cand[i].p, float(u[i])};
 
   // Eliminate the M − N candidates with the largest weight, one at a time, removing each
-  // one's weight from its neighbours (Yuksel 2015, §3). The queue is lazy: an entry's key
+  // one's weight from its neighbours (Yuksel 2015). The queue is lazy: an entry's key
   // is the weight its candidate had when it was queued, an upper bound of its weight now;
   // a popped entry whose key is stale goes back with the current weight, and one whose
   // key is current is the true maximum (to the queue's resolution; ties in queue order).
