@@ -364,7 +364,8 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
                                 " points need more candidates than 32-bit indices hold");
 
   // M area-uniform candidates: a triangle in proportion to its area, then a uniform point
-  // in it by the square-root map (b1, b2) = (√u (1 − v), √u v) (Osada et al. 2002, §4.2).
+  // in it by the square-root map (b1, b2) = (√u (1 − v), √u v) (Osada et al. 2002,
+  // "Shape distributions", ACM TOG 21(4)).
   profiles::Xoshiro256ss rng(options.seed);
   std::vector<Candidate> cand(M);
   for (Candidate& c : cand) {
