@@ -144,8 +144,9 @@ std::int32_t PointOctree::build(std::uint32_t first, std::uint32_t count, glm::d
     }
     // Every point has the same area, so the area-weighted means are plain means.
     const glm::dvec3 axis = glm::length(sum_n) > 0.0 ? glm::normalize(sum_n) : glm::dvec3(0.0);
-    // The representative position is weighted by irradiance (summed over channels), as
-    // in pbrt-v2's octree for Jensen & Buhler's method: then the first-order term of
+    // The representative position is weighted by irradiance, as in pbrt-v2's octree for
+    // Jensen & Buhler's method (which weights by luminance; here the channel sum, so no
+    // colour space is assumed): then the first-order term of
     // Σ_i K(|x − x_i|) E_i about it, ∇K · Σ (x_i − c) E_i, vanishes (for each channel
     // when the irradiance has one spectral shape across the node). The second-order term
     // uses the spread M = Σ w_i (x_i − c)(x_i − c)ᵀ / Σ w_i with the same weights.
