@@ -25,19 +25,53 @@ bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-// K E A of one point (or of a node as one point): the far-side rule of the header.
-inline glm::dvec3 contribution(const glm::vec3& p, const glm::vec3& n, const glm::vec3& e,
-                               double area, const glm::dvec3& x_o, const glm::dvec3& n_o,
-                               bool through, const ScatterKernel& k) {
-  const glm::dvec3 v = glm::dvec3(p) - x_o;
-  glm::dvec3 K;
-  if (through && double(n.x) * n_o.x + double(n.y) * n_o.y + double(n.z) * n_o.z < 0.0) {
-    K = k.transmit(glm::length(glm::cross(v, n_o)));  // ρ: distance to the normal line
-  } else {
-    K = k.reflect(glm::length(v));
+// Sums points one by one: those in the near field (reflected, closer than ρ) into the
+// ratio estimate of PointOctree.h, the others straight into `far`.
+class NearField {
+ public:
+  NearField(const glm::dvec3& x, const glm::dvec3& n_o, bool through, const ScatterKernel& k,
+            double area, bool normalize)
+      : x_(x), n_o_(n_o), through_(through), k_(k), area_(area) {
+    const double r = normalize ? k.near_radius() : 0.0;
+    radius2 = r * r;
   }
-  return K * glm::dvec3(e) * area;
-}
+  void add(const IrradiancePoint& p, glm::dvec3& far) {
+    const glm::dvec3 v = glm::dvec3(p.position_mm) - x_;
+    const glm::dvec3 n(p.normal);
+    if (through_ && glm::dot(n, n_o_) < 0.0) {
+      far += k_.transmit(glm::length(glm::cross(v, n_o_))) * glm::dvec3(p.irradiance) * area_;
+      return;
+    }
+    const double d2 = glm::dot(v, v);
+    const glm::dvec3 K = k_.reflect(std::sqrt(d2));
+    // The far face of a part thinner than ρ faces away: it stays out of the ratio
+    // (its area is not part of the disc the near integral stands for).
+    if (d2 < radius2 && glm::dot(n, n_o_) > -0.5) {
+      ke_ += K * glm::dvec3(p.irradiance) * area_;
+      ka_ += K * area_;
+    } else {
+      far += K * glm::dvec3(p.irradiance) * area_;
+    }
+  }
+  // The near field's estimate: Σ K E A scaled to an even density, per channel. When the
+  // near points cover less than a quarter of the disc's weight (x_o away from the
+  // surface, a sliver of geometry), their plain sum.
+  glm::dvec3 total() const {
+    glm::dvec3 out = ke_;
+    const glm::dvec3& target = k_.near_integral();
+    for (int c = 0; c < 3; ++c)
+      if (ka_[c] > 0.25 * target[c]) out[c] = ke_[c] * (target[c] / ka_[c]);
+    return out;
+  }
+  double radius2 = 0.0;
+
+ private:
+  glm::dvec3 x_, n_o_;
+  bool through_;
+  const ScatterKernel& k_;
+  double area_;
+  glm::dvec3 ke_{0.0}, ka_{0.0};
+};
 
 }  // namespace
 
@@ -226,6 +260,7 @@ glm::dvec3 PointOctree::gather(const glm::vec3& x_mm, const glm::vec3& normal,
   const double cull2 = through ? std::numeric_limits<double>::infinity()
                                : k.support_radius() * k.support_radius();
 
+  NearField near(x, n_o, through, k, point_area_, options_.normalize_near);
   std::array<std::int32_t, kStackSize> stack;
   std::size_t top = 0;
   stack[top++] = 0;
@@ -239,23 +274,19 @@ glm::dvec3 PointOctree::gather(const glm::vec3& x_mm, const glm::vec3& normal,
     if (box2 > 0.0) {  // x outside the box
       const glm::dvec3 c(node.centroid);
       const double dist2 = glm::dot(c - x, c - x);
-      if (double(node.area) < eps * dist2 && (!through || one_side(node, n_o))) {
+      if (box2 >= near.radius2 && double(node.area) < eps * dist2 && (!through || one_side(node, n_o))) {
         sum += node_contribution(node, x, n_o, through, k);
         continue;
       }
     }
     if (node.leaf) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-        const IrradiancePoint& p = points_[i];
-        sum += contribution(p.position_mm, p.normal, p.irradiance, point_area_, x, n_o,
-                            through, k);
-      }
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) near.add(points_[i], sum);
     } else {
       for (int o = 7; o >= 0; --o)
         if (node.children[o] >= 0) stack[top++] = node.children[o];
     }
   }
-  return sum;
+  return sum + near.total();
 }
 
 // True when every point of the node faces the same way relative to n_o, so that one far-
@@ -278,9 +309,9 @@ glm::dvec3 PointOctree::gather_brute_force(const glm::vec3& x_mm, const glm::vec
   const glm::dvec3 n_o = nlen > 0.0 ? glm::dvec3(normal) / nlen : glm::dvec3(0.0, 0.0, 1.0);
   const bool through = k.has_transmittance();
   glm::dvec3 sum(0.0);
-  for (const IrradiancePoint& p : points_)
-    sum += contribution(p.position_mm, p.normal, p.irradiance, point_area_, x, n_o, through, k);
-  return sum;
+  NearField near(x, n_o, through, k, point_area_, options_.normalize_near);
+  for (const IrradiancePoint& p : points_) near.add(p, sum);
+  return sum + near.total();
 }
 
 }  // namespace sss::reference

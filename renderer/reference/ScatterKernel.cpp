@@ -264,6 +264,22 @@ ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_a
   };
   reflect_ = build(false);
   if (has_transmittance_) transmit_ = build(true);
+  // ∫_0^ρ 2πd K(d) dd through the table, with a break at the kink d = a.
+  near_radius_ = kNearSpacings * std::sqrt(point_area_mm2);
+  const auto ring = [&](double lo, double hi) {
+    const profiles::GaussLegendreRule& gl = profiles::gauss_legendre(16);
+    glm::dvec3 sum(0.0);
+    const int panels = 32;
+    for (int p = 0; p < panels; ++p) {
+      const double p0 = lo + (hi - lo) * p / panels, p1 = lo + (hi - lo) * (p + 1) / panels;
+      for (std::size_t i = 0; i < gl.nodes.size(); ++i) {
+        const double d = 0.5 * (p0 + p1) + 0.5 * (p1 - p0) * gl.nodes[i];
+        sum += 0.5 * (p1 - p0) * gl.weights[i] * 2.0 * std::numbers::pi * d * reflect(d);
+      }
+    }
+    return sum;
+  };
+  near_integral_ = ring(0.0, std::min(a, near_radius_)) + ring(std::min(a, near_radius_), near_radius_);
 }
 
 glm::dvec3 ScatterKernel::Table::eval(double d) const {

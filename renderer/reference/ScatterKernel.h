@@ -64,6 +64,12 @@ class ScatterKernel {
   Jet transmit_jet(double rho_mm) const;
   bool has_transmittance() const { return has_transmittance_; }
   double support_radius() const { return support_mm_; }
+  // The near field of the octree's ratio estimate (PointOctree.h): points closer than
+  // near_radius() = kNearSpacings · √A (4: about 50 points), and ∫_0^ρ 2πd K(d) dd over that disc, what the
+  // near points' Σ K A would be for a perfectly even point density on a flat surface.
+  static constexpr double kNearSpacings = 4.0;
+  double near_radius() const { return near_radius_; }
+  const glm::dvec3& near_integral() const { return near_integral_; }
   double point_area() const { return point_area_mm2_; }
 
  private:
@@ -81,6 +87,8 @@ class ScatterKernel {
   Table reflect_, transmit_;
   bool has_transmittance_ = false;
   double support_mm_ = 0.0;
+  double near_radius_ = 0.0;
+  glm::dvec3 near_integral_{0.0};
   double point_area_mm2_ = 0.0;
 };
 
