@@ -1,0 +1,283 @@
+// The physics half of the golden-frame suite (issue 4): every real-time mode against the
+// CPU reference (renderer/reference), scene by scene, at small sizes on lavapipe.
+//
+// For each case the GPU frame and the reference image (linear radiance, EXR-equivalent)
+// are compared with image::compare over the pixels where both have geometry; the case
+// fails when its relative RMSE exceeds the limit in tests/golden/reference/tolerances.json,
+// where each limit sits beside the value measured when it was set and the reason that
+// mode deviates from the exact answer. On failure the GPU frame, the reference and an
+// error heat map are written to golden-out/.
+//
+// Every run writes golden-out/REPORT.md (every metric for every scene x mode x model,
+// and the time of each); tests/golden/bless.sh (SSS_BLESS=1) also refreshes the measured
+// values in tolerances.json and writes tests/golden/REPORT.md, the accuracy statement the
+// README links.
+//
+// All cases run in one test so that the report is one table (ctest runs each test in its
+// own process).
+#include "RenderTest.h"
+
+#include "renderer/image/HeatMap.h"
+#include "renderer/image/Metrics.h"
+#include "renderer/reference/ReferenceRenderer.h"
+#include "renderer/scene/BuiltinScenes.h"
+
+#include "profiles/Profile.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#ifdef SSS_SOURCE_DIR
+
+namespace sss::renderer::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kGoldenDir = fs::path(SSS_SOURCE_DIR) / "tests" / "golden";
+
+// The suite's reference density: 1 reduced mean free path between irradiance points.
+// The disc-averaged kernel keeps that within ~1% of converged on smooth lighting
+// (tests/reference/test_reference_edge.cpp measures the edge at 0.5 and 1 mfp), far below
+// every real-time mode's deviation here.
+constexpr double kReferenceSpacingMfp = 1.0;
+
+struct SuiteCase {
+  const char* scene;
+  SssKind kind;
+  const char* model;  // nullptr: the scene's own
+  std::uint32_t width, height;
+};
+
+const char* kind_name(SssKind k) { return k == SssKind::Separable ? "separable" : "gaussians"; }
+
+std::string short_scene(const std::string& scene) {
+  if (scene.rfind("builtin:", 0) == 0) return scene.substr(8);
+  return fs::path(scene).stem().string();
+}
+
+std::string case_key(const SuiteCase& c, const std::string& model) {
+  return short_scene(c.scene) + "/" + kind_name(c.kind) + "/" + model;
+}
+
+scene::Scene load(const std::string& name, const char* model) {
+  auto loaded = scene::load_scene(name);
+  if (auto* e = std::get_if<scene::LoadError>(&loaded)) throw std::runtime_error(e->what());
+  scene::Scene s = std::move(std::get<scene::Scene>(loaded));
+  scene::add_camera_if_missing(s);
+  scene::add_light_if_missing(s);
+  if (model) {
+    const auto m = profiles::parse_model(model);
+    if (!m) throw std::runtime_error(std::string("bad model ") + model);
+    for (scene::Material& mat : s.materials) {
+      if (!mat.sss.enabled) continue;
+      auto made = scene::make_sss_material(mat.sss.source, *m, mat.sss.gaussians, mat.sss.scale,
+                                           mat.sss.albedo_mode);
+      if (auto* e = std::get_if<FieldError>(&made)) throw std::runtime_error(e->what());
+      mat.sss = std::get<scene::SssMaterial>(made);
+    }
+  }
+  return s;
+}
+
+std::string model_of(const scene::Scene& s) {
+  std::string out;
+  for (const scene::Material& m : s.materials)
+    if (m.sss.enabled) {
+      const std::string name(profiles::model_name(m.sss.model));
+      if (out.find(name) == std::string::npos) out += (out.empty() ? "" : "+") + name;
+    }
+  return out.empty() ? "none" : out;
+}
+
+// Silhouette pixels (geometry next to background in either image) are left out: there the
+// rasterizer and the ray tracer may pick different triangles for the pixel centre, and a
+// grazing GGX highlight on one of them is a single-pixel spike (measured up to 4.6 in
+// radiance on builtin:bunny's ear) that says nothing about scattering.
+void mask_silhouettes(image::Image& a, image::Image& b) {
+  const int w = a.width, h = a.height;
+  std::vector<std::uint8_t> geometry(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      geometry[std::size_t(y) * w + x] =
+          a.pixel(x, y)[3] > image::kGeometryAlpha && b.pixel(x, y)[3] > image::kGeometryAlpha;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      bool edge = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;  // the frame's border is not a silhouette
+          if (!geometry[std::size_t(yy) * w + xx]) edge = true;
+        }
+      if (edge) a.pixel(x, y)[3] = b.pixel(x, y)[3] = 0.0f;
+    }
+}
+
+struct Row {
+  std::string key, scene, mode, model;
+  std::uint32_t width = 0, height = 0;
+  image::Metrics m;
+  double limit = 0.0;
+  bool pass = false;
+  double gpu_ms = 0.0, reference_ms = 0.0;
+  std::size_t points = 0;
+};
+
+std::string fixed(double v, int digits) {
+  if (std::isinf(v)) return "inf";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+void write_report(const fs::path& path, const std::vector<Row>& rows, const nlohmann::json& tolerances) {
+  std::ostringstream md;
+  md << "# Real-time frames against the CPU reference\n\n"
+        "Written by `ReferenceSuiteTest` (tests/renderer/ReferenceSuiteTest.cpp); refresh with\n"
+        "`tests/golden/bless.sh`. Each row renders one scene with one real-time mode on lavapipe\n"
+        "and compares it with the CPU reference (renderer/reference: Embree rays, irradiance\n"
+        "points "
+     << kReferenceSpacingMfp
+     << " reduced mean free path apart, the Jensen–Buhler octree, the exact profile of\n"
+        "the model, no Gaussian fit), pixel for pixel, over the pixels where both images have\n"
+        "geometry, silhouette pixels left out. Linear radiance; SSIM on the tonemapped images.\n\n"
+        "Metrics (renderer/image/Metrics.h): relative RMSE = √(Σ(a−b)²/Σb²), PSNR against the\n"
+        "reference's peak, max abs error in radiance units, `>5%` = fraction of pixels whose\n"
+        "error exceeds 5% of the peak, SSIM (Wang et al. 2004). *limit* is the test's bound on\n"
+        "the relative RMSE (tests/golden/reference/tolerances.json, with the reason each mode\n"
+        "deviates). Times: GPU = lavapipe frame (CPU Vulkan, sum of the pass timestamps),\n"
+        "reference = whole CPU render, both on this machine's cores in the same run.\n\n"
+        "| scene | mode | model | size | rel. RMSE | limit | RMSE | PSNR dB | max abs | >5% | SSIM | GPU ms | reference ms | reference / GPU |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Row& r : rows)
+    md << "| " << r.scene << " | " << r.mode << " | " << r.model << " | " << r.width << "×" << r.height
+       << " | " << fixed(100.0 * r.m.relative_rmse, 2) << "% | " << fixed(100.0 * r.limit, 1) << "%"
+       << (r.pass ? "" : " **FAIL**") << " | " << fixed(r.m.rmse, 5) << " | " << fixed(r.m.psnr_db, 1)
+       << " | " << fixed(r.m.max_abs_error, 4) << " | " << fixed(100.0 * r.m.fraction_over_threshold, 1)
+       << "% | " << fixed(r.m.ssim, 4) << " | " << fixed(r.gpu_ms, 1) << " | " << fixed(r.reference_ms, 0)
+       << " | " << fixed(r.reference_ms / std::max(r.gpu_ms, 1e-3), 0) << "× |\n";
+  md << "\n## Why each mode deviates\n\n";
+  for (auto it = tolerances.begin(); it != tolerances.end(); ++it) {
+    if (it.key().rfind("_", 0) == 0) continue;
+    md << "- **" << it.key() << "**: " << it.value().value("why", std::string("(not written)")) << "\n";
+  }
+  std::ofstream f(path);
+  f << md.str();
+}
+
+class ReferenceSuiteTest : public RenderTest {};
+
+TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
+  const std::string textured = (fs::path(SSS_SOURCE_DIR) / "assets" / "textured_tile.glb").string();
+  const std::vector<SuiteCase> cases = {
+      {"builtin:edge", SssKind::Separable, nullptr, 128, 16},
+      {"builtin:edge", SssKind::Gaussians, nullptr, 128, 16},
+      {"builtin:sphere", SssKind::Separable, nullptr, 160, 90},
+      {"builtin:sphere", SssKind::Gaussians, nullptr, 160, 90},
+      {"builtin:sphere", SssKind::Separable, "pbd", 160, 90},
+      {"builtin:sphere", SssKind::Gaussians, "pbd", 160, 90},
+      {"builtin:sphere", SssKind::Gaussians, "dipole", 160, 90},
+      {"builtin:bunny", SssKind::Separable, nullptr, 160, 90},
+      {"builtin:bunny", SssKind::Gaussians, nullptr, 160, 90},
+      {"builtin:slab", SssKind::Separable, nullptr, 160, 90},
+      {"builtin:slab", SssKind::Gaussians, nullptr, 160, 90},
+      {"builtin:materials", SssKind::Separable, nullptr, 240, 135},
+      {"builtin:materials", SssKind::Gaussians, nullptr, 240, 135},
+      {textured.c_str(), SssKind::Separable, nullptr, 160, 90},
+      {textured.c_str(), SssKind::Gaussians, nullptr, 160, 90},
+  };
+  const bool bless = std::getenv("SSS_BLESS") != nullptr;
+  const fs::path tolerance_path = kGoldenDir / "reference" / "tolerances.json";
+  nlohmann::json tolerances = nlohmann::json::object();
+  {
+    std::ifstream f(tolerance_path);
+    if (f) tolerances = nlohmann::json::parse(f);
+    else ASSERT_TRUE(bless) << "missing " << tolerance_path << ": run tests/golden/bless.sh";
+  }
+  const fs::path out = fs::current_path() / "golden-out";
+  fs::create_directories(out);
+
+  std::map<std::string, reference::ReferenceImage> references;  // by scene + model
+  std::vector<Row> rows;
+  for (const SuiteCase& c : cases) {
+    const scene::Scene s = load(c.scene, c.model);
+    Row row;
+    row.scene = short_scene(c.scene);
+    row.mode = kind_name(c.kind);
+    row.model = model_of(s);
+    row.key = case_key(c, row.model);
+    row.width = c.width;
+    row.height = c.height;
+    SCOPED_TRACE(row.key);
+
+    const std::string ref_key = std::string(c.scene) + "|" + row.model;
+    if (!references.count(ref_key)) {
+      reference::ReferenceOptions ro;
+      ro.width = c.width;
+      ro.height = c.height;
+      ro.spacing_mfp = kReferenceSpacingMfp;
+      references[ref_key] = reference::render_reference(s, ro);
+    }
+    const reference::ReferenceImage& ref = references[ref_key];
+    row.reference_ms = ref.stats.total_ms;
+    row.points = ref.stats.points;
+
+    const Frame f = render(s, small_options(c.width, c.height, SssMode::Screen, c.kind), 3);
+    row.gpu_ms = f.stats.gpu_ms;
+    image::CompareOptions co;
+    co.encoding = image::Encoding::Linear;
+    image::Image gpu_hdr = f.hdr, ref_hdr = ref.hdr;
+    mask_silhouettes(gpu_hdr, ref_hdr);
+    row.m = image::compare(gpu_hdr, ref_hdr, co);
+
+    if (bless) {
+      nlohmann::json& t = tolerances[row.key];
+      t["measured_relative_rmse"] = std::round(row.m.relative_rmse * 1e4) / 1e4;
+      if (!t.contains("limit_relative_rmse"))
+        t["limit_relative_rmse"] = std::ceil(row.m.relative_rmse * 1.25 * 100.0 + 0.5) / 100.0;
+      if (!t.contains("why")) t["why"] = "(to be written: measured at bless time)";
+    }
+    ASSERT_TRUE(tolerances.contains(row.key)) << "no tolerance for " << row.key << " in " << tolerance_path;
+    row.limit = tolerances[row.key].at("limit_relative_rmse").get<double>();
+    row.pass = row.m.relative_rmse <= row.limit;
+    EXPECT_LE(row.m.relative_rmse, row.limit)
+        << row.key << ": relative RMSE " << row.m.relative_rmse << " against the reference exceeds "
+        << row.limit << " (measured " << tolerances[row.key].value("measured_relative_rmse", -1.0)
+        << " when set); GPU, reference and heat map written to " << out;
+    std::printf("[ %-36s ] rel RMSE %6.2f%% (limit %5.1f%%) SSIM %.4f  GPU %.1f ms  reference %.0f ms (%zu points)\n",
+                row.key.c_str(), 100.0 * row.m.relative_rmse, 100.0 * row.limit, row.m.ssim, row.gpu_ms,
+                row.reference_ms, row.points);
+    if (!row.pass || bless) {
+      std::string file = row.key;
+      for (char& ch : file)
+        if (ch == '/') ch = '_';
+      image::write_png((out / (file + ".gpu.png")).string(), f.display);
+      image::write_png((out / (file + ".reference.png")).string(), ref.display);
+      const std::vector<float> err = image::pixel_errors(gpu_hdr, ref_hdr);
+      image::write_png((out / (file + ".diff.png")).string(),
+                       image::render_heatmap(err, image::geometry_mask(gpu_hdr, ref_hdr), f.hdr.width,
+                                             f.hdr.height, std::max(row.m.max_abs_error, 1e-6)));
+    }
+    rows.push_back(row);
+  }
+  write_report(out / "REPORT.md", rows, tolerances);
+  if (bless) {
+    std::ofstream(tolerance_path) << tolerances.dump(2) << "\n";
+    write_report(kGoldenDir / "REPORT.md", rows, tolerances);
+  }
+}
+
+}  // namespace
+}  // namespace sss::renderer::testing
+
+#endif  // SSS_SOURCE_DIR
