@@ -4,6 +4,7 @@
 // B is the reference. The metrics are defined in renderer/image/Metrics.h. The command-line
 // contract is DESIGN.md §4. Exit codes: 0 the images agree within the limits, 3 they do
 // not, 2 bad usage or input, 1 a runtime failure (e.g. the heat map cannot be written).
+#include "CliSupport.h"
 #include "ExitCodes.h"
 #include "Report.h"
 
@@ -31,20 +32,13 @@ using namespace sss::app;
 
 namespace {
 
-int usage(const std::string& message) {
-  std::cerr << "sss-compare: error: " << message << "\nRun 'sss-compare --help' for usage.\n";
-  return kExitUsage;
-}
+int usage(const std::string& message) { return usage_error("sss-compare", message); }
+
+bool is_png_name(const std::string& s) { return lower_extension(s) == ".png"; }
 
 int input_error(const std::string& message) {
   std::cerr << "sss-compare: error: " << message << '\n';
   return kExitUsage;
-}
-
-bool ends_with_png(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s.size() >= 4 && s.compare(s.size() - 4, 4, ".png") == 0;
 }
 
 // read_image chooses by magic bytes; so does this (an EXR holds linear values).
@@ -106,13 +100,7 @@ int main(int argc, char** argv) {
   app.add_option("--threshold", a.threshold,
                  "Per-pixel error threshold, a fraction of the peak (default 0.05)");
   app.add_option("--exposure", a.exposure, "Exposure when tonemapping an EXR (default 1)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    return usage(e.what());
-  }
+  if (const auto stop = parse_command_line(app, argc, argv, "sss-compare")) return *stop;
 
   auto non_negative = [](const char* name, double v) -> std::optional<int> {
     if (std::isfinite(v) && v >= 0.0) return std::nullopt;
@@ -135,7 +123,7 @@ int main(int argc, char** argv) {
     return usage("--exposure: expected a finite number > 0, got " + std::to_string(a.exposure));
   if (heatmap_max->count() && !(std::isfinite(a.heatmap_max) && a.heatmap_max > 0.0))
     return usage("--heatmap-max: expected a finite number > 0, got " + std::to_string(a.heatmap_max));
-  if (heatmap->count() && !ends_with_png(a.heatmap))
+  if (heatmap->count() && !is_png_name(a.heatmap))
     return usage("--heatmap: expected a .png file name, got '" + a.heatmap + "'");
 
   // Inputs: read, same size, bring to one encoding.

@@ -1,5 +1,6 @@
 // sss-fit: diffusion profiles, their sum-of-Gaussians fits, and validation against Monte
 // Carlo. The command-line contract is DESIGN.md §4.
+#include "CliSupport.h"
 #include "Commands.h"
 
 #include <CLI/CLI.hpp>
@@ -71,8 +72,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "sss-fit: error: " << e.what() << "\nRun 'sss-fit --help' for usage.\n";
-    return kExitUsage;
+    return usage_error("sss-fit", e.what());
   }
 
   try {

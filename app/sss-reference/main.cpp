@@ -2,6 +2,7 @@
 //   sss-reference SCENE --out FILE.exr [--width W] [--height H] [--model M] [MEDIUM] ...
 // Errors exit 2 (usage, input) or 1 (runtime); Ctrl-C stops the render, writes nothing
 // and exits 130.
+#include "CliSupport.h"
 #include "MaterialOverrides.h"
 
 #include "renderer/image/AtomicFile.h"
@@ -35,19 +36,7 @@ extern "C" void on_interrupt(int) {
   std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
 
-int usage(const std::string& message) {
-  std::cerr << "sss-reference: error: " << message << "\nRun 'sss-reference --help' for usage.\n";
-  return kExitUsage;
-}
-
-std::string lower_extension(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos) return {};
-  std::string ext = path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
+int usage(const std::string& message) { return usage_error("sss-reference", message); }
 
 // A one-line bar redrawn in place on a terminal; on a pipe or file, one line per stage.
 class ProgressBar {
@@ -126,13 +115,7 @@ int main(int argc, char** argv) {
   app.add_option("--exposure", exposure, "Exposure of the PNG (default 1)");
   app.add_flag("--quiet", quiet, "No progress bar");
   app.add_flag("--stats", stats, "Print point counts and stage times on stderr");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    return usage(e.what());
-  }
+  if (const auto stop = parse_command_line(app, argc, argv, "sss-reference")) return *stop;
   const std::string ext = lower_extension(out);
   if (ext != ".exr" && ext != ".png") return usage("--out: expected a .exr or .png file name, got '" + out + "'");
   if (!png.empty() && lower_extension(png) != ".png") return usage("--png: expected a .png file name, got '" + png + "'");

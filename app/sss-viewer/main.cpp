@@ -1,6 +1,7 @@
 // sss-viewer: renders a scene with the real-time renderer. Headless only for now:
 //   sss-viewer [SCENE] --headless --out FILE.png|FILE.exr [options]
 // The command-line contract is DESIGN.md §4; errors exit 2 (usage, input) or 1 (runtime).
+#include "CliSupport.h"
 #include "ViewerArgs.h"
 
 #include "renderer/Renderer.h"
@@ -20,19 +21,7 @@ using namespace sss::app;
 
 namespace {
 
-int usage(const std::string& message) {
-  std::cerr << "sss-viewer: error: " << message << "\nRun 'sss-viewer --help' for usage.\n";
-  return kExitUsage;
-}
-
-std::string lower_extension(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos) return {};
-  std::string ext = path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
+int usage(const std::string& message) { return usage_error("sss-viewer", message); }
 
 void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
   const renderer::FrameStats& s = r.stats();
@@ -66,13 +55,7 @@ int main(int argc, char** argv) {
   app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1)");
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    return usage(e.what());
-  }
+  if (const auto stop = parse_command_line(app, argc, argv, "sss-viewer")) return *stop;
 
   if (!a.headless)
     return usage("the windowed viewer is not available yet; use --headless --out FILE.png|FILE.exr");

@@ -7,6 +7,8 @@
 // minimal uncompressed OpenEXR encoder, independent of the code under test.
 #ifdef SSS_COMPARE_EXE
 
+#include "CliRun.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -180,17 +182,8 @@ void write_exr(const fs::path& path, const Pixels& p, bool with_alpha = true) {
   std::ofstream(path, std::ios::binary) << exr;
 }
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using sss::testing::CliRun;
+using sss::testing::slurp;
 
 // A fresh folder per test, removed when the test ends.
 class SssCompare : public ::testing::Test {
@@ -207,19 +200,7 @@ class SssCompare : public ::testing::Test {
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
   CliRun run(const std::string& args) const {
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string cmd = std::string(SSS_COMPARE_EXE) + " " + args + " 2>" + err.string();
-    CliRun r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-    const int status = ::pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.err = slurp(err);
-    fs::remove(err);
-    return r;
+    return sss::testing::run_cli(SSS_COMPARE_EXE, args, dir_ / "stderr.txt");
   }
 
   // Only temporaries and what the test wrote itself may be in the folder.

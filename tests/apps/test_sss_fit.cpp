@@ -1,6 +1,8 @@
 // Every documented sss-fit command and every documented error (DESIGN.md §4): exit code
 // 0 on success, 2 for bad usage or input with the field named on stderr, 1 for runtime
 // failures; --json prints exactly one JSON document.
+#include "CliRun.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -17,40 +19,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+using sss::testing::CliRun;
+using sss::testing::slurp;
 
 fs::path scratch_dir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("sss-fit-test-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
+  static const fs::path dir = sss::testing::scratch_dir("sss-fit-test");
   return dir;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 CliRun sss_fit(const std::string& args) {
-  const fs::path err = scratch_dir() / "stderr.txt";
-  const std::string cmd = std::string(SSS_FIT_EXE) + " " + args + " 2>" + err.string();
-  CliRun r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = slurp(err);
-  return r;
+  return sss::testing::run_cli(SSS_FIT_EXE, args, scratch_dir() / "stderr.txt");
 }
 
 nlohmann::json parse_only_json(const std::string& s) {

@@ -3,6 +3,8 @@
 // and never a partial output file.
 #ifdef SSS_REFERENCE_EXE
 
+#include "CliRun.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -23,46 +25,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CliResult {
-  int code = -1;
-  std::string out, err;
-};
+using sss::testing::CliRun;
+using sss::testing::slurp;
 
 fs::path scratch() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("sss-reference-test-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
+  static const fs::path dir = sss::testing::scratch_dir("sss-reference-test");
   return dir;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-CliResult reference(const std::string& args) {
-  const fs::path err = scratch() / "stderr.txt";
-  const std::string cmd = std::string(SSS_REFERENCE_EXE) + " " + args + " 2>" + err.string();
-  CliResult r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = slurp(err);
-  return r;
+CliRun reference(const std::string& args) {
+  return sss::testing::run_cli(SSS_REFERENCE_EXE, args, scratch() / "stderr.txt");
 }
 
 bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
 TEST(SssReferenceApp, HelpListsTheOptions) {
-  const CliResult r = reference("--help");
+  const CliRun r = reference("--help");
   EXPECT_EQ(r.code, 0);
   for (const char* opt : {"--out", "--width", "--model", "--spacing", "--error-bound", "--brute-force",
                           "--threads", "--diffuse-only", "--preset"})
@@ -71,7 +49,7 @@ TEST(SssReferenceApp, HelpListsTheOptions) {
 
 TEST(SssReferenceApp, RendersExrAndPng) {
   const fs::path exr = scratch() / "sphere.exr", png = scratch() / "sphere.png";
-  const CliResult r = reference("builtin:sphere --out " + exr.string() + " --png " + png.string() +
+  const CliRun r = reference("builtin:sphere --out " + exr.string() + " --png " + png.string() +
                           " --width 32 --height 18 --spacing 2 --stats");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(starts_with(slurp(exr), "\x76\x2f\x31\x01"));  // OpenEXR magic
@@ -82,7 +60,7 @@ TEST(SssReferenceApp, RendersExrAndPng) {
 
 TEST(SssReferenceApp, MaterialOptionsOverrideTheScene) {
   const fs::path exr = scratch() / "marble.exr";
-  const CliResult r = reference("builtin:sphere --out " + exr.string() +
+  const CliRun r = reference("builtin:sphere --out " + exr.string() +
                           " --width 16 --height 9 --spacing 2 --preset marble --model pbd --quiet");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;  // --quiet: no progress
@@ -106,7 +84,7 @@ TEST(SssReferenceApp, BadInputExitsTwoNamingTheProblem) {
       {"builtin:sphere --out " + out.string() + " --error-bound -1", "error bound"},
   };
   for (const Case& c : cases) {
-    const CliResult r = reference(c.args);
+    const CliRun r = reference(c.args);
     EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
     EXPECT_NE(r.err.find(c.expect), std::string::npos) << c.args << "\n" << r.err;
   }
@@ -114,7 +92,7 @@ TEST(SssReferenceApp, BadInputExitsTwoNamingTheProblem) {
 }
 
 TEST(SssReferenceApp, UnwritableOutputIsARuntimeFailure) {
-  const CliResult r = reference("builtin:sphere --out /nonexistent-dir/x.exr --width 8 --height 8 --spacing 3 --quiet");
+  const CliRun r = reference("builtin:sphere --out /nonexistent-dir/x.exr --width 8 --height 8 --spacing 3 --quiet");
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("/nonexistent-dir/x.exr"), std::string::npos) << r.err;
 }
