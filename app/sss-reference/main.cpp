@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   std::string scene_name = std::string(scene::kDefaultScene);
   std::string out, png;
   int width = 640, height = 360, threads = 0;
-  double spacing = 0.5, error_bound = 0.1;
+  double spacing = 0.5, error_bound = 0.3;
   std::size_t max_points = 8'000'000;
   std::uint64_t seed = 1;
   float exposure = 1.0f;
@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
                  "more points and a more accurate sum)");
   app.add_option("--max-points", max_points, "Refuse to spread more points than this (default 8000000)");
   app.add_option("--error-bound", error_bound,
-                 "Jensen-Buhler maximum solid angle (sr) of an octree node used whole (default 0.1; "
+                 "Jensen-Buhler maximum solid angle (sr) of an octree node used whole (default 0.3; "
                  "0 descends to every point)");
   app.add_flag("--brute-force", brute, "Sum every irradiance point at every pixel (no octree)");
   app.add_flag("--diffuse-only", diffuse_only,

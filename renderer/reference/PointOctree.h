@@ -59,7 +59,7 @@ struct IrradiancePoint {
 };
 
 struct OctreeOptions {
-  double max_solid_angle = 0.1;  // ε of Jensen & Buhler, steradians; 0: always descend
+  double max_solid_angle = 0.3;  // ε of Jensen & Buhler, steradians; 0: always descend
   int leaf_points = 8;           // a node with at most this many points is a leaf
   int max_depth = 24;
   bool normalize_near = true;    // the near-field ratio estimate above

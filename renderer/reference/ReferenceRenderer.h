@@ -40,7 +40,7 @@ struct ReferenceOptions {
   float exposure = 1.0f;         // display image only
   double spacing_mfp = 0.5;      // point spacing, in smallest reduced mean free paths
   std::size_t max_points = 8'000'000;  // over all groups
-  double max_solid_angle = 0.1;  // Jensen–Buhler ε (steradians)
+  double max_solid_angle = 0.3;  // Jensen–Buhler ε (steradians); see PointOctree.h
   bool brute_force = false;      // sum every point (tests and benchmarks of the octree)
   bool diffuse_only = false;     // hdr = M/π (before albedo), no specular, opaque surfaces 0
   int threads = 0;               // 0: every hardware thread
