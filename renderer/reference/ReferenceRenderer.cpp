@@ -78,6 +78,15 @@ void check_options(const ReferenceOptions& o) {
   if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
 }
 
+double soup_area(const TriangleSoup& soup) {
+  double area = 0.0;
+  for (std::size_t t = 0; t < soup.triangle_count(); ++t) {
+    const glm::vec3* p = &soup.positions_mm[3 * t];
+    area += 0.5 * double(glm::length(glm::cross(p[1] - p[0], p[2] - p[0])));
+  }
+  return area;
+}
+
 double smallest_mfp(const profiles::Medium& m) {
   double mfp = std::numeric_limits<double>::infinity();
   for (int c = 0; c < 3; ++c) mfp = std::min(mfp, m.channel(c).mfp_reduced());
@@ -146,19 +155,20 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
   // Points: check the total before sampling anything.
   t0 = Clock::now();
   std::size_t planned = 0;
-  for (Group& g : groups) {
-    double area = 0.0;
-    for (std::size_t t = 0; t < g.soup.triangle_count(); ++t) {
-      const glm::vec3* p = &g.soup.positions_mm[3 * t];
-      area += 0.5 * double(glm::length(glm::cross(p[1] - p[0], p[2] - p[0])));
-    }
-    planned += std::size_t(std::ceil(area / (g.spacing_mm * g.spacing_mm)));
-  }
+  for (const Group& g : groups)
+    planned += std::size_t(std::ceil(soup_area(g.soup) / (g.spacing_mm * g.spacing_mm)));
   if (planned > o.max_points)
     throw std::invalid_argument(
         "spacing: " + std::to_string(planned) + " irradiance points at spacing " +
         message_number(o.spacing_mfp) + " mfp exceed the limit of " + std::to_string(o.max_points) +
         " (raise the spacing or the point limit)");
+  // Groups in parallel; progress is each group's fraction weighted by its share of the
+  // points, and Ctrl-C abandons the elimination loops instead of waiting for them.
+  std::vector<double> share(groups.size(), 0.0), sampled(groups.size(), 0.0);
+  for (std::size_t k = 0; k < groups.size(); ++k)
+    share[k] = double(std::ceil(soup_area(groups[k].soup) / (groups[k].spacing_mm * groups[k].spacing_mm))) /
+               double(std::max<std::size_t>(planned, 1));
+  std::mutex done_mutex;
   arena.execute([&] {
     tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t k) {
       Group& g = groups[k];
@@ -166,9 +176,20 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
       so.spacing_mm = g.spacing_mm;
       so.seed = o.seed + k;
       so.max_points = o.max_points;
+      so.progress = [&, k](double f) {
+        double total = 0.0;
+        {
+          std::lock_guard<std::mutex> lock(done_mutex);
+          sampled[k] = f;
+          for (std::size_t j = 0; j < sampled.size(); ++j) total += sampled[j] * share[j];
+        }
+        reporter.report("points", std::min(total, 1.0));
+        return !reporter.cancelled();
+      };
       g.surface = sample_surface(g.soup, so);
     });
   });
+  reporter.check();
   for (const Group& g : groups) stats.points += g.surface.points.size();
   reporter.report("points", 1.0);
   stats.sampling_ms = ms_since(t0);

@@ -431,7 +431,13 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
   for (std::size_t i = 0; i < M; ++i) u[i] *= double(scale[i]);
   BucketQueue queue(u);
   u = {};
+  const std::size_t report_every = std::max<std::size_t>(1, (M - N) / 100);
+  std::size_t next_report = M - report_every;
   for (std::size_t count = M; count > N;) {
+    if (options.progress && count <= next_report) {
+      next_report = count > report_every ? count - report_every : 0;
+      if (!options.progress(double(M - count) / double(M - N))) return SampledSurface{{}, area, 0.0};
+    }
     const auto [key, i] = queue.pop();
     queue.peek(4, [&](std::uint32_t j) {
       __builtin_prefetch(&hot[j]);

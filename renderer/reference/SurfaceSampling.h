@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace sss::reference {
@@ -46,6 +47,10 @@ struct SamplingOptions {
   double spacing_mm = 0.5;  // > 0; each point stands for spacing² of surface
   std::uint64_t seed = 1;
   std::size_t max_points = 8'000'000;  // refuse to allocate beyond this
+  // Called from the calling thread about every 1% of the elimination with the fraction
+  // of the work done; returning false abandons the sampling, and sample_surface() then
+  // returns no points (a cancelled render does not wait for it).
+  std::function<bool(double fraction)> progress;
 };
 
 struct SampledSurface {
