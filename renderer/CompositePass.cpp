@@ -18,6 +18,10 @@ vk::DescriptorSetLayoutBuilder bindings() {
 CompositePass::CompositePass(const FrameResources& resources)
     : r_(resources), program_(r_.context, bindings(), sss_spv_composite_comp, 0, 1, kName) {
   set_ = program_.allocate();
+  write_descriptors();
+}
+
+void CompositePass::write_descriptors() {
   const FrameTargets& t = r_.targets;
   const VkSampler nearest = r_.samplers.nearest.get();
   const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL;

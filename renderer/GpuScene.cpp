@@ -7,6 +7,8 @@
 
 #include <map>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace sss::renderer {
@@ -112,6 +114,18 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
     }
     meshes_.push_back(std::move(b));
   }
+}
+
+void GpuScene::set_materials(const std::vector<scene::Material>& materials) {
+  if (materials.size() != materials_.size())
+    throw std::invalid_argument("the scene has " + std::to_string(materials_.size()) +
+                                " materials, not " + std::to_string(materials.size()));
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].base_color_texture != materials_[i].base_color_texture ||
+        materials[i].normal_texture != materials_[i].normal_texture)
+      throw std::invalid_argument("material '" + materials[i].name +
+                                  "': textures cannot change on a live renderer");
+  materials_ = materials;
 }
 
 std::vector<VkDescriptorImageInfo> GpuScene::texture_descriptors() const {

@@ -43,6 +43,12 @@ class GpuScene {
   std::vector<VkDescriptorImageInfo> texture_descriptors() const;
   const std::vector<std::string>& warnings() const { return warnings_; }
 
+  // The material constants the draws push (colour, roughness, normal scale) come from
+  // `materials` from now on. Same count and the same textures as the scene's (the texture
+  // slots are not rebuilt): otherwise std::invalid_argument and nothing changes.
+  void set_materials(const std::vector<scene::Material>& materials);
+  const std::vector<scene::Material>& materials() const { return materials_; }
+
  private:
   struct MeshBuffers {
     vk::Buffer vertices;

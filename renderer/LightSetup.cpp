@@ -19,12 +19,16 @@ glm::vec3 any_up(const glm::vec3& d) {
 }  // namespace
 
 LightSetup make_light_setup(const scene::Scene& scene, std::uint32_t shadow_map_size) {
+  return make_light_setup(scene.lights, scene.bounds(), shadow_map_size);
+}
+
+LightSetup make_light_setup(const std::vector<scene::Light>& lights, const scene::Bounds& bounds,
+                            std::uint32_t shadow_map_size) {
   LightSetup out;
-  const scene::Bounds bounds = scene.bounds();
   const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
   const float radius = bounds.empty() ? 1.0f : std::max(bounds.radius(), 1e-6f);
   const float size = float(std::max(shadow_map_size, 1u));
-  for (const scene::Light& light : scene.lights) {
+  for (const scene::Light& light : lights) {
     if (out.count == shader::kMaxLights) {
       out.warnings.push_back("light '" + light.name + "' ignored: at most " +
                              std::to_string(shader::kMaxLights) + " lights are shaded");

@@ -21,5 +21,8 @@ struct LightSetup {
 };
 
 LightSetup make_light_setup(const scene::Scene& scene, std::uint32_t shadow_map_size);
+// The same for `lights` in a scene with these bounds (Renderer::set_lights).
+LightSetup make_light_setup(const std::vector<scene::Light>& lights, const scene::Bounds& bounds,
+                            std::uint32_t shadow_map_size);
 
 }  // namespace sss::renderer

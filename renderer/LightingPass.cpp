@@ -20,6 +20,10 @@ vk::DescriptorSetLayoutBuilder bindings() {
 LightingPass::LightingPass(const FrameResources& resources)
     : r_(resources), program_(r_.context, bindings(), sss_spv_lighting_comp, 0, 1, kName) {
   set_ = program_.allocate();
+  write_descriptors();
+}
+
+void LightingPass::write_descriptors() {
   const FrameTargets& t = r_.targets;
   const VkSampler nearest = r_.samplers.nearest.get();
   vk::DescriptorWriter(set_)

@@ -15,6 +15,9 @@ class LightingPass {
 
   explicit LightingPass(const FrameResources& resources);
   void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  // Points the sets at the current targets (after FrameTargets were recreated; none of
+  // them may be in use by the GPU).
+  void write_descriptors();
 
  private:
   const FrameResources& r_;

@@ -7,12 +7,18 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace sss::renderer {
 
 MaterialData build_material_data(const scene::Scene& scene, int separable_taps) {
-  if (scene.materials.size() > shader::kMaxMaterials)
-    throw std::invalid_argument("the scene has " + std::to_string(scene.materials.size()) +
+  return build_material_data(scene.materials, separable_taps);
+}
+
+MaterialData build_material_data(const std::vector<scene::Material>& materials,
+                                 int separable_taps) {
+  if (materials.size() > shader::kMaxMaterials)
+    throw std::invalid_argument("the scene has " + std::to_string(materials.size()) +
                                 " materials; the renderer supports " +
                                 std::to_string(shader::kMaxMaterials));
   if (separable_taps < 3 || separable_taps % 2 == 0 ||
@@ -20,7 +26,7 @@ MaterialData build_material_data(const scene::Scene& scene, int separable_taps) 
     throw std::invalid_argument("separable taps must be odd, 3.." +
                                 std::to_string(shader::kMaxTaps));
   MaterialData data;
-  for (const scene::Material& m : scene.materials) {
+  for (const scene::Material& m : materials) {
     shader::GpuMaterial g;
     g.surface = {0.04f * m.specular, m.metallic, m.roughness, 0.0f};
     g.reflectance = {1.0f, 1.0f, 1.0f, 0.0f};
@@ -64,6 +70,14 @@ MaterialTable::MaterialTable(const vk::Context& context, const scene::Scene& sce
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                         vk::MemoryUsage::DeviceLocal, "materials"}) {
   vk::upload_buffer(context, buffer_, std::span<const shader::GpuMaterial>(data_.gpu));
+}
+
+void MaterialTable::replace(const vk::Context& context, MaterialData data) {
+  if (data.gpu.size() != data_.gpu.size())
+    throw std::invalid_argument("MaterialTable: " + std::to_string(data.gpu.size()) +
+                                " materials replace " + std::to_string(data_.gpu.size()));
+  vk::upload_buffer(context, buffer_, std::span<const shader::GpuMaterial>(data.gpu));
+  data_ = std::move(data);
 }
 
 }  // namespace sss::renderer

@@ -34,10 +34,17 @@ struct MaterialData {
   int max_gaussians = 0;  // over SSS materials
 };
 MaterialData build_material_data(const scene::Scene& scene, int separable_taps);
+MaterialData build_material_data(const std::vector<scene::Material>& materials,
+                                 int separable_taps);
 
 class MaterialTable {
  public:
   MaterialTable(const vk::Context& context, const scene::Scene& scene, int separable_taps);
+
+  // Uploads `data` (from build_material_data, as many materials as now) into the same
+  // buffer, so descriptor sets that reference it stay valid. The buffer must not be in
+  // use by the GPU. Throws std::invalid_argument for another material count.
+  void replace(const vk::Context& context, MaterialData data);
 
   const vk::Buffer& buffer() const { return buffer_; }
   const MaterialData& data() const { return data_; }

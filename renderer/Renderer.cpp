@@ -17,19 +17,33 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <optional>
+#include <utility>
 #include <stdexcept>
 
 namespace sss::renderer {
 
 namespace {
 
-const scene::Scene& checked(const scene::Scene& scene, const RenderOptions& o) {
-  if (scene.cameras.empty()) throw std::invalid_argument("the scene has no camera");
-  if (o.width == 0 || o.height == 0 || o.width > 16384 || o.height > 16384)
+void check_size(std::uint32_t width, std::uint32_t height) {
+  if (width == 0 || height == 0 || width > 16384 || height > 16384)
     throw std::invalid_argument("image size must be 1..16384 on each side");
+}
+
+void check_options(const RenderOptions& o) {
+  check_size(o.width, o.height);
   if (o.shadow_map_size == 0 || o.shadow_map_size > 16384)
     throw std::invalid_argument("shadow map size must be 1..16384");
+}
+
+const scene::Scene& checked(const scene::Scene& scene, const RenderOptions& o) {
+  if (scene.cameras.empty()) throw std::invalid_argument("the scene has no camera");
+  check_options(o);
   return scene;
+}
+
+std::uint32_t shadow_layers_for(const LightSetup& lights) {
+  return std::max<std::uint32_t>(1, lights.count);
 }
 
 Samplers make_samplers(const vk::Context& context) {
@@ -59,11 +73,15 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
                    const RenderOptions& options)
     : context_(context),
       options_(options),
-      lights_(make_light_setup(checked(scene, options), options.shadow_map_size)),
+      camera_(checked(scene, options).cameras.front()),
+      scene_lights_(scene.lights),
+      bounds_(scene.bounds()),
+      mm_per_unit_(scene.mm_per_unit),
+      lights_(make_light_setup(scene_lights_, bounds_, options.shadow_map_size)),
       materials_(context, scene, options.separable_taps),
       scene_(context, scene),
-      targets_(context, options.width, options.height,
-               std::max<std::uint32_t>(1, lights_.count), options.shadow_map_size),
+      targets_(context, options.width, options.height, shadow_layers_for(lights_),
+               options.shadow_map_size),
       frame_uniforms_(context, {sizeof(shader::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                 vk::MemoryUsage::Dynamic, "frame uniforms"}),
       light_buffer_(context, {sizeof(shader::LightBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -74,28 +92,113 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
       pool_(vk::create_command_pool(context, VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT)),
       fence_(vk::create_fence(context)),
       timer_(context) {
-  warnings_ = lights_.warnings;
-  warnings_.insert(warnings_.end(), scene_.warnings().begin(), scene_.warnings().end());
-  const CameraSetup camera = make_camera_setup(scene.cameras.front(), options.width, options.height);
-  const shader::FrameUniforms uniforms =
-      make_frame_uniforms(camera, options.width, options.height, scene.mm_per_unit,
-                          options.exposure, lights_.count, sss_mode_index(options));
-  frame_uniforms_.write(&uniforms, sizeof(uniforms));
-  light_buffer_.write(&lights_.block, sizeof(lights_.block));
-
   shadow_ = std::make_unique<ShadowPass>(resources_, lights_.shadowed);
   gbuffer_ = std::make_unique<GBufferPass>(resources_);
   lighting_ = std::make_unique<LightingPass>(resources_);
-  if (options.sss == SssMode::Screen && options.kind == SssKind::Separable)
-    separable_ = std::make_unique<SssSeparablePass>(resources_);
-  if (options.sss == SssMode::Screen && options.kind == SssKind::Gaussians &&
-      materials_.data().max_gaussians > 0)
-    gaussians_ = std::make_unique<SssGaussiansPass>(resources_, materials_.data().max_gaussians);
+  update_sss_pass();
   composite_ = std::make_unique<CompositePass>(resources_);
+  write_lights(lights_);
+  write_frame_uniforms();
   cmd_ = vk::allocate_command_buffer(context, pool_.get());
 }
 
 Renderer::~Renderer() { context_.wait_idle(); }
+
+void Renderer::write_frame_uniforms() {
+  const CameraSetup camera = make_camera_setup(camera_, options_.width, options_.height);
+  const shader::FrameUniforms uniforms =
+      make_frame_uniforms(camera, options_.width, options_.height, mm_per_unit_,
+                          options_.exposure, lights_.count, sss_mode_index(options_));
+  frame_uniforms_.write(&uniforms, sizeof(uniforms));
+}
+
+void Renderer::write_lights(LightSetup lights) {
+  lights_ = std::move(lights);
+  light_buffer_.write(&lights_.block, sizeof(lights_.block));
+  shadow_->set_shadowed(lights_.shadowed);
+  warnings_ = lights_.warnings;
+  warnings_.insert(warnings_.end(), scene_.warnings().begin(), scene_.warnings().end());
+}
+
+void Renderer::recreate_targets(std::uint32_t width, std::uint32_t height,
+                                std::uint32_t shadow_layers, std::uint32_t shadow_size) {
+  context_.wait_idle();  // a window may still be blitting the display image
+  FrameTargets fresh(context_, width, height, shadow_layers, shadow_size);
+  {
+    // Destroyed member by member in reverse order: the shadow layer views before their image.
+    const FrameTargets old = std::move(targets_);
+  }
+  targets_ = std::move(fresh);
+  lighting_->write_descriptors();
+  if (separable_) separable_->write_descriptors();
+  if (gaussians_) gaussians_->write_descriptors();
+  composite_->write_descriptors();
+}
+
+void Renderer::update_sss_pass() {
+  const int gaussians = materials_.data().max_gaussians;
+  const bool screen = options_.sss == SssMode::Screen;
+  if (!(screen && options_.kind == SssKind::Separable))
+    separable_.reset();
+  else if (!separable_)
+    separable_ = std::make_unique<SssSeparablePass>(resources_);
+  if (!(screen && options_.kind == SssKind::Gaussians && gaussians > 0))
+    gaussians_.reset();
+  else if (!gaussians_)
+    gaussians_ = std::make_unique<SssGaussiansPass>(resources_, gaussians);
+  else
+    gaussians_->set_gaussians(gaussians);
+}
+
+void Renderer::set_camera(const scene::Camera& camera) {
+  camera_ = camera;
+  write_frame_uniforms();
+}
+
+void Renderer::set_lights(const std::vector<scene::Light>& lights) {
+  LightSetup setup = make_light_setup(lights, bounds_, options_.shadow_map_size);
+  const std::uint32_t layers = shadow_layers_for(setup);
+  if (layers > targets_.shadow_layers.size())
+    recreate_targets(options_.width, options_.height, layers, options_.shadow_map_size);
+  scene_lights_ = lights;
+  write_lights(std::move(setup));
+  write_frame_uniforms();  // the light count
+}
+
+void Renderer::set_materials(const std::vector<scene::Material>& materials) {
+  MaterialData data = build_material_data(materials, options_.separable_taps);
+  scene_.set_materials(materials);  // checks the count and the textures first
+  materials_.replace(context_, std::move(data));
+  update_sss_pass();
+}
+
+void Renderer::set_options(const RenderOptions& options) {
+  check_options(options);
+  std::optional<MaterialData> data;
+  if (options.separable_taps != options_.separable_taps)
+    data = build_material_data(scene_.materials(), options.separable_taps);  // checks taps
+  const bool size_changed = options.width != options_.width || options.height != options_.height;
+  const bool shadow_changed = options.shadow_map_size != options_.shadow_map_size;
+  if (size_changed || shadow_changed)
+    recreate_targets(options.width, options.height,
+                     static_cast<std::uint32_t>(targets_.shadow_layers.size()),
+                     options.shadow_map_size);
+  if (data) materials_.replace(context_, std::move(*data));
+  options_ = options;
+  if (shadow_changed)
+    write_lights(make_light_setup(scene_lights_, bounds_, options_.shadow_map_size));
+  update_sss_pass();
+  write_frame_uniforms();
+}
+
+void Renderer::resize(std::uint32_t width, std::uint32_t height) {
+  check_size(width, height);
+  if (width == options_.width && height == options_.height) return;
+  RenderOptions options = options_;
+  options.width = width;
+  options.height = height;
+  set_options(options);
+}
 
 void Renderer::record(VkCommandBuffer cmd) {
   timer_.reset(cmd);

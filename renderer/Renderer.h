@@ -1,5 +1,5 @@
-// Renderer: the real-time frame of DESIGN.md §5 for one scene at one output size. It owns
-// the targets, the buffers and one object per pass, and orders them:
+// Renderer: the real-time frame of DESIGN.md §5 for one scene. It owns the targets, the
+// buffers and one object per pass, and orders them:
 //
 //   shadow -> gbuffer -> lighting -> [sss separable | sss gaussians] -> composite
 //
@@ -7,6 +7,15 @@
 // render_frame() records one command buffer, submits it and waits for its fence, so
 // one frame is in flight; GPU times per pass (GpuTimer, named after the pass) and the CPU
 // frame time are in stats().
+//
+// Live changes (the viewer): set_camera / set_lights / set_materials / set_options /
+// resize change what the next render_frame() draws; the frame then equals the one a
+// Renderer constructed with the changed input would draw. Call them between frames (never
+// while another thread renders). set_camera and a set_lights that needs no more shadow
+// layers only write host-visible uniforms; set_materials refits the profiles (CPU) and
+// re-uploads the material buffer; a new size, shadow map size or more shadow layers waits
+// for the device to be idle and recreates the targets. A call that throws
+// std::invalid_argument changes nothing.
 #pragma once
 
 #include "renderer/FrameResources.h"
@@ -53,6 +62,30 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   void render_frame();
+
+  // The view for the next frame (the scene's cameras are not kept; cameras[0] was the
+  // first view). Cheap: new frame uniforms, no GPU allocation.
+  void set_camera(const scene::Camera& camera);
+  // New lights (LightSetup: block, shadow matrices); grows the shadow-map array if it
+  // holds fewer layers than the lights need (warnings() follows).
+  void set_lights(const std::vector<scene::Light>& lights);
+  // New materials, as many as the scene's and with the same textures (else
+  // std::invalid_argument): refits the Gaussians and separable kernels (build_material_data),
+  // re-uploads the table into the same buffer, updates the draw constants.
+  void set_materials(const std::vector<scene::Material>& materials);
+  // SSS mode / kind / taps / exposure; a new size or shadow map size recreates targets.
+  // Invalid options (as for the constructor) throw std::invalid_argument.
+  void set_options(const RenderOptions& options);
+  // Recreates the frame targets at width x height; 0 (a minimized window) or more than
+  // 16384 on a side throws std::invalid_argument.
+  void resize(std::uint32_t width, std::uint32_t height);
+
+  // The tonemapped rgba8 target (sRGB-encoded by hand, kDisplayFormat, TRANSFER_SRC usage)
+  // for a window to blit. After render_frame() it is in display_layout() (GENERAL), last
+  // written by compute-shader storage writes (src: COMPUTE_SHADER / SHADER_STORAGE_WRITE);
+  // leave it in that layout. Recreated by resize(): take the reference again afterwards.
+  const vk::Image& display_image() const { return targets_.display; }
+  static constexpr VkImageLayout display_layout() { return VK_IMAGE_LAYOUT_GENERAL; }
   const FrameStats& stats() const { return stats_; }
 
   // The last frame: linear radiance L (rgb; alpha 1 on geometry, 0 on background) and
@@ -63,13 +96,26 @@ class Renderer {
   const MaterialData& materials() const { return materials_.data(); }
   const std::vector<std::string>& warnings() const { return warnings_; }
   const RenderOptions& options() const { return options_; }
+  const scene::Camera& camera() const { return camera_; }
 
  private:
   void record(VkCommandBuffer cmd);
   image::Image read(const vk::Image& image, bool eight_bit) const;
+  void write_frame_uniforms();
+  void write_lights(LightSetup lights);
+  // Waits for the device to be idle, replaces targets_ and points the passes' descriptor
+  // sets at the new images.
+  void recreate_targets(std::uint32_t width, std::uint32_t height, std::uint32_t shadow_layers,
+                        std::uint32_t shadow_size);
+  // separable_ / gaussians_ for options_ and the material table.
+  void update_sss_pass();
 
   const vk::Context& context_;
   RenderOptions options_;
+  scene::Camera camera_;
+  std::vector<scene::Light> scene_lights_;
+  scene::Bounds bounds_;  // of the scene's instances (shadow fits)
+  double mm_per_unit_;
   std::vector<std::string> warnings_;
   LightSetup lights_;
   MaterialTable materials_;

@@ -7,6 +7,7 @@
 #include "renderer/vk/Descriptors.h"
 #include "renderer/vk/GpuTimer.h"
 
+#include <utility>
 #include <vector>
 
 namespace sss::renderer {
@@ -18,6 +19,8 @@ class ShadowPass {
   ShadowPass(const FrameResources& resources, std::vector<bool> shadowed);
   // Expects targets.shadow in DEPTH_ATTACHMENT_OPTIMAL.
   void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  // Which layers to draw from now on (LightSetup::shadowed, after the lights changed).
+  void set_shadowed(std::vector<bool> shadowed) { shadowed_ = std::move(shadowed); }
 
  private:
   const FrameResources& r_;

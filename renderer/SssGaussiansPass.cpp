@@ -24,10 +24,15 @@ SssGaussiansPass::SssGaussiansPass(const FrameResources& resources, int gaussian
       gaussians_(gaussians),
       program_(r_.context, bindings(), sss_spv_sss_gaussians_comp, sizeof(shader::BlurPush), 5,
                kName) {
+  for (VkDescriptorSet* set : {&h_irradiance_, &h_a_, &h_b_, &v_a_, &v_b_})
+    *set = program_.allocate();
+  write_descriptors();
+}
+
+void SssGaussiansPass::write_descriptors() {
   const FrameTargets& t = r_.targets;
   const VkSampler nearest = r_.samplers.nearest.get();
-  const auto make = [&](const vk::Image& in, const vk::Image& out) {
-    VkDescriptorSet set = program_.allocate();
+  const auto write = [&](VkDescriptorSet set, const vk::Image& in, const vk::Image& out) {
     vk::DescriptorWriter(set)
         .uniform_buffer(0, r_.frame_uniforms)
         .storage_buffer(1, r_.materials)
@@ -36,13 +41,12 @@ SssGaussiansPass::SssGaussiansPass(const FrameResources& resources, int gaussian
         .storage_image(5, out)
         .storage_image(6, t.accum)
         .update(r_.context);
-    return set;
   };
-  h_irradiance_ = make(t.irradiance, t.blur_temp);
-  h_a_ = make(t.blur_a, t.blur_temp);
-  h_b_ = make(t.blur_b, t.blur_temp);
-  v_a_ = make(t.blur_temp, t.blur_a);
-  v_b_ = make(t.blur_temp, t.blur_b);
+  write(h_irradiance_, t.irradiance, t.blur_temp);
+  write(h_a_, t.blur_a, t.blur_temp);
+  write(h_b_, t.blur_b, t.blur_temp);
+  write(v_a_, t.blur_temp, t.blur_a);
+  write(v_b_, t.blur_temp, t.blur_b);
 }
 
 void SssGaussiansPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {

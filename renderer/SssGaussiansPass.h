@@ -18,6 +18,11 @@ class SssGaussiansPass {
   // gaussians: the most Gaussians of any material (passes to run).
   SssGaussiansPass(const FrameResources& resources, int gaussians);
   void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  // Points the sets at the current targets (after FrameTargets were recreated; none of
+  // them may be in use by the GPU).
+  void write_descriptors();
+  // After the materials changed: the new most Gaussians of any material (> 0).
+  void set_gaussians(int gaussians) { gaussians_ = gaussians; }
 
  private:
   const FrameResources& r_;

@@ -22,6 +22,12 @@ SssSeparablePass::SssSeparablePass(const FrameResources& resources)
     : r_(resources),
       program_(r_.context, bindings(), sss_spv_sss_separable_comp, sizeof(shader::BlurPush), 2,
                kName) {
+  horizontal_ = program_.allocate();
+  vertical_ = program_.allocate();
+  write_descriptors();
+}
+
+void SssSeparablePass::write_descriptors() {
   const FrameTargets& t = r_.targets;
   const VkSampler nearest = r_.samplers.nearest.get();
   const VkSampler linear = r_.samplers.linear.get();
@@ -34,8 +40,6 @@ SssSeparablePass::SssSeparablePass(const FrameResources& resources)
         .storage_image(5, out)
         .update(r_.context);
   };
-  horizontal_ = program_.allocate();
-  vertical_ = program_.allocate();
   write(horizontal_, t.irradiance, t.blur_temp);
   write(vertical_, t.blur_temp, t.blur_a);
 }
