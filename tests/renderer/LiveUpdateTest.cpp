@@ -96,8 +96,18 @@ TEST_F(LiveUpdateTest, SetCameraEqualsAFreshRenderer) {
   expect_fresh(live, scene, o, "orthographic");
 }
 
-TEST_F(LiveUpdateTest, SetLightsEqualsAFreshRenderer) {
+// builtin:sphere plus a 9 mm sphere between spot_light() and the big sphere, so that the
+// spot's shadow map shows in the frame.
+scene::Scene sphere_with_blocker() {
   scene::Scene scene = scene::sphere_scene();
+  const glm::mat4 world = glm::scale(glm::translate(glm::mat4(1.0f), {0.0675f, 0.045f, 0.045f}),
+                                     glm::vec3(0.3f));
+  scene.instances.push_back({0, world, "blocker"});
+  return scene;
+}
+
+TEST_F(LiveUpdateTest, SetLightsEqualsAFreshRenderer) {
+  scene::Scene scene = sphere_with_blocker();
   const RenderOptions o = small_options(kW, kH, SssMode::Screen);
   Renderer live(ctx(), scene, o);
   live.render_frame();
