@@ -32,13 +32,15 @@ namespace {
 }
 }  // namespace
 
-RayScene::RayScene(const scene::Scene& s) : impl_(std::make_unique<Impl>()), mm_per_unit_(s.mm_per_unit) {
+RayScene::RayScene(const scene::Scene& s, int threads) : impl_(std::make_unique<Impl>()), mm_per_unit_(s.mm_per_unit) {
   Impl& m = *impl_;
-  m.device = rtcNewDevice(nullptr);
+  m.device = rtcNewDevice(threads > 0 ? ("threads=" + std::to_string(threads)).c_str() : nullptr);
   if (!m.device) embree_failure(nullptr, "rtcNewDevice");
   m.scene = rtcNewScene(m.device);
   if (!m.scene) embree_failure(m.device, "rtcNewScene");
   rtcSetSceneBuildQuality(m.scene, RTC_BUILD_QUALITY_HIGH);
+  // Watertight traversal: one ray per pixel must not slip between two triangles.
+  rtcSetSceneFlags(m.scene, RTC_SCENE_FLAG_ROBUST);
   const float mm = float(s.mm_per_unit);
   m.positions.resize(s.instances.size());
   m.normal_matrices.resize(s.instances.size());

@@ -27,8 +27,9 @@ struct Hit {
 
 class RayScene {
  public:
-  // Throws std::runtime_error if Embree cannot create its device or scene.
-  explicit RayScene(const scene::Scene& scene);
+  // Throws std::runtime_error if Embree cannot create its device or scene. `threads` > 0
+  // caps Embree's own build threads.
+  explicit RayScene(const scene::Scene& scene, int threads = 0);
   ~RayScene();
   RayScene(const RayScene&) = delete;
   RayScene& operator=(const RayScene&) = delete;

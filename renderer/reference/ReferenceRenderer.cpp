@@ -39,6 +39,7 @@ struct Group {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> source;  // soup triangle -> (instance, triangle)
   SampledSurface surface;
   std::unique_ptr<ScatterKernel> kernel;
+  double planned_points = 0.0;  // area / spacing², before rounding up
   std::vector<IrradiancePoint> points_for_octree;
   std::unique_ptr<PointOctree> octree;
 };
@@ -46,9 +47,16 @@ struct Group {
 class Reporter {
  public:
   Reporter(const ProgressFn& fn, const std::atomic<bool>* cancel) : fn_(fn), cancel_(cancel) {}
+  // Workers finish out of order: a stage's fraction is only ever passed on rising.
   void report(const char* stage, double fraction) {
     if (!fn_) return;
     std::lock_guard<std::mutex> lock(mutex_);
+    if (stage != stage_) {
+      stage_ = stage;
+      best_ = -1.0;
+    }
+    if (fraction <= best_) return;
+    best_ = fraction;
     fn_(stage, fraction);
   }
   bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
@@ -60,6 +68,8 @@ class Reporter {
   const ProgressFn& fn_;
   const std::atomic<bool>* cancel_;
   std::mutex mutex_;
+  std::string stage_;
+  double best_ = -1.0;
 };
 
 void check_options(const ReferenceOptions& o) {
@@ -75,6 +85,9 @@ void check_options(const ReferenceOptions& o) {
                                 message_number(o.max_solid_angle));
   if (!(std::isfinite(o.exposure) && o.exposure >= 0.0f))
     throw std::invalid_argument("exposure: must be finite and >= 0, got " + message_number(o.exposure));
+  if (std::uint64_t(o.width) * o.height > image::kMaxImagePixels)
+    throw std::invalid_argument("width/height: at most " + std::to_string(image::kMaxImagePixels) +
+                                " pixels (what image files are read back with)");
   if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
 }
 
@@ -117,11 +130,13 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
         g.soup.positions_mm.push_back(world[v]);
         const glm::vec3 n = nm * mesh.normals[v];
         const float len = glm::length(n);
-        g.soup.normals.push_back(len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f));
+        g.soup.normals.push_back(len > 0.0f ? n / len : glm::vec3(0.0f));  // 0: the sampler uses the face's
       }
       g.source.emplace_back(i, t);
     }
   }
+  // A material no instance uses (or whose triangles have no area) spreads no points.
+  std::erase_if(groups, [](const Group& g) { return !(soup_area(g.soup) > 0.0); });
   // Profiles first (the Monte Carlo model takes a while), then the spacing they imply.
   for (std::size_t k = 0; k < groups.size(); ++k) {
     reporter.check();
@@ -130,6 +145,7 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
     const profiles::Medium medium = sss.effective_medium();
     g.profile = std::make_unique<profiles::RgbProfile>(sss.model, medium, o.model_options);
     g.spacing_mm = o.spacing_mfp * smallest_mfp(medium);
+    g.planned_points = soup_area(g.soup) / (g.spacing_mm * g.spacing_mm);
     reporter.report("profiles", double(k + 1) / double(groups.size()));
   }
   return groups;
@@ -141,33 +157,39 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
                                 const ProgressFn& progress, const std::atomic<bool>* cancel) {
   check_options(o);
   if (s.cameras.empty()) throw std::invalid_argument("scene '" + s.name + "' has no camera");
+  for (const scene::Instance& inst : s.instances)
+    if (inst.mesh >= s.meshes.size())
+      throw std::invalid_argument("instance '" + inst.node + "': mesh index out of range");
+  for (const scene::Mesh& mesh : s.meshes) {
+    if (auto broken = scene::check_mesh(mesh)) throw std::invalid_argument("mesh '" + mesh.name + "': " + *broken);
+    if (mesh.material >= s.materials.size())
+      throw std::invalid_argument("mesh '" + mesh.name + "': material index out of range");
+  }
   const auto t_start = Clock::now();
   Reporter reporter(progress, cancel);
   tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
   ReferenceImage out;
   ReferenceStats& stats = out.stats;
 
-  RayScene rays(s);
+  RayScene rays(s, o.threads);
   auto t0 = Clock::now();
   std::vector<Group> groups = make_groups(s, rays, o, reporter);
   stats.profile_ms = ms_since(t0);
 
   // Points: check the total before sampling anything.
   t0 = Clock::now();
-  std::size_t planned = 0;
-  for (const Group& g : groups)
-    planned += std::size_t(std::ceil(soup_area(g.soup) / (g.spacing_mm * g.spacing_mm)));
-  if (planned > o.max_points)
+  double planned = 0.0;  // in double: a tiny spacing must not overflow a size_t
+  for (const Group& g : groups) planned += std::ceil(g.planned_points);
+  if (!(planned <= double(o.max_points)))
     throw std::invalid_argument(
-        "spacing: " + std::to_string(planned) + " irradiance points at spacing " +
+        "spacing: " + message_number(planned) + " irradiance points at spacing " +
         message_number(o.spacing_mfp) + " mfp exceed the limit of " + std::to_string(o.max_points) +
         " (raise the spacing or the point limit)");
   // Groups in parallel; progress is each group's fraction weighted by its share of the
   // points, and Ctrl-C abandons the elimination loops instead of waiting for them.
   std::vector<double> share(groups.size(), 0.0), sampled(groups.size(), 0.0);
   for (std::size_t k = 0; k < groups.size(); ++k)
-    share[k] = double(std::ceil(soup_area(groups[k].soup) / (groups[k].spacing_mm * groups[k].spacing_mm))) /
-               double(std::max<std::size_t>(planned, 1));
+    share[k] = std::ceil(groups[k].planned_points) / std::max(planned, 1.0);
   std::mutex done_mutex;
   arena.execute([&] {
     tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t k) {
@@ -211,7 +233,9 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
                             const auto [instance, tri] = g.source[sp.triangle];
                             SurfacePoint p = surface_at(s, rays, instance, tri, sp.barycentric);
                             p.position_mm = sp.position_mm;
-                            const DirectLight d = direct_light(s, rays, p, sp.normal, nullptr);
+                            // The G-buffer's normal: normal-mapped, not flipped (no viewer).
+                            const glm::vec3 n = shading_normal(s, p, sp.normal);
+                            const DirectLight d = direct_light(s, rays, p, n, nullptr);
                             glm::dvec3 e = d.irradiance;
                             if (pre_post) e *= glm::sqrt(glm::dvec3(base_colour(s, p)));
                             points[i] = {sp.position_mm, sp.normal, glm::vec3(e)};
@@ -221,7 +245,9 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
                         });
     });
     reporter.check();
-    g.kernel = std::make_unique<ScatterKernel>(*g.profile, std::max(g.surface.point_area_mm2, 1e-12));
+    arena.execute([&] {  // its table is built with TBB: within --threads too
+      g.kernel = std::make_unique<ScatterKernel>(*g.profile, std::max(g.surface.point_area_mm2, 1e-12));
+    });
     g.points_for_octree = std::move(points);
   }
   stats.irradiance_ms = ms_since(t0);
@@ -281,8 +307,10 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
         glm::dvec3 specular(0.0);
         if (gi >= 0) {
           const Group& g = groups[std::size_t(gi)];
-          diffuse = o.brute_force ? g.octree->gather_brute_force(p.position_mm, n, *g.kernel)
-                                  : g.octree->gather(p.position_mm, n, *g.kernel);
+          // The points carry the mesh's interpolated normals: so does x_o here (not the
+          // viewer-facing, normal-mapped one), or the far-side rule would misfire.
+          diffuse = o.brute_force ? g.octree->gather_brute_force(p.position_mm, p.normal, *g.kernel)
+                                  : g.octree->gather(p.position_mm, p.normal, *g.kernel);
           if (want_specular) specular = direct_light(s, rays, p, n, &spec).specular;
         } else if (!o.diffuse_only) {
           const DirectLight d = direct_light(s, rays, p, n, want_specular ? &spec : nullptr);

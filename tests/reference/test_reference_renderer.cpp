@@ -220,3 +220,40 @@ TEST(ReferenceRenderer, RejectsBadOptionsNamingThem) {
 
 }  // namespace
 }  // namespace sss::reference
+
+namespace sss::reference {
+namespace {
+
+TEST(ReferenceRenderer, UnusedSssMaterialCostsNothingAndBrokenMeshesAreRefused) {
+  auto loaded = scene::load_scene("builtin:sphere");
+  ASSERT_TRUE(std::holds_alternative<scene::Scene>(loaded));
+  scene::Scene s = std::get<scene::Scene>(loaded);
+  scene::Material unused = s.materials[0];
+  unused.name = "unused";
+  s.materials.push_back(unused);  // an SSS material no mesh uses
+  ReferenceOptions o = small(16, 9);
+  o.spacing_mfp = 2.0;
+  const ReferenceImage img = render_reference(s, o);
+  ASSERT_EQ(img.stats.groups.size(), 1u);
+  EXPECT_EQ(img.stats.groups[0].material, s.materials[0].name);
+
+  scene::Scene no_normals = s;
+  no_normals.meshes[0].normals.clear();
+  try {
+    render_reference(no_normals, o);
+    ADD_FAILURE() << "a mesh without normals was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(no_normals.meshes[0].name), std::string::npos) << e.what();
+  }
+  scene::Scene bad_material = s;
+  bad_material.meshes[0].material = 99;
+  EXPECT_THROW(render_reference(bad_material, o), std::invalid_argument);
+  ReferenceOptions huge = small(16384, 16384);
+  EXPECT_THROW(render_reference(s, huge), std::invalid_argument);
+  ReferenceOptions tiny = small(16, 9);
+  tiny.spacing_mfp = 1e-200;  // area / spacing² overflows: refused, not undefined
+  EXPECT_THROW(render_reference(s, tiny), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sss::reference

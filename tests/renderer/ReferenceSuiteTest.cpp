@@ -220,7 +220,8 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
     row.height = c.height;
     SCOPED_TRACE(row.key);
 
-    const std::string ref_key = std::string(c.scene) + "|" + row.model;
+    const std::string ref_key = std::string(c.scene) + "|" + row.model + "|" + std::to_string(c.width) +
+                                "x" + std::to_string(c.height);
     if (!references.count(ref_key)) {
       reference::ReferenceOptions ro;
       ro.width = c.width;
