@@ -11,6 +11,7 @@ PACKAGES=(
   libglm-dev libtinygltf-dev libstb-dev libtinyexr-dev
   libembree-dev libtbb-dev
   assimp-testmodels
+  libglfw3-dev libimgui-dev xvfb xauth
 )
 
 missing=()

@@ -28,6 +28,9 @@ struct ViewerArgs {
   float exposure = 1.0f;
   bool stats = false;
   std::string device;
+  std::string vsync = "on";  // window: on (FIFO) | off (MAILBOX / IMMEDIATE)
+  bool validation = false;   // --validation or SSS_VALIDATION=1
+  bool test_resize = false;  // hidden: resize and minimize the window between frames
 };
 
 }  // namespace sss::app

@@ -1,8 +1,11 @@
-// sss-viewer: renders a scene with the real-time renderer. Headless only for now:
+// sss-viewer: renders a scene with the real-time renderer, in a window (Window.h) or
+// headless:
+//   sss-viewer [SCENE] [--screenshot FILE --frames N] [--vsync on|off] [options]
 //   sss-viewer [SCENE] --headless --out FILE.png|FILE.exr [options]
 // The command-line contract is DESIGN.md §4; errors exit 2 (usage, input) or 1 (runtime).
 #include "CliSupport.h"
 #include "ViewerArgs.h"
+#include "Window.h"
 
 #include "renderer/Renderer.h"
 #include "renderer/image/AtomicFile.h"
@@ -14,6 +17,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 using namespace sss;
@@ -38,7 +42,7 @@ void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"sss-viewer: real-time subsurface scattering (Vulkan). Headless for now.",
+  CLI::App app{"sss-viewer: real-time subsurface scattering (Vulkan), in a window or headless.",
                "sss-viewer"};
   ViewerArgs a;
   app.add_option("scene", a.scene, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
@@ -55,14 +59,29 @@ int main(int argc, char** argv) {
   app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1)");
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
+  app.add_option("--vsync", a.vsync, "Window: on (FIFO, default) | off (MAILBOX or IMMEDIATE)");
+  app.add_flag("--validation", a.validation,
+               "Load the Vulkan validation layer with synchronization checks (also SSS_VALIDATION=1)");
+  app.add_flag("--test-resize", a.test_resize)->group("");  // tests: resize/minimize the window
   if (const auto stop = parse_command_line(app, argc, argv, "sss-viewer")) return *stop;
 
-  if (!a.headless)
-    return usage("the windowed viewer is not available yet; use --headless --out FILE.png|FILE.exr");
-  if (a.out.empty()) return usage("--headless needs --out FILE.png|FILE.exr");
-  const std::string ext = lower_extension(a.out);
-  if (ext != ".png" && ext != ".exr")
-    return usage("--out: expected a .png or .exr file name, got '" + a.out + "'");
+  if (const char* v = std::getenv("SSS_VALIDATION"); v != nullptr && std::string(v) == "1")
+    a.validation = true;
+  std::string ext;
+  if (a.headless) {
+    if (a.out.empty()) return usage("--headless needs --out FILE.png|FILE.exr");
+    ext = lower_extension(a.out);
+    if (ext != ".png" && ext != ".exr")
+      return usage("--out: expected a .png or .exr file name, got '" + a.out + "'");
+  } else {
+    if (!a.out.empty())
+      return usage("--out needs --headless (the window saves with --screenshot FILE)");
+    const std::string shot = lower_extension(a.screenshot);
+    if (!a.screenshot.empty() && shot != ".png" && shot != ".exr")
+      return usage("--screenshot: expected a .png or .exr file name, got '" + a.screenshot + "'");
+  }
+  if (a.vsync != "on" && a.vsync != "off")
+    return usage("--vsync: expected on or off, got '" + a.vsync + "'");
   if (a.sss == "texture") return usage("texture-space SSS is not available yet (issue 6)");
   renderer::RenderOptions options;
   if (a.sss == "off") {
@@ -90,8 +109,10 @@ int main(int argc, char** argv) {
   for (const std::string& w : scene.warnings) std::cerr << "sss-viewer: warning: " << w << '\n';
 
   try {
+    if (!a.headless) return run_window(a, scene, options, a.validation);
     vk::ContextOptions context_options;
     context_options.device_name = a.device;
+    context_options.enable_validation = context_options.sync_validation = a.validation;
     vk::Context context(context_options);
     renderer::Renderer r(context, scene, options);
     for (const std::string& w : r.warnings()) std::cerr << "sss-viewer: warning: " << w << '\n';

@@ -91,7 +91,9 @@ TEST(ViewerApp, DocumentedErrors) {
     std::string message;
   };
   const Case cases[] = {
-      {"builtin:sphere --out " + out, 2, "windowed viewer is not available yet"},
+      {"builtin:sphere --out " + out, 2, "--out needs --headless"},
+      {"builtin:sphere --screenshot " + temp_path("x.jpg"), 2, "--screenshot"},
+      {"builtin:sphere --vsync maybe", 2, "--vsync"},
       {"builtin:sphere --headless", 2, "--out"},
       {"builtin:sphere --headless --out " + temp_path("x.jpg"), 2, ".png or .exr"},
       {"builtin:sphere --headless --out " + out + " --sss texture", 2,

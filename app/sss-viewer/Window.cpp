@@ -1,0 +1,441 @@
+#include "Window.h"
+
+#include "ExitCodes.h"
+#include "CliSupport.h"
+#include "OrbitCamera.h"
+#include "Ui.h"
+
+#include "renderer/Renderer.h"
+#include "renderer/image/Image.h"
+#include "renderer/vk/Barrier.h"
+#include "renderer/vk/Check.h"
+#include "renderer/vk/Commands.h"
+#include "renderer/vk/Context.h"
+#include "renderer/vk/Image.h"
+#include "renderer/vk/Swapchain.h"
+
+#define GLFW_INCLUDE_NONE
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_vulkan.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sss::app {
+
+namespace {
+
+using RenderPassHandle = vk::Handle<VkRenderPass, vkDestroyRenderPass>;
+using FramebufferHandle = vk::Handle<VkFramebuffer, vkDestroyFramebuffer>;
+
+// The blit stage: where the frame waits for the acquired image and writes it first.
+constexpr vk::Scope kBlitWrite{VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
+constexpr vk::Scope kBlitRead{VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT};
+constexpr vk::Scope kBlitWait{VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_NONE};
+constexpr vk::Scope kColorAttachment{
+    VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+    VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+
+bool has_display() {
+  const char* x = std::getenv("DISPLAY");
+  const char* w = std::getenv("WAYLAND_DISPLAY");
+  return (x != nullptr && *x != '\0') || (w != nullptr && *w != '\0');
+}
+
+int no_display() {
+  std::cerr << "sss-viewer: error: " << kNoDisplayMessage << '\n';
+  return kExitRuntime;
+}
+
+void check_imgui_vk(VkResult r) {
+  if (r < 0) throw vk::VulkanError(r, "Dear ImGui's Vulkan backend");
+}
+
+// GLFW: initialised, terminated at scope exit.
+struct Glfw {
+  bool ok = false;
+  Glfw() { ok = glfwInit() == GLFW_TRUE; }
+  ~Glfw() {
+    if (ok) glfwTerminate();
+  }
+  Glfw(const Glfw&) = delete;
+  Glfw& operator=(const Glfw&) = delete;
+};
+
+struct WindowHandle {
+  GLFWwindow* window = nullptr;
+  ~WindowHandle() {
+    if (window != nullptr) glfwDestroyWindow(window);
+  }
+};
+
+// The UI pass over the blitted image: LOAD, COLOR_ATTACHMENT_OPTIMAL -> PRESENT_SRC.
+RenderPassHandle create_ui_render_pass(const vk::Context& ctx, VkFormat format) {
+  VkAttachmentDescription color{};
+  color.format = format;
+  color.samples = VK_SAMPLE_COUNT_1_BIT;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  color.initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+  VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = 1;
+  subpass.pColorAttachments = &ref;
+  VkSubpassDependency deps[2]{};
+  deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+  deps[0].dstSubpass = 0;
+  deps[0].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  deps[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  deps[1].srcSubpass = 0;
+  deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+  deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  deps[1].dstStageMask = VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT;
+  deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  deps[1].dstAccessMask = 0;
+  VkRenderPassCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+  info.attachmentCount = 1;
+  info.pAttachments = &color;
+  info.subpassCount = 1;
+  info.pSubpasses = &subpass;
+  info.dependencyCount = 2;
+  info.pDependencies = deps;
+  VkRenderPass pass = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateRenderPass(ctx.device(), &info, nullptr, &pass));
+  return RenderPassHandle(ctx.device(), pass);
+}
+
+std::vector<FramebufferHandle> create_framebuffers(const vk::Context& ctx, VkRenderPass pass,
+                                                   const vk::Swapchain& sc) {
+  std::vector<FramebufferHandle> out;
+  for (uint32_t i = 0; i < sc.image_count(); ++i) {
+    VkImageView view = sc.view(i);
+    VkFramebufferCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+    info.renderPass = pass;
+    info.attachmentCount = 1;
+    info.pAttachments = &view;
+    info.width = sc.extent().width;
+    info.height = sc.extent().height;
+    info.layers = 1;
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateFramebuffer(ctx.device(), &info, nullptr, &fb));
+    out.emplace_back(ctx.device(), fb);
+  }
+  return out;
+}
+
+vk::DescriptorPoolHandle create_imgui_pool(const vk::Context& ctx) {
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16};
+  VkDescriptorPoolCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  info.maxSets = 16;
+  info.poolSizeCount = 1;
+  info.pPoolSizes = &size;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateDescriptorPool(ctx.device(), &info, nullptr, &pool));
+  return vk::DescriptorPoolHandle(ctx.device(), pool);
+}
+
+// Dear ImGui's context and backends, shut down in reverse order.
+struct ImGuiSession {
+  bool glfw = false, vulkan = false;
+  ImGuiSession() {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working directory
+    ImGui::StyleColorsDark();
+  }
+  ~ImGuiSession() {
+    if (vulkan) ImGui_ImplVulkan_Shutdown();
+    if (glfw) ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  ImGuiSession(const ImGuiSession&) = delete;
+  ImGuiSession& operator=(const ImGuiSession&) = delete;
+};
+
+// Mouse and keys -> orbit camera, unless ImGui wants them.
+void drive_camera(GLFWwindow* window, OrbitCamera& camera, bool& r_was_down, float width,
+                  float height) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureMouse) {
+    const bool shift = io.KeyShift;
+    const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
+    const bool valid = dx > -1e6f && dy > -1e6f;  // -FLT_MAX when the mouse was not seen
+    if (valid && io.MouseDown[0] && !shift) camera.orbit(dx, dy);
+    if (valid && (io.MouseDown[2] || (io.MouseDown[0] && shift))) camera.pan(dx, dy, width, height);
+    if (io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
+  }
+  const bool r_down = glfwGetKey(window, GLFW_KEY_R) == GLFW_PRESS;
+  if (r_down && !r_was_down && !io.WantCaptureKeyboard) camera.reset();
+  r_was_down = r_down;
+}
+
+int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options,
+        bool validation) {
+  Glfw glfw;
+  if (!glfw.ok) return no_display();
+  if (glfwVulkanSupported() != GLFW_TRUE) {
+    std::cerr << "sss-viewer: error: GLFW finds no Vulkan loader for windows\n";
+    return kExitRuntime;
+  }
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+  const std::string title = "sss-viewer - " + (scene.name.empty() ? a.scene : scene.name);
+  WindowHandle win;
+  win.window = glfwCreateWindow(a.width, a.height, title.c_str(), nullptr, nullptr);
+  if (win.window == nullptr) return no_display();
+  GLFWwindow* window = win.window;
+
+  vk::ContextOptions co;
+  co.device_name = a.device;
+  co.enable_validation = validation;
+  co.sync_validation = validation;
+  co.application_name = "sss-viewer";
+  uint32_t ext_count = 0;
+  const char** exts = glfwGetRequiredInstanceExtensions(&ext_count);
+  for (uint32_t i = 0; i < ext_count; ++i) co.instance_extensions.emplace_back(exts[i]);
+  co.device_extensions.emplace_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  co.create_surface = [window](VkInstance instance) {
+    VkSurfaceKHR surface = VK_NULL_HANDLE;
+    if (glfwCreateWindowSurface(instance, window, nullptr, &surface) != VK_SUCCESS)
+      return VkSurfaceKHR{VK_NULL_HANDLE};
+    return surface;
+  };
+  vk::Context ctx(co);
+
+  int fb_w = 0, fb_h = 0;
+  glfwGetFramebufferSize(window, &fb_w, &fb_h);
+  if (fb_w > 0 && fb_h > 0) {
+    options.width = static_cast<uint32_t>(fb_w);
+    options.height = static_cast<uint32_t>(fb_h);
+  }
+  renderer::Renderer r(ctx, scene, options);
+  for (const std::string& w : r.warnings()) std::cerr << "sss-viewer: warning: " << w << '\n';
+
+  vk::Swapchain sc(ctx, {uint32_t(std::max(fb_w, 0)), uint32_t(std::max(fb_h, 0))}, a.vsync == "on");
+  VkExtent2D swap_for{uint32_t(std::max(fb_w, 0)), uint32_t(std::max(fb_h, 0))};
+  RenderPassHandle ui_pass = create_ui_render_pass(ctx, sc.format());
+  std::vector<FramebufferHandle> framebuffers = create_framebuffers(ctx, ui_pass.get(), sc);
+  vk::DescriptorPoolHandle imgui_pool = create_imgui_pool(ctx);
+  vk::CommandPoolHandle pool = vk::create_command_pool(ctx, VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT);
+  VkCommandBuffer cmd = vk::allocate_command_buffer(ctx, pool.get());
+  vk::FenceHandle fence = vk::create_fence(ctx, true);
+  vk::SemaphoreHandle acquired = vk::create_semaphore(ctx);
+  std::vector<vk::SemaphoreHandle> rendered;  // one per swapchain image
+  auto make_rendered = [&] {
+    while (rendered.size() < sc.image_count()) rendered.push_back(vk::create_semaphore(ctx));
+  };
+  make_rendered();
+
+  ImGuiSession imgui;
+  imgui.glfw = ImGui_ImplGlfw_InitForVulkan(window, true);
+  ImGui_ImplVulkan_InitInfo init{};
+  init.Instance = ctx.instance();
+  init.PhysicalDevice = ctx.physical_device();
+  init.Device = ctx.device();
+  init.QueueFamily = ctx.queue_family();
+  init.Queue = ctx.queue();
+  init.DescriptorPool = imgui_pool.get();
+  init.MinImageCount = std::max(sc.min_image_count(), 2u);
+  init.ImageCount = std::max(sc.image_count(), init.MinImageCount);
+  init.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+  init.CheckVkResultFn = check_imgui_vk;
+  imgui.vulkan = ImGui_ImplVulkan_Init(&init, ui_pass.get());
+  vk::submit_once(ctx, [](VkCommandBuffer c) { ImGui_ImplVulkan_CreateFontsTexture(c); });
+  ImGui_ImplVulkan_DestroyFontUploadObjects();
+
+  OrbitCamera camera(r.camera(), scene.bounds());
+  ViewerUi ui(scene);
+  bool r_was_down = false;
+
+  auto recreate_swapchain = [&](VkExtent2D size) {
+    framebuffers.clear();
+    sc.recreate(size);
+    swap_for = size;
+    if (!sc.valid()) return;
+    framebuffers = create_framebuffers(ctx, ui_pass.get(), sc);
+    make_rendered();
+    ImGui_ImplVulkan_SetMinImageCount(std::max(sc.min_image_count(), 2u));
+  };
+
+  const bool screenshot = !a.screenshot.empty();
+  int frames = 0;
+  int simulated_minimized = 0;  // --test-resize: frames reported as 0x0
+  double frame_ms = 0.0, timed_ms = 0.0;
+  int timed_frames = 0;
+  auto last = std::chrono::steady_clock::now();
+  while (!glfwWindowShouldClose(window)) {
+    glfwPollEvents();
+    if (a.test_resize) {
+      // Exercise resize and minimize between frames (Xvfb has no window manager, so
+      // iconify may do nothing there: 0x0 is also simulated for two iterations).
+      if (frames == 1) glfwSetWindowSize(window, a.width + 64, a.height + 36);
+      if (frames == 2 && simulated_minimized == 0) {
+        glfwIconifyWindow(window);
+        simulated_minimized = 3;
+      }
+      if (frames == 3) glfwRestoreWindow(window);
+      if (frames == 4) glfwSetWindowSize(window, a.width, a.height);
+    }
+    glfwGetFramebufferSize(window, &fb_w, &fb_h);
+    if (simulated_minimized > 1) {
+      --simulated_minimized;
+      fb_w = fb_h = 0;
+    }
+    if (fb_w <= 0 || fb_h <= 0 || glfwGetWindowAttrib(window, GLFW_ICONIFIED) == GLFW_TRUE) {
+      glfwWaitEventsTimeout(0.05);  // minimized: nothing to draw
+      continue;
+    }
+    const VkExtent2D fb{uint32_t(fb_w), uint32_t(fb_h)};
+    if (fb.width != r.options().width || fb.height != r.options().height) r.resize(fb.width, fb.height);
+    if (!sc.valid() || fb.width != swap_for.width || fb.height != swap_for.height) {
+      recreate_swapchain(fb);
+      if (!sc.valid()) continue;
+    }
+
+    ImGui_ImplVulkan_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    drive_camera(window, camera, r_was_down, float(fb.width), float(fb.height));
+    ui.draw(r, frame_ms);
+    ImGui::Render();
+    if (camera.take_changed()) r.set_camera(camera.camera());
+
+    // One frame in flight: the previous blit and UI pass are done before this frame.
+    vk::wait_for_fence(ctx, fence.get());
+    r.render_frame();
+    uint32_t index = 0;
+    if (!sc.acquire(acquired.get(), index)) {
+      recreate_swapchain(fb);
+      continue;
+    }
+    VkFence frame_fence = fence.get();
+    VK_CHECK(vkResetFences(ctx.device(), 1, &frame_fence));
+    VK_CHECK(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo begin{};
+    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    ctx.begin_label(cmd, "present");
+    const vk::Image& display = r.display_image();
+    const VkImageSubresourceRange color_range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImage target = sc.image(index);
+    vk::pipeline_barrier(
+        cmd, {vk::image_barrier(display, renderer::Renderer::display_layout(),
+                                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, vk::kComputeWrite, kBlitRead),
+              vk::image_barrier(target, color_range, VK_IMAGE_LAYOUT_UNDEFINED,
+                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kBlitWait, kBlitWrite)});
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {int32_t(display.width()), int32_t(display.height()), 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[1] = {int32_t(sc.extent().width), int32_t(sc.extent().height), 1};
+    const bool same = display.width() == sc.extent().width && display.height() == sc.extent().height;
+    vkCmdBlitImage(cmd, display.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
+                   same ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
+    vk::pipeline_barrier(
+        cmd, {vk::image_barrier(display, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                renderer::Renderer::display_layout(), kBlitRead, vk::kAllCommands),
+              vk::image_barrier(target, color_range, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kBlitWrite,
+                                kColorAttachment)});
+    VkRenderPassBeginInfo rp{};
+    rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+    rp.renderPass = ui_pass.get();
+    rp.framebuffer = framebuffers[index].get();
+    rp.renderArea = {{0, 0}, sc.extent()};
+    vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
+    ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
+    vkCmdEndRenderPass(cmd);
+    ctx.end_label(cmd);
+    VK_CHECK(vkEndCommandBuffer(cmd));
+
+    VkSemaphoreSubmitInfo wait{};
+    wait.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
+    wait.semaphore = acquired.get();
+    wait.stageMask = VK_PIPELINE_STAGE_2_BLIT_BIT;
+    VkSemaphoreSubmitInfo signal{};
+    signal.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
+    signal.semaphore = rendered[index].get();
+    signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    VkCommandBufferSubmitInfo cb{};
+    cb.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
+    cb.commandBuffer = cmd;
+    VkSubmitInfo2 submit{};
+    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
+    submit.waitSemaphoreInfoCount = 1;
+    submit.pWaitSemaphoreInfos = &wait;
+    submit.commandBufferInfoCount = 1;
+    submit.pCommandBufferInfos = &cb;
+    submit.signalSemaphoreInfoCount = 1;
+    submit.pSignalSemaphoreInfos = &signal;
+    ctx.submit({&submit, 1}, fence.get());
+    if (!sc.present(index, rendered[index].get())) recreate_swapchain(fb);
+
+    ++frames;
+    const auto now = std::chrono::steady_clock::now();
+    frame_ms = std::chrono::duration<double, std::milli>(now - last).count();
+    last = now;
+    if (frames > 1) {  // the first frame includes start-up
+      timed_ms += frame_ms;
+      ++timed_frames;
+    }
+    if (screenshot && frames >= a.frames) break;
+  }
+  vk::wait_for_fence(ctx, fence.get());
+  ctx.wait_idle();
+
+  if (screenshot) {
+    if (lower_extension(a.screenshot) == ".exr")
+      image::write_exr(a.screenshot, r.read_hdr());
+    else
+      image::write_png(a.screenshot, r.read_display());
+  }
+  if (a.stats) {
+    const renderer::FrameStats& s = r.stats();
+    std::printf("window %ux%u, sss %s, mode %s, present %s, %d frame(s)\n", r.options().width,
+                r.options().height, std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
+                std::string(renderer::sss_kind_name(r.options().kind)).c_str(),
+                sc.present_mode() == VK_PRESENT_MODE_FIFO_KHR        ? "fifo"
+                : sc.present_mode() == VK_PRESENT_MODE_MAILBOX_KHR ? "mailbox"
+                                                                    : "immediate",
+                frames);
+    std::printf("%-16s %10s\n", "pass", "gpu ms");
+    for (const vk::PassTime& p : s.passes) std::printf("%-16s %10.3f\n", p.name.c_str(), p.ms);
+    std::printf("%-16s %10.3f\n", "gpu total", s.gpu_ms);
+    std::printf("%-16s %10.3f\n", "cpu frame", s.cpu_ms);
+    if (timed_frames > 0) {
+      std::printf("%-16s %10.3f\n", "window frame", timed_ms / timed_frames);
+      std::printf("%-16s %10.1f\n", "fps", 1000.0 * timed_frames / timed_ms);
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int run_window(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options,
+               bool validation) {
+  if (!has_display()) return no_display();
+  return run(a, scene, options, validation);
+}
+
+}  // namespace sss::app

@@ -1,0 +1,141 @@
+// sss-viewer's window (DESIGN.md §4: --screenshot FILE after --frames N): under xvfb-run
+// when it is installed, with the validation layer (synchronization checks included) and
+// no message allowed. Without a display the viewer says so and exits 1.
+#include <gtest/gtest.h>
+
+#include "renderer/image/Image.h"
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#ifdef SSS_VIEWER_EXE
+
+namespace {
+
+struct CommandRun {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+CommandRun run_command(const std::string& command) {
+  CommandRun r;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return r;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) r.output += buffer;
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+bool have_xvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
+
+// The viewer in a virtual 1280x720 X server, validation on.
+CommandRun run_windowed(const std::string& args) {
+  return run_command("SSS_VALIDATION=1 xvfb-run -a -s \"-screen 0 1280x720x24\" " +
+                     std::string(SSS_VIEWER_EXE) + " " + args);
+}
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("sss_viewer_window_test_" + name)).string();
+}
+
+sss::image::Image read_png(const std::string& path) {
+  auto image = sss::image::read_image(path);
+  if (!std::holds_alternative<sss::image::Image>(image)) return {};
+  return std::get<sss::image::Image>(std::move(image));
+}
+
+bool has_validation_message(const std::string& output) {
+  return output.find("[vulkan validation") != std::string::npos ||
+         output.find("[vulkan performance") != std::string::npos ||
+         output.find("validation requested but") != std::string::npos;
+}
+
+TEST(ViewerWindow, ScreenshotMatchesTheHeadlessFrame) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string window_png = temp_path("window.png"), headless_png = temp_path("headless.png");
+  std::filesystem::remove(window_png);
+  const CommandRun w = run_windowed("builtin:sphere --width 320 --height 180 --frames 5 --screenshot " +
+                             window_png);
+  ASSERT_EQ(w.status, 0) << w.output;
+  EXPECT_FALSE(has_validation_message(w.output)) << w.output;
+  const CommandRun h = run_command("SSS_VALIDATION=1 " + std::string(SSS_VIEWER_EXE) +
+                            " builtin:sphere --headless --width 320 --height 180 --out " +
+                            headless_png);
+  ASSERT_EQ(h.status, 0) << h.output;
+  EXPECT_FALSE(has_validation_message(h.output)) << h.output;
+
+  const sss::image::Image a = read_png(window_png), b = read_png(headless_png);
+  ASSERT_EQ(a.width, 320);
+  ASSERT_EQ(a.height, 180);
+  ASSERT_EQ(b.width, a.width);
+  ASSERT_EQ(b.height, a.height);
+  // Not blank: the sphere covers part of the frame, with more than one colour.
+  float lo = 1.0f, hi = 0.0f;
+  for (std::size_t i = 0; i < a.rgba.size(); i += 4) {
+    lo = std::min(lo, a.rgba[i + 1]);
+    hi = std::max(hi, a.rgba[i + 1]);
+  }
+  EXPECT_GT(hi - lo, 0.2f);
+  // The same Renderer draws the same view at the same size, so the frames are equal
+  // (bit for bit on lavapipe): allow one 8-bit code for a device whose float results
+  // depend on submission timing.
+  float max_diff = 0.0f;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i)
+    max_diff = std::max(max_diff, std::fabs(a.rgba[i] - b.rgba[i]));
+  EXPECT_LE(max_diff, 1.0f / 255.0f + 1e-6f);
+  std::filesystem::remove(window_png);
+  std::filesystem::remove(headless_png);
+}
+
+TEST(ViewerWindow, ResizeAndMinimizeWhileRendering) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string png = temp_path("resize.png");
+  for (const char* vsync : {"on", "off"}) {
+    std::filesystem::remove(png);
+    const CommandRun r = run_windowed(std::string("builtin:sphere --width 160 --height 90 --frames 10 --test-resize"
+                                           " --mode gaussians --vsync ") + vsync + " --screenshot " + png);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_FALSE(has_validation_message(r.output)) << r.output;
+    const sss::image::Image image = read_png(png);
+    EXPECT_GT(image.width, 0) << vsync;
+  }
+  std::filesystem::remove(png);
+}
+
+TEST(ViewerWindow, ExrScreenshotAndStats) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string exr = temp_path("shot.exr");
+  std::filesystem::remove(exr);
+  const CommandRun r = run_windowed("builtin:sphere --width 96 --height 54 --frames 3 --stats --screenshot " + exr);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(has_validation_message(r.output)) << r.output;
+  for (const char* row : {"window 96x54", "shadow", "composite", "fps"})
+    EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
+  auto image = sss::image::read_image(exr);
+  ASSERT_TRUE(std::holds_alternative<sss::image::Image>(image)) << exr;
+  std::filesystem::remove(exr);
+}
+
+TEST(ViewerWindow, NoDisplayIsARuntimeError) {
+  const std::string png = temp_path("nodisplay.png");
+  const CommandRun r = run_command("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(SSS_VIEWER_EXE) +
+                            " builtin:sphere --frames 1 --screenshot " + png);
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("sss-viewer: error: no display available; use --headless --out "
+                          "FILE.png to render without a window"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(png));
+}
+
+}  // namespace
+
+#endif  // SSS_VIEWER_EXE
