@@ -7,7 +7,7 @@
 // minimal uncompressed OpenEXR encoder, independent of the code under test.
 #ifdef SSS_COMPARE_EXE
 
-#include "CliRun.h"
+#include "common/CliRun.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,7 +1,7 @@
 // Every documented sss-fit command and every documented error (DESIGN.md §4): exit code
 // 0 on success, 2 for bad usage or input with the field named on stderr, 1 for runtime
 // failures; --json prints exactly one JSON document.
-#include "CliRun.h"
+#include "common/CliRun.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -3,7 +3,7 @@
 // and never a partial output file.
 #ifdef SSS_REFERENCE_EXE
 
-#include "CliRun.h"
+#include "common/CliRun.h"
 
 #include <gtest/gtest.h>
 

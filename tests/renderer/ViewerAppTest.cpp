@@ -10,26 +10,15 @@
 #include <fstream>
 #include <string>
 
+#include "common/CliRun.h"
+
 #ifdef SSS_VIEWER_EXE
 
 namespace {
 
-struct ViewerRun {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using ViewerRun = sss::testing::CliRun;
 
-ViewerRun run(const std::string& args) {
-  ViewerRun r;
-  const std::string command = std::string(SSS_VIEWER_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return r;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) r.output += buffer;
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+ViewerRun run(const std::string& args) { return sss::testing::run_shell(std::string(SSS_VIEWER_EXE) + " " + args); }
 
 std::string temp_path(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("sss_viewer_test_" + name)).string();
@@ -40,7 +29,7 @@ TEST(ViewerApp, HeadlessWritesPngAndExr) {
     const std::string out = temp_path(std::string("sphere") + ext);
     std::filesystem::remove(out);
     const ViewerRun r = run("builtin:sphere --headless --out " + out + " --width 96 --height 54");
-    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.code, 0) << r.out;
     auto image = sss::image::read_image(out);
     ASSERT_TRUE(std::holds_alternative<sss::image::Image>(image)) << out;
     EXPECT_EQ(std::get<sss::image::Image>(image).width, 96);
@@ -54,14 +43,14 @@ TEST(ViewerApp, StatsPrintEveryPassAndTheCpuFrameTime) {
   for (const char* mode : {"separable", "gaussians"}) {
     const ViewerRun r = run("builtin:sphere --headless --out " + out +
                       " --width 64 --height 36 --frames 2 --stats --mode " + mode);
-    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.code, 0) << r.out;
     for (const char* row : {"shadow", "gbuffer", "lighting", "composite", "cpu frame"})
-      EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
-    EXPECT_NE(r.output.find(std::string("sss ") + mode), std::string::npos) << r.output;
+      EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
+    EXPECT_NE(r.out.find(std::string("sss ") + mode), std::string::npos) << r.out;
   }
   const ViewerRun off = run("builtin:sphere --headless --out " + out + " --width 64 --height 36 --sss off --stats");
-  EXPECT_EQ(off.status, 0) << off.output;
-  EXPECT_EQ(off.output.find("sss separable"), std::string::npos) << off.output;
+  EXPECT_EQ(off.code, 0) << off.out;
+  EXPECT_EQ(off.out.find("sss separable"), std::string::npos) << off.out;
   std::filesystem::remove(out);
 }
 
@@ -70,10 +59,10 @@ TEST(ViewerApp, MaterialOverridesAreAccepted) {
   const ViewerRun r = run("builtin:sphere --headless --out " + out +
                     " --width 48 --height 27 --preset marble --model dipole --gaussians 3"
                     " --albedo pre-post");
-  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.code, 0) << r.out;
   const ViewerRun c = run("builtin:sphere --headless --out " + out +
                     " --width 48 --height 27 --sigma-a 0.01,0.02,0.03 --sigma-s 1,1,1");
-  EXPECT_EQ(c.status, 0) << c.output;
+  EXPECT_EQ(c.code, 0) << c.out;
   std::filesystem::remove(out);
 }
 
@@ -113,8 +102,8 @@ TEST(ViewerApp, DocumentedErrors) {
   };
   for (const Case& c : cases) {
     const ViewerRun r = run(c.args);
-    EXPECT_EQ(r.status, c.status) << c.args << "\n" << r.output;
-    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.code, c.status) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.message), std::string::npos) << c.args << "\n" << r.out;
   }
   EXPECT_FALSE(std::filesystem::exists(out));
 }

@@ -14,31 +14,20 @@
 #include <filesystem>
 #include <string>
 
+#include "common/CliRun.h"
+
 #ifdef SSS_VIEWER_EXE
 
 namespace {
 
-struct CommandRun {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-CommandRun run_command(const std::string& command) {
-  CommandRun r;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return r;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) r.output += buffer;
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using CommandRun = sss::testing::CliRun;
+using sss::testing::run_shell;
 
 bool have_xvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
 // The viewer in a virtual 1280x720 X server, validation on.
 CommandRun run_windowed(const std::string& args) {
-  return run_command("SSS_VALIDATION=1 xvfb-run -a -s \"-screen 0 1280x720x24\" " +
+  return run_shell("SSS_VALIDATION=1 xvfb-run -a -s \"-screen 0 1280x720x24\" " +
                      std::string(SSS_VIEWER_EXE) + " " + args);
 }
 
@@ -64,13 +53,13 @@ TEST(ViewerWindow, ScreenshotMatchesTheHeadlessFrame) {
   std::filesystem::remove(window_png);
   const CommandRun w = run_windowed("builtin:sphere --width 320 --height 180 --frames 5 --screenshot " +
                              window_png);
-  ASSERT_EQ(w.status, 0) << w.output;
-  EXPECT_FALSE(has_validation_message(w.output)) << w.output;
-  const CommandRun h = run_command("SSS_VALIDATION=1 " + std::string(SSS_VIEWER_EXE) +
+  ASSERT_EQ(w.code, 0) << w.out;
+  EXPECT_FALSE(has_validation_message(w.out)) << w.out;
+  const CommandRun h = run_shell("SSS_VALIDATION=1 " + std::string(SSS_VIEWER_EXE) +
                             " builtin:sphere --headless --width 320 --height 180 --out " +
                             headless_png);
-  ASSERT_EQ(h.status, 0) << h.output;
-  EXPECT_FALSE(has_validation_message(h.output)) << h.output;
+  ASSERT_EQ(h.code, 0) << h.out;
+  EXPECT_FALSE(has_validation_message(h.out)) << h.out;
 
   const sss::image::Image a = read_png(window_png), b = read_png(headless_png);
   ASSERT_EQ(a.width, 320);
@@ -102,8 +91,8 @@ TEST(ViewerWindow, ResizeAndMinimizeWhileRendering) {
     std::filesystem::remove(png);
     const CommandRun r = run_windowed(std::string("builtin:sphere --width 160 --height 90 --frames 10 --test-resize"
                                            " --mode gaussians --vsync ") + vsync + " --screenshot " + png);
-    ASSERT_EQ(r.status, 0) << r.output;
-    EXPECT_FALSE(has_validation_message(r.output)) << r.output;
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_FALSE(has_validation_message(r.out)) << r.out;
     const sss::image::Image image = read_png(png);
     EXPECT_GT(image.width, 0) << vsync;
   }
@@ -115,10 +104,10 @@ TEST(ViewerWindow, ExrScreenshotAndStats) {
   const std::string exr = temp_path("shot.exr");
   std::filesystem::remove(exr);
   const CommandRun r = run_windowed("builtin:sphere --width 96 --height 54 --frames 3 --stats --screenshot " + exr);
-  ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_FALSE(has_validation_message(r.output)) << r.output;
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_FALSE(has_validation_message(r.out)) << r.out;
   for (const char* row : {"window 96x54", "shadow", "composite", "fps"})
-    EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
+    EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
   auto image = sss::image::read_image(exr);
   ASSERT_TRUE(std::holds_alternative<sss::image::Image>(image)) << exr;
   std::filesystem::remove(exr);
@@ -126,13 +115,13 @@ TEST(ViewerWindow, ExrScreenshotAndStats) {
 
 TEST(ViewerWindow, NoDisplayIsARuntimeError) {
   const std::string png = temp_path("nodisplay.png");
-  const CommandRun r = run_command("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(SSS_VIEWER_EXE) +
+  const CommandRun r = run_shell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(SSS_VIEWER_EXE) +
                             " builtin:sphere --frames 1 --screenshot " + png);
-  EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find("sss-viewer: error: no display available; use --headless --out "
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("sss-viewer: error: no display available; use --headless --out "
                           "FILE.png to render without a window"),
             std::string::npos)
-      << r.output;
+      << r.out;
   EXPECT_FALSE(std::filesystem::exists(png));
 }
 

@@ -1,5 +1,5 @@
 // Running an executable under test: its exit code, stdout and stderr. Shared by the
-// app tests (sss-fit, sss-compare, sss-reference).
+// app tests (sss-fit, sss-compare, sss-reference) and the viewer tests.
 #pragma once
 
 #include <array>
@@ -40,6 +40,19 @@ inline CliRun run_cli(const std::string& exe, const std::string& args,
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.err = slurp(stderr_file);
   std::filesystem::remove(stderr_file);
+  return r;
+}
+
+// Runs a shell command line; `out` holds stdout and stderr together (2>&1).
+inline CliRun run_shell(const std::string& command) {
+  CliRun r;
+  FILE* p = ::popen((command + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int status = ::pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
 
