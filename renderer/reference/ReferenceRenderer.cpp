@@ -39,6 +39,7 @@ struct Group {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> source;  // soup triangle -> (instance, triangle)
   SampledSurface surface;
   std::unique_ptr<ScatterKernel> kernel;
+  double area_mm2 = 0.0;        // of the soup
   double planned_points = 0.0;  // area / spacing², before rounding up
   std::vector<IrradiancePoint> points_for_octree;
   std::unique_ptr<PointOctree> octree;
@@ -136,7 +137,8 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
     }
   }
   // A material no instance uses (or whose triangles have no area) spreads no points.
-  std::erase_if(groups, [](const Group& g) { return !(soup_area(g.soup) > 0.0); });
+  for (Group& g : groups) g.area_mm2 = soup_area(g.soup);
+  std::erase_if(groups, [](const Group& g) { return !(g.area_mm2 > 0.0); });
   // Profiles first (the Monte Carlo model takes a while), then the spacing they imply.
   for (std::size_t k = 0; k < groups.size(); ++k) {
     reporter.check();
@@ -145,7 +147,7 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
     const profiles::Medium medium = sss.effective_medium();
     g.profile = std::make_unique<profiles::RgbProfile>(sss.model, medium, o.model_options);
     g.spacing_mm = o.spacing_mfp * smallest_mfp(medium);
-    g.planned_points = soup_area(g.soup) / (g.spacing_mm * g.spacing_mm);
+    g.planned_points = g.area_mm2 / (g.spacing_mm * g.spacing_mm);
     reporter.report("profiles", double(k + 1) / double(groups.size()));
   }
   return groups;

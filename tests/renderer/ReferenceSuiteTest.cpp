@@ -17,6 +17,8 @@
 // own process).
 #include "RenderTest.h"
 
+#include "MaterialOverrides.h"
+
 #include "renderer/image/HeatMap.h"
 #include "renderer/image/Metrics.h"
 #include "renderer/reference/ReferenceRenderer.h"
@@ -75,16 +77,11 @@ scene::Scene load(const std::string& name, const char* model) {
   scene::Scene s = std::move(std::get<scene::Scene>(loaded));
   scene::add_camera_if_missing(s);
   scene::add_light_if_missing(s);
-  if (model) {
-    const auto m = profiles::parse_model(model);
-    if (!m) throw std::runtime_error(std::string("bad model ") + model);
-    for (scene::Material& mat : s.materials) {
-      if (!mat.sss.enabled) continue;
-      auto made = scene::make_sss_material(mat.sss.source, *m, mat.sss.gaussians, mat.sss.scale,
-                                           mat.sss.albedo_mode);
-      if (auto* e = std::get_if<FieldError>(&made)) throw std::runtime_error(e->what());
-      mat.sss = std::get<scene::SssMaterial>(made);
-    }
+  if (model) {  // as sss-viewer --model / sss-reference --model do it
+    app::MaterialOverrideArgs args;
+    args.model = model;
+    auto changed = app::apply_material_overrides(s, args);
+    if (auto* e = std::get_if<FieldError>(&changed)) throw std::runtime_error(e->what());
   }
   return s;
 }
