@@ -187,6 +187,35 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
   return s;
 }
 
+nlohmann::json sss_extras_json(const SssMaterial& m) {
+  json o = json::object();
+  o["enabled"] = m.enabled;
+  const auto rgb = [](const Rgb& v) { return json::array({v[0], v[1], v[2]}); };
+  double thickness = m.medium.thickness_mm;
+  if (const auto* p = std::get_if<PresetSource>(&m.source)) {
+    o["preset"] = p->name;
+  } else if (const auto* c = std::get_if<CoefficientSource>(&m.source)) {
+    o["sigma_a"] = rgb(c->medium.sigma_a);
+    o["sigma_s"] = rgb(c->medium.sigma_s);
+    o["g"] = rgb(c->medium.g);
+    o["eta"] = rgb(c->medium.eta);
+    thickness = c->medium.thickness_mm;
+  } else {
+    const auto& a = std::get<ArtistSource>(m.source).parameters;
+    o["color"] = rgb(a.color);
+    o["mfp"] = rgb(a.mfp_mm);
+    o["g"] = a.g;
+    o["eta"] = a.eta;
+    thickness = a.thickness_mm;
+  }
+  if (std::isfinite(thickness)) o["thickness"] = thickness;  // absent: semi-infinite
+  o["model"] = std::string(profiles::model_name(m.model));
+  o["gaussians"] = m.gaussians;
+  o["scale"] = m.scale;
+  o["albedo_mode"] = std::string(albedo_mode_name(m.albedo_mode));
+  return o;
+}
+
 std::variant<SssMaterial, FieldError> parse_sss_extras_text(std::string_view text) {
   if (auto e = check_json_depth(text, kMaxJsonDepth)) return FieldError{"", *e};
   const json o = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);

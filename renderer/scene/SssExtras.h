@@ -27,4 +27,9 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const nlohmann::json& sss
 // The same from JSON text: the entry point for fuzzing and for command-line tools.
 std::variant<SssMaterial, FieldError> parse_sss_extras_text(std::string_view json_text);
 
+// The block that parse_sss_extras reads back as the same material (source, model,
+// gaussians, scale, albedo mode, thickness, enabled): what the viewer's export writes.
+// Every key is written, defaults included, so the file says what it means.
+nlohmann::json sss_extras_json(const SssMaterial& material);
+
 }  // namespace sss::scene
