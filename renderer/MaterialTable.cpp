@@ -26,6 +26,7 @@ MaterialData build_material_data(const std::vector<scene::Material>& materials,
     throw std::invalid_argument("separable taps must be odd, 3.." +
                                 std::to_string(shader::kMaxTaps));
   MaterialData data;
+  data.separable_taps = separable_taps;
   for (const scene::Material& m : materials) {
     shader::GpuMaterial g;
     g.surface = {0.04f * m.specular, m.metallic, m.roughness, 0.0f};

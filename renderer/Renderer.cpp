@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cstring>
 #include <optional>
+#include <string>
 #include <utility>
 #include <stdexcept>
 
@@ -166,7 +167,18 @@ void Renderer::set_lights(const std::vector<scene::Light>& lights) {
 }
 
 void Renderer::set_materials(const std::vector<scene::Material>& materials) {
-  MaterialData data = build_material_data(materials, options_.separable_taps);
+  set_materials(materials, build_material_data(materials, options_.separable_taps));
+}
+
+void Renderer::set_materials(const std::vector<scene::Material>& materials, MaterialData data) {
+  if (data.separable_taps != options_.separable_taps)
+    throw std::invalid_argument("set_materials: kernels built for " +
+                                std::to_string(data.separable_taps) + " taps, the renderer uses " +
+                                std::to_string(options_.separable_taps));
+  if (data.profiles.size() != materials.size())
+    throw std::invalid_argument("set_materials: material data for " +
+                                std::to_string(data.profiles.size()) + " materials, got " +
+                                std::to_string(materials.size()));
   scene_.set_materials(materials);  // checks the count and the textures first
   materials_.replace(context_, std::move(data));
   update_sss_pass();

@@ -73,6 +73,11 @@ class Renderer {
   // std::invalid_argument): refits the Gaussians and separable kernels (build_material_data),
   // re-uploads the table into the same buffer, updates the draw constants.
   void set_materials(const std::vector<scene::Material>& materials);
+  // The same with the fits already built (build_material_data(materials, taps) on any
+  // thread): only the upload runs here. std::invalid_argument (nothing changes) when
+  // `data` was built for another tap count than options().separable_taps or another
+  // material count.
+  void set_materials(const std::vector<scene::Material>& materials, MaterialData data);
   // SSS mode / kind / taps / exposure; a new size or shadow map size recreates targets.
   // Invalid options (as for the constructor) throw std::invalid_argument.
   void set_options(const RenderOptions& options);

@@ -9,7 +9,6 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <stdexcept>
@@ -19,53 +18,169 @@ namespace sss::app {
 namespace {
 
 constexpr float kDegrees = 57.29577951f;
+constexpr float kPanelWidth = 320.0f;  // <= 35% of a 960-pixel-wide window
+const ImVec4 kErrorColor(1.0f, 0.4f, 0.4f, 1.0f);
+const ImU32 kChannelColor[3] = {IM_COL32(255, 90, 80, 255), IM_COL32(90, 220, 90, 255),
+                                IM_COL32(100, 140, 255, 255)};
 
 std::string preset_label(int i) {
-  return i < 0 ? std::string("(scene's own)") : std::string(profiles::presets()[std::size_t(i)].name);
+  return i < 0 ? std::string("(custom)") : std::string(profiles::presets()[std::size_t(i)].name);
+}
+
+std::string model_label(int m) {
+  return std::string(profiles::model_name(MaterialEditor::models()[std::size_t(m)]));
+}
+
+// "1e-3", "0.01", "0.1", "1", "10", "100", "1e3": a decade's tick label.
+std::string decade_label(int e) {
+  if (e >= -2 && e <= 2) {
+    static const char* text[] = {"0.01", "0.1", "1", "10", "100"};
+    return text[e + 2];
+  }
+  return "1e" + std::to_string(e);
+}
+
+// One log-log panel of the plot: x over [10^xr.lo, 10^xr.hi], y over [10^yr.lo, 10^yr.hi].
+struct LogAxes {
+  ImVec2 p0, p1;  // the plot area, screen pixels
+  LogRange x, y;
+  ImVec2 map(double xv, double yv) const {
+    const double u = (std::log10(xv) - x.lo) / (x.hi - x.lo);
+    const double v = (std::log10(std::max(yv, 1e-300)) - y.lo) / (y.hi - y.lo);
+    return ImVec2(p0.x + float(u) * (p1.x - p0.x),
+                  p1.y - float(std::clamp(v, -0.05, 1.05)) * (p1.y - p0.y));
+  }
+};
+
+// Frame, decade grid and labels (y labels inside the left margin, x labels below).
+void draw_axes(ImDrawList* dl, const LogAxes& a, bool x_labels, const char* y_title) {
+  const ImU32 grid = IM_COL32(255, 255, 255, 40), text = IM_COL32(200, 200, 200, 255);
+  dl->AddRect(a.p0, a.p1, IM_COL32(255, 255, 255, 90));
+  // A label every ystep decades, so that labels (13 px) never touch.
+  const float decade_px = (a.p1.y - a.p0.y) / float(a.y.hi - a.y.lo);
+  const int ystep = std::max(1, int(std::ceil(15.0f / decade_px)));
+  for (int e = a.y.lo; e <= a.y.hi; ++e) {
+    const float y = a.map(std::pow(10.0, a.x.lo), std::pow(10.0, e)).y;
+    dl->AddLine(ImVec2(a.p0.x, y), ImVec2(a.p1.x, y), grid);
+    if ((a.y.hi - e) % ystep == 0) {
+      const std::string s = decade_label(e);
+      const float ty = std::clamp(y - 7.0f, a.p0.y - 2.0f, a.p1.y - 12.0f);
+      dl->AddText(ImVec2(a.p0.x - ImGui::CalcTextSize(s.c_str()).x - 3, ty), text, s.c_str());
+    }
+  }
+  for (int e = a.x.lo; e <= a.x.hi; ++e) {
+    const float x = a.map(std::pow(10.0, e), std::pow(10.0, a.y.lo)).x;
+    dl->AddLine(ImVec2(x, a.p0.y), ImVec2(x, a.p1.y), grid);
+    if (x_labels) {
+      const std::string s = decade_label(e);
+      dl->AddText(ImVec2(x - ImGui::CalcTextSize(s.c_str()).x * 0.5f, a.p1.y + 1), text, s.c_str());
+    }
+  }
+  dl->AddText(ImVec2(a.p1.x - ImGui::CalcTextSize(y_title).x - 3, a.p0.y + 1), text, y_title);
+}
+
+// One curve per channel; dashed draws every other segment.
+void draw_curves(ImDrawList* dl, const LogAxes& a, const std::vector<double>& r,
+                 const std::vector<Rgb>& v, bool dashed, float thickness) {
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t i = 1; i < r.size(); ++i) {
+      if (dashed && i % 2 == 0) continue;
+      if (!(v[i - 1][c] > 0.0) || !(v[i][c] > 0.0)) continue;
+      dl->AddLine(a.map(r[i - 1], v[i - 1][c]), a.map(r[i], v[i][c]), kChannelColor[c], thickness);
+    }
+}
+
+// r·R(r) of the model (solid) and the fit (dashed), and the relative error, log-log.
+void draw_profile_plot(const ProfilePlot& p, bool with_error) {
+  const float width = ImGui::GetContentRegionAvail().x;
+  const float margin = 34.0f, top_h = 110.0f, err_h = with_error ? 56.0f : 0.0f, label_h = 14.0f;
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float total_h = top_h + (with_error ? err_h + 6.0f : 0.0f) + label_h;
+  ImGui::Dummy(ImVec2(width, total_h));
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  std::vector<double> all;
+  for (const Rgb& v : p.model_rR) all.insert(all.end(), v.begin(), v.end());
+  LogAxes top;
+  top.p0 = ImVec2(origin.x + margin, origin.y);
+  top.p1 = ImVec2(origin.x + width - 4, origin.y + top_h);
+  top.x = log_range(p.r_mm, 12);
+  top.x.lo = int(std::floor(std::log10(p.r_mm.front())));
+  top.x.hi = int(std::ceil(std::log10(p.r_mm.back())));
+  top.y = log_range(all, 5);
+  dl->PushClipRect(ImVec2(origin.x, origin.y - 8), ImVec2(origin.x + width, origin.y + total_h), true);
+  draw_axes(dl, top, !with_error, "r R(r) 1/mm");
+  dl->PushClipRect(top.p0, top.p1, true);
+  draw_curves(dl, top, p.r_mm, p.model_rR, false, 2.0f);
+  draw_curves(dl, top, p.r_mm, p.fit_rR, true, 1.0f);
+  dl->PopClipRect();
+  if (with_error) {
+    LogAxes err = top;
+    err.p0.y = top.p1.y + 6.0f;
+    err.p1.y = err.p0.y + err_h;
+    err.y = {-4, 0};
+    draw_axes(dl, err, true, "rel. error");
+    dl->PushClipRect(err.p0, err.p1, true);
+    draw_curves(dl, err, p.r_mm, p.rel_error, false, 1.0f);
+    dl->PopClipRect();
+  }
+  dl->AddText(ImVec2(origin.x, origin.y + total_h - 13), IM_COL32(200, 200, 200, 255), "mm");
+  dl->PopClipRect();
 }
 
 }  // namespace
 
-ViewerUi::ViewerUi(const scene::Scene& scene) : materials_(scene.materials), lights_(scene.lights) {
-  for (std::size_t i = 0; i < profiles::kAllModels.size(); ++i)
-    if (profiles::kAllModels[i] != profiles::Model::MonteCarlo) models_.push_back(int(i));
-  for (std::size_t i = 0; i < materials_.size(); ++i) {
-    const scene::SssMaterial& s = materials_[i].sss;
-    if (!s.enabled) continue;
-    MaterialEdit e;
-    e.index = i;
-    if (const auto* p = std::get_if<scene::PresetSource>(&s.source)) {
-      const auto all = profiles::presets();
-      for (std::size_t k = 0; k < all.size(); ++k)
-        if (all[k].name == p->name) e.preset = int(k);
-    }
-    for (std::size_t m = 0; m < models_.size(); ++m)
-      if (profiles::kAllModels[std::size_t(models_[m])] == s.model) e.model = int(m);
-    e.gaussians = s.gaussians;
-    e.scale = float(s.scale);
-    e.albedo = s.albedo_mode == scene::AlbedoMode::PrePost ? 1 : 0;
-    edits_.push_back(e);
+ViewerUi::ViewerUi(const scene::Scene& scene, int separable_taps)
+    : editor_(scene, separable_taps), lights_(scene.lights) {
+  if (!lights_.empty()) select_light(0);
+}
+
+bool ViewerUi::script_edit(const std::string& edit) {
+  const auto eq = edit.find('=');
+  if (eq == std::string::npos || editor_.edits().empty()) return false;
+  const std::string key = edit.substr(0, eq), value = edit.substr(eq + 1);
+  if (key == "preset" && profiles::find_preset(value) == nullptr) return false;
+  if (key == "model") {
+    const auto m = profiles::parse_model(value);
+    const auto& offered = MaterialEditor::models();
+    if (!m || std::find(offered.begin(), offered.end(), *m) == offered.end()) return false;
+  } else if (key != "preset") {
+    return false;
   }
-  if (!lights_.empty()) {
-    const glm::vec3 to_light = -lights_[0].direction();
-    elevation_deg_ = std::asin(std::clamp(to_light.y, -1.0f, 1.0f)) * kDegrees;
-    azimuth_deg_ = std::atan2(to_light.x, to_light.z) * kDegrees;
-    intensity_ = lights_[0].intensity;
-  }
+  script_ = edit;
+  return true;
 }
 
 void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
   smoothed_ms_ = smoothed_ms_ <= 0.0 ? frame_ms : 0.9 * smoothed_ms_ + 0.1 * frame_ms;
+  editor_.update(r);  // a finished refit: upload it before this frame renders
+  if (!script_.empty() && !editor_.busy()) {  // as if the combo had been clicked
+    const auto eq = script_.find('=');
+    const std::string key = script_.substr(0, eq), value = script_.substr(eq + 1);
+    if (key == "preset") {
+      const auto all = profiles::presets();
+      for (std::size_t k = 0; k < all.size(); ++k)
+        if (all[k].name == value) editor_.select_preset(0, int(k));
+    } else {
+      const auto& offered = MaterialEditor::models();
+      for (std::size_t m = 0; m < offered.size(); ++m)
+        if (profiles::model_name(offered[m]) == value) editor_.select_model(0, int(m));
+    }
+    script_.clear();
+  }
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, std::max(display.y - 16.0f, 100.0f)),
+                           ImGuiCond_FirstUseEver);
   ImGui::Begin("sss-viewer");
+  ImGui::PushItemWidth(-100.0f);  // labels keep 100 px on the right
   ImGui::TextWrapped("drag: orbit, shift/middle drag: pan, wheel: zoom, R: reset view");
   draw_sss(r);
   draw_materials(r);
   draw_light(r);
   draw_stats(r, frame_ms);
   draw_screenshot(r);
-  if (!error_.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error_.c_str());
+  if (!error_.empty()) ImGui::TextColored(kErrorColor, "%s", error_.c_str());
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 
@@ -88,106 +203,140 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
   }
 }
 
-void ViewerUi::draw_materials(renderer::Renderer& r) {
-  if (edits_.empty() || !ImGui::CollapsingHeader("Materials", ImGuiTreeNodeFlags_DefaultOpen))
+void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {
+  if (editor_.edits().empty() || !ImGui::CollapsingHeader("Materials", ImGuiTreeNodeFlags_DefaultOpen))
     return;
-  const auto all = profiles::presets();
-  for (MaterialEdit& e : edits_) {
+  if (editor_.fitting()) ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "fitting...");
+  for (std::size_t i = 0; i < editor_.edits().size(); ++i) {
+    MaterialEdit& e = editor_.edits()[i];
     ImGui::PushID(int(e.index));
-    const std::string& name = materials_[e.index].name;
-    if (ImGui::TreeNodeEx("material", ImGuiTreeNodeFlags_DefaultOpen, "%s",
-                          name.empty() ? "(unnamed)" : name.c_str())) {
-      bool changed = false;
-      if (ImGui::BeginCombo("preset", preset_label(e.preset).c_str())) {
-        for (int k = 0; k < int(all.size()); ++k)
-          if (ImGui::Selectable(preset_label(k).c_str(), k == e.preset)) {
-            changed |= k != e.preset;
-            e.preset = k;
-          }
-        ImGui::EndCombo();
-      }
-      const std::string model_label(
-          profiles::model_name(profiles::kAllModels[std::size_t(models_[std::size_t(e.model)])]));
-      if (ImGui::BeginCombo("model", model_label.c_str())) {
-        for (int m = 0; m < int(models_.size()); ++m) {
-          const std::string label(profiles::model_name(profiles::kAllModels[std::size_t(models_[std::size_t(m)])]));
-          if (ImGui::Selectable(label.c_str(), m == e.model)) {
-            changed |= m != e.model;
-            e.model = m;
-          }
-        }
-        ImGui::EndCombo();
-      }
-      changed |= ImGui::SliderInt("gaussians", &e.gaussians, scene::kMinGaussians,
-                                  scene::kMaxGaussians);
-      changed |= ImGui::SliderFloat("scale", &e.scale, 0.05f, 20.0f, "%.2f",
-                                    ImGuiSliderFlags_Logarithmic);
-      const char* albedo[] = {"post-scatter", "pre-post"};
-      changed |= ImGui::Combo("albedo", &e.albedo, albedo, 2);
-      // Refit when a slider is released, not on every drag step (pbd takes ~0.5 s).
-      e.pending |= changed;
-      if (e.pending && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-        e.pending = false;
-        apply_material(r, e);
-      }
-      if (e.refit_ms >= 0.0) ImGui::Text("refit + upload: %.1f ms", e.refit_ms);
-      if (!e.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", e.error.c_str());
+    if (ImGui::TreeNodeEx("material", ImGuiTreeNodeFlags_DefaultOpen, "%s", e.name.c_str())) {
+      draw_material(e, i);
       ImGui::TreePop();
     }
     ImGui::PopID();
   }
 }
 
-void ViewerUi::apply_material(renderer::Renderer& r, MaterialEdit& e) {
-  scene::Material& m = materials_[e.index];
-  scene::SssSource source = m.sss.source;
-  if (e.preset >= 0)
-    source = scene::PresetSource{std::string(profiles::presets()[std::size_t(e.preset)].name)};
-  auto made = scene::make_sss_material(
-      source, profiles::kAllModels[std::size_t(models_[std::size_t(e.model)])], e.gaussians,
-      double(e.scale), e.albedo == 1 ? scene::AlbedoMode::PrePost : scene::AlbedoMode::PostScatter);
-  if (auto* err = std::get_if<FieldError>(&made)) {
-    e.error = err->what();
-    return;
+void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
+  const auto all = profiles::presets();
+  const int shown_preset = e.kind == SourceKind::Preset ? e.preset : -1;
+  if (ImGui::BeginCombo("preset", preset_label(shown_preset).c_str())) {
+    for (int k = 0; k < int(all.size()); ++k)
+      if (ImGui::Selectable(preset_label(k).c_str(), k == shown_preset)) editor_.select_preset(i, k);
+    ImGui::EndCombo();
   }
-  std::vector<scene::Material> next = materials_;
-  next[e.index].sss = std::get<scene::SssMaterial>(made);
-  const auto start = std::chrono::steady_clock::now();
+  if (ImGui::BeginCombo("model", model_label(e.model).c_str())) {
+    for (int m = 0; m < int(MaterialEditor::models().size()); ++m)
+      if (ImGui::Selectable(model_label(m).c_str(), m == e.model)) editor_.select_model(i, m);
+    ImGui::EndCombo();
+  }
+  int kind = e.kind == SourceKind::Artist ? 1 : 0;
+  if (ImGui::RadioButton("coefficients", &kind, 0)) editor_.set_source_kind(i, SourceKind::Coefficients);
+  ImGui::SameLine();
+  if (ImGui::RadioButton("artist", &kind, 1)) editor_.set_source_kind(i, SourceKind::Artist);
+
+  // Typed fields apply when the edit ends (Enter, Tab, click away); drags, sliders and
+  // the colour picker apply on every change (the refit is asynchronous).
+  bool apply = false;
+  const ImGuiInputTextFlags typed = ImGuiInputTextFlags_CharsScientific;
+  if (e.kind != SourceKind::Artist) {
+    ImGui::InputFloat3("sigma_a 1/mm", e.sigma_a.data(), "%.4g", typed);
+    if (ImGui::IsItemDeactivatedAfterEdit()) { e.kind = SourceKind::Coefficients; apply = true; }
+    ImGui::InputFloat3("sigma_s 1/mm", e.sigma_s.data(), "%.4g", typed);
+    if (ImGui::IsItemDeactivatedAfterEdit()) { e.kind = SourceKind::Coefficients; apply = true; }
+    ImGui::InputFloat3("g", e.g.data(), "%.3g", typed);
+    if (ImGui::IsItemDeactivatedAfterEdit()) { e.kind = SourceKind::Coefficients; apply = true; }
+    ImGui::InputFloat3("eta", e.eta.data(), "%.3g", typed);
+    if (ImGui::IsItemDeactivatedAfterEdit()) { e.kind = SourceKind::Coefficients; apply = true; }
+  } else {
+    apply |= ImGui::ColorEdit3("colour", e.color.data(), ImGuiColorEditFlags_Float);
+    apply |= ImGui::DragFloat3("mfp mm", e.mfp_mm.data(), 0.01f, 0.0f, 0.0f, "%.3g");
+    ImGui::InputFloat("eta", &e.artist_eta, 0.0f, 0.0f, "%.3g", typed);
+    apply |= ImGui::IsItemDeactivatedAfterEdit();
+  }
+  ImGui::InputFloat("thickness mm", &e.thickness_mm, 0.0f, 0.0f, "%.3g", typed);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: semi-infinite (multipole needs a slab)");
+  if (ImGui::IsItemDeactivatedAfterEdit()) {
+    if (e.kind == SourceKind::Preset) e.kind = SourceKind::Coefficients;
+    apply = true;
+  }
+  apply |= ImGui::SliderInt("gaussians", &e.gaussians, scene::kMinGaussians, scene::kMaxGaussians);
+  apply |= ImGui::SliderFloat("scale", &e.scale, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  const char* albedo[] = {"post-scatter", "pre-post"};
+  apply |= ImGui::Combo("albedo", &e.albedo, albedo, 2);
+  if (apply) editor_.apply(i);
+
+  if (!e.error.empty()) ImGui::TextColored(kErrorColor, "%s", e.error.c_str());
+  if (e.plot) {
+    ImGui::Checkbox("plot error", &plot_error_);
+    ImGui::SameLine();
+    ImGui::TextDisabled("fit err %.1f/%.1f/%.1f%%", 100.0 * e.plot->fit_relative_error[0],
+                        100.0 * e.plot->fit_relative_error[1], 100.0 * e.plot->fit_relative_error[2]);
+    draw_profile_plot(*e.plot, plot_error_);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("r R(r): model solid, Gaussian fit dashed; below: relative error");
+  }
+}
+
+void ViewerUi::select_light(std::size_t i) {
+  light_ = int(i);
+  const scene::Light& l = lights_[i];
+  const glm::vec3 to_light = -l.direction();
+  elevation_deg_ = std::asin(std::clamp(to_light.y, -1.0f, 1.0f)) * kDegrees;
+  azimuth_deg_ = std::atan2(to_light.x, to_light.z) * kDegrees;
+  intensity_ = l.intensity;
+  for (int c = 0; c < 3; ++c) light_color_[c] = l.color[c];
+}
+
+bool ViewerUi::set_light(renderer::Renderer& r, std::size_t i, float azimuth_deg,
+                         float elevation_deg, float intensity, const float color[3]) {
+  if (i >= lights_.size()) return false;
+  std::vector<scene::Light> next = lights_;
+  scene::Light& l = next[i];
+  if (l.type != scene::LightType::Point) {
+    const float az = azimuth_deg / kDegrees, el = elevation_deg / kDegrees;
+    const glm::vec3 to_light(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
+    const glm::vec3 pos = l.position();
+    const glm::vec3 up = std::fabs(to_light.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+    l.world = scene::look_at_world(pos, pos - to_light, up);  // local -Z travels away from the light
+  }
+  l.intensity = std::max(intensity, 0.0f);
+  for (int c = 0; c < 3; ++c) l.color[c] = std::max(color[c], 0.0f);
   try {
-    r.set_materials(next);
-  } catch (const std::exception& ex) {
-    e.error = ex.what();
-    return;
+    r.set_lights(next);
+  } catch (const std::invalid_argument& e) {
+    error_ = e.what();
+    return false;
   }
-  e.refit_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  e.error.clear();
-  materials_ = std::move(next);
+  lights_ = std::move(next);
+  error_.clear();
+  return true;
 }
 
 void ViewerUi::draw_light(renderer::Renderer& r) {
-  if (lights_.empty() || !ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  ImGui::Text("%s", lights_[0].name.empty() ? "light 0" : lights_[0].name.c_str());
+  if (lights_.empty() || !ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  auto label = [this](std::size_t i) {
+    const scene::Light& l = lights_[i];
+    const char* type = l.type == scene::LightType::Directional ? "directional"
+                       : l.type == scene::LightType::Spot      ? "spot"
+                                                                : "point";
+    return (l.name.empty() ? "light " + std::to_string(i) : l.name) + " (" + type + ")";
+  };
+  if (ImGui::BeginCombo("light", label(std::size_t(light_)).c_str())) {
+    for (std::size_t i = 0; i < lights_.size(); ++i)
+      if (ImGui::Selectable(label(i).c_str(), int(i) == light_)) select_light(i);
+    ImGui::EndCombo();
+  }
+  const bool point = lights_[std::size_t(light_)].type == scene::LightType::Point;
+  ImGui::BeginDisabled(point);  // a point light has no direction
   bool changed = ImGui::SliderFloat("azimuth", &azimuth_deg_, -180.0f, 180.0f, "%.0f deg");
   changed |= ImGui::SliderFloat("elevation", &elevation_deg_, -89.0f, 89.0f, "%.0f deg");
-  changed |= ImGui::SliderFloat("intensity", &intensity_, 0.0f, 20.0f, "%.2f");
-  if (changed) apply_light(r);
-}
-
-void ViewerUi::apply_light(renderer::Renderer& r) {
-  scene::Light& l = lights_[0];
-  const float az = azimuth_deg_ / kDegrees, el = elevation_deg_ / kDegrees;
-  const glm::vec3 to_light(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
-  const glm::vec3 pos = l.position();
-  const glm::vec3 up = std::fabs(to_light.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
-  l.world = scene::look_at_world(pos, pos - to_light, up);  // local -Z travels away from the light
-  l.intensity = std::max(intensity_, 0.0f);
-  try {
-    r.set_lights(lights_);
-    error_.clear();
-  } catch (const std::invalid_argument& e) {
-    error_ = e.what();
-  }
+  ImGui::EndDisabled();
+  changed |= ImGui::SliderFloat("intensity", &intensity_, 0.0f, 20.0f, "%.3g",
+                                ImGuiSliderFlags_Logarithmic);
+  changed |= ImGui::ColorEdit3("colour##light", light_color_, ImGuiColorEditFlags_Float);
+  if (changed) set_light(r, std::size_t(light_), azimuth_deg_, elevation_deg_, intensity_, light_color_);
 }
 
 void ViewerUi::draw_stats(const renderer::Renderer& r, double frame_ms) {
@@ -199,6 +348,25 @@ void ViewerUi::draw_stats(const renderer::Renderer& r, double frame_ms) {
   for (const vk::PassTime& p : s.passes) ImGui::Text("  %-14s %7.2f ms", p.name.c_str(), p.ms);
   ImGui::Text("  %-14s %7.2f ms", "gpu total", s.gpu_ms);
   ImGui::Text("  %-14s %7.2f ms", "renderer cpu", s.cpu_ms);
+  const RefitLatency& l = editor_.latency();
+  if (l.edits > 0) {
+    ImGui::Text("refit (last edit, %d so far)", l.edits);
+    ImGui::Text("  %-14s %7.2f ms", "fit (worker)", l.fit_ms);
+    ImGui::Text("  %-14s %7.2f ms", "upload", l.upload_ms);
+    ImGui::Text("  %-14s %7.2f ms", "edit->frame", l.edit_to_frame_ms);
+    ImGui::Text("  %-14s %7.2f ms", "max frame", l.max_frame_ms);
+  } else if (editor_.fitting()) {
+    ImGui::TextUnformatted("refit: fitting...");
+  }
+}
+
+void ViewerUi::print_stats(std::FILE* out) const {
+  const RefitLatency& l = editor_.latency();
+  if (l.edits == 0) return;
+  std::fprintf(out, "%-16s %10.3f\n", "refit fit", l.fit_ms);
+  std::fprintf(out, "%-16s %10.3f\n", "refit upload", l.upload_ms);
+  std::fprintf(out, "%-16s %10.3f\n", "edit->frame", l.edit_to_frame_ms);
+  std::fprintf(out, "%-16s %10.3f\n", "refit max frame", l.max_frame_ms);
 }
 
 void ViewerUi::draw_screenshot(const renderer::Renderer& r) {

@@ -1,11 +1,16 @@
-// The viewer's ImGui panels: SSS mode, a material editor per SSS material, the key
-// light, per-pass stats and screenshots. Every change goes through the Renderer's live
-// calls (set_options, set_materials, set_lights) between frames.
+// The viewer's ImGui panels: SSS mode, a material editor per SSS material (preset, model,
+// σa/σs/g/η or artist colour + mfp, with a plot of the profile and its fit), every light,
+// per-pass and refit stats, and screenshots. Every change goes through the Renderer's
+// live calls (set_options, set_materials, set_lights) between frames; material refits run
+// on a worker thread (MaterialEditor, FitWorker) and only their upload happens here.
 #pragma once
+
+#include "MaterialEditor.h"
 
 #include "renderer/Renderer.h"
 #include "renderer/scene/Scene.h"
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -13,38 +18,48 @@ namespace sss::app {
 
 class ViewerUi {
  public:
-  explicit ViewerUi(const scene::Scene& scene);
+  explicit ViewerUi(const scene::Scene& scene, int separable_taps = 17);
 
   // Builds the panels for this ImGui frame (between ImGui::NewFrame and ImGui::Render)
-  // and applies what changed. frame_ms: the wall-clock time of the last window frame.
+  // and applies what changed, including a finished refit. frame_ms: the wall-clock time
+  // of the last window frame.
   void draw(renderer::Renderer& r, double frame_ms);
+  // After each presented frame: closes the refit latency (edit → first frame with it).
+  void frame_presented(double frame_ms) { editor_.frame_presented(frame_ms); }
+  // A refit is running or waiting to be presented.
+  bool busy() const { return editor_.busy(); }
+  // Scripted edit (sss-viewer --test-edit): "preset=NAME" or "model=NAME" on the first
+  // SSS material, made by the first draw() with no refit running (the start-up one
+  // done), through the widgets' own calls. False if the
+  // text names nothing.
+  bool script_edit(const std::string& edit);
+  // The refit timings, for --stats.
+  void print_stats(std::FILE* out) const;
+
+  MaterialEditor& editor() { return editor_; }
+
+  // The light panel's logic (the widgets call it): light `i` shines from azimuth/elevation
+  // (degrees; the light travels towards the origin's side), with intensity and colour.
+  bool set_light(renderer::Renderer& r, std::size_t i, float azimuth_deg, float elevation_deg,
+                 float intensity, const float color[3]);
+  const std::vector<scene::Light>& lights() const { return lights_; }
 
  private:
-  struct MaterialEdit {
-    std::size_t index = 0;  // into materials_
-    int preset = -1;        // into profiles::presets(); -1: the material's own source
-    int model = 0;          // into models_
-    int gaussians = 6;
-    float scale = 1.0f;
-    int albedo = 0;  // 0 post-scatter, 1 pre-post
-    bool pending = false;  // changed, applied when the mouse is released
-    double refit_ms = -1.0;
-    std::string error;
-  };
-
   void draw_sss(renderer::Renderer& r);
   void draw_materials(renderer::Renderer& r);
+  void draw_material(MaterialEdit& e, std::size_t i);
   void draw_light(renderer::Renderer& r);
   void draw_stats(const renderer::Renderer& r, double frame_ms);
   void draw_screenshot(const renderer::Renderer& r);
-  void apply_material(renderer::Renderer& r, MaterialEdit& edit);
-  void apply_light(renderer::Renderer& r);
+  void select_light(std::size_t i);
 
-  std::vector<scene::Material> materials_;
+  MaterialEditor editor_;
   std::vector<scene::Light> lights_;
-  std::vector<MaterialEdit> edits_;
-  std::vector<int> models_;  // profiles::kAllModels indices offered (all but mc)
+  int light_ = 0;  // the light the panel edits
   float azimuth_deg_ = 0.0f, elevation_deg_ = 0.0f, intensity_ = 1.0f;
+  float light_color_[3] = {1.0f, 1.0f, 1.0f};
+  bool plot_error_ = true;  // the plot shows the fit's relative error below
+  std::string script_;
   double smoothed_ms_ = 0.0;
   char shot_name_[256] = "sss-viewer";
   std::string shot_message_;

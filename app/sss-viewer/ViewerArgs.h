@@ -31,6 +31,7 @@ struct ViewerArgs {
   std::string vsync = "on";  // window: on (FIFO) | off (MAILBOX / IMMEDIATE)
   bool validation = false;   // --validation or SSS_VALIDATION=1
   bool test_resize = false;  // hidden: resize and minimize the window between frames
+  std::string test_edit;     // hidden: preset=NAME | model=NAME, edited at the first frame
 };
 
 }  // namespace sss::app

@@ -63,6 +63,9 @@ int main(int argc, char** argv) {
   app.add_flag("--validation", a.validation,
                "Load the Vulkan validation layer with synchronization checks (also SSS_VALIDATION=1)");
   app.add_flag("--test-resize", a.test_resize)->group("");  // tests: resize/minimize the window
+  // tests and timing: one material edit through the panel's code path at the first frame;
+  // --screenshot then waits for its refit to be presented (--stats prints its latency)
+  app.add_option("--test-edit", a.test_edit)->group("");
   if (const auto stop = parse_command_line(app, argc, argv, "sss-viewer")) return *stop;
 
   if (const char* v = std::getenv("SSS_VALIDATION"); v != nullptr && std::string(v) == "1")

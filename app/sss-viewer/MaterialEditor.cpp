@@ -1,0 +1,287 @@
+#include "MaterialEditor.h"
+
+#include "profiles/Presets.h"
+#include "profiles/Profile.h"
+
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <utility>
+
+namespace sss::app {
+
+namespace {
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+int preset_index(std::string_view name) {
+  const auto all = profiles::presets();
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (all[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
+// The checks make_sss_material would make on the UI thread's side of an artist source,
+// so that a typo shows at once; the model inversion (which may still refuse a colour)
+// runs on the worker.
+std::optional<FieldError> check_artist(const profiles::ArtistParameters& p) {
+  const auto str = sss::message_number;
+  for (int c = 0; c < 3; ++c) {
+    const std::string ch = std::string("[") + kChannelNames[c] + "]";
+    if (!std::isfinite(p.color[c]) || !(p.color[c] > 0.0) || !(p.color[c] < 1.0))
+      return FieldError{"color" + ch, "must lie strictly between 0 and 1, got " + str(p.color[c])};
+    if (!std::isfinite(p.mfp_mm[c]) || !(p.mfp_mm[c] > 0.0))
+      return FieldError{"mfp" + ch, "mean free path must be > 0 mm, got " + str(p.mfp_mm[c])};
+  }
+  if (!std::isfinite(p.eta) || !(p.eta > 0.0))
+    return FieldError{"eta", "must be > 0, got " + str(p.eta)};
+  return std::nullopt;
+}
+
+}  // namespace
+
+const std::vector<profiles::Model>& MaterialEditor::models() {
+  static const std::vector<profiles::Model> offered = [] {
+    std::vector<profiles::Model> out;
+    for (profiles::Model m : profiles::kAllModels)
+      if (m != profiles::Model::MonteCarlo) out.push_back(m);
+    return out;
+  }();
+  return offered;
+}
+
+MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
+                               FitWorker::Compute compute)
+    : applied_(scene.materials),
+      pending_(scene.materials.size()),
+      taps_(separable_taps),
+      worker_(std::move(compute)) {
+  for (std::size_t i = 0; i < applied_.size(); ++i) {
+    const scene::SssMaterial& s = applied_[i].sss;
+    if (!s.enabled) continue;
+    MaterialEdit e;
+    e.index = i;
+    e.name = applied_[i].name.empty() ? "material " + std::to_string(i) : applied_[i].name;
+    for (std::size_t m = 0; m < models().size(); ++m)
+      if (models()[m] == s.model) e.model = static_cast<int>(m);
+    e.gaussians = s.gaussians;
+    e.scale = static_cast<float>(s.scale);
+    e.albedo = s.albedo_mode == scene::AlbedoMode::PrePost ? 1 : 0;
+    fill_coefficients(e, s.medium);
+    if (const auto* p = std::get_if<scene::PresetSource>(&s.source)) {
+      e.kind = SourceKind::Preset;
+      e.preset = preset_index(p->name);
+    } else if (const auto* a = std::get_if<scene::ArtistSource>(&s.source)) {
+      e.kind = SourceKind::Artist;
+      for (int c = 0; c < 3; ++c) {
+        e.color[c] = static_cast<float>(a->parameters.color[c]);
+        e.mfp_mm[c] = static_cast<float>(a->parameters.mfp_mm[c]);
+      }
+      e.artist_eta = static_cast<float>(a->parameters.eta);
+    } else {
+      e.kind = SourceKind::Coefficients;
+    }
+    edits_.push_back(std::move(e));
+  }
+  // The plots of the scene's own materials: the same refit the renderer made, off the
+  // render thread; its upload changes nothing and is not counted as an edit.
+  if (!edits_.empty()) submit(Clock::time_point{});
+}
+
+void MaterialEditor::fill_coefficients(MaterialEdit& e, const profiles::Medium& m) {
+  for (int c = 0; c < 3; ++c) {
+    e.sigma_a[c] = static_cast<float>(m.sigma_a[c]);
+    e.sigma_s[c] = static_cast<float>(m.sigma_s[c]);
+    e.g[c] = static_cast<float>(m.g[c]);
+    e.eta[c] = static_cast<float>(m.eta[c]);
+  }
+  e.thickness_mm = m.is_slab() ? static_cast<float>(m.thickness_mm) : 0.0f;
+}
+
+bool MaterialEditor::select_preset(std::size_t edit, int preset) {
+  MaterialEdit& e = edits_.at(edit);
+  const auto all = profiles::presets();
+  if (preset < 0 || preset >= static_cast<int>(all.size())) {
+    e.error = "preset: no preset " + std::to_string(preset);
+    return false;
+  }
+  e.kind = SourceKind::Preset;
+  e.preset = preset;
+  fill_coefficients(e, profiles::preset_medium(all[static_cast<std::size_t>(preset)]));
+  return apply(edit);
+}
+
+bool MaterialEditor::select_model(std::size_t edit, int model) {
+  MaterialEdit& e = edits_.at(edit);
+  if (model < 0 || model >= static_cast<int>(models().size())) {
+    e.error = "model: no model " + std::to_string(model);
+    return false;
+  }
+  e.model = model;
+  return apply(edit);
+}
+
+bool MaterialEditor::set_source_kind(std::size_t edit, SourceKind kind) {
+  MaterialEdit& e = edits_.at(edit);
+  if (kind == e.kind) return true;
+  const scene::Material& current = applied_[e.index];
+  const profiles::Medium& m = current.sss.medium;
+  if (kind == SourceKind::Artist) {
+    // The colour that reproduces the current look: the model's total reflectance (scale
+    // does not change it), and the reduced mfp per channel.
+    try {
+      const profiles::RgbProfile profile(current.sss.model, m);
+      const Rgb total = profile.total_reflectance();
+      for (int c = 0; c < 3; ++c) {
+        e.color[c] = std::clamp(static_cast<float>(total[c]), 0.001f, 0.999f);
+        e.mfp_mm[c] = static_cast<float>(m.channel(c).mfp_reduced());
+      }
+      e.artist_eta = static_cast<float>(m.eta[0]);
+    } catch (const std::exception&) {
+      // keep the fields as they were
+    }
+  } else if (kind == SourceKind::Preset && e.preset < 0) {
+    return select_preset(edit, preset_index("skin1"));
+  } else {
+    fill_coefficients(e, m);
+  }
+  e.kind = kind;
+  return apply(edit);
+}
+
+std::optional<SssSpec> MaterialEditor::spec_from_fields(MaterialEdit& e) {
+  SssSpec s;
+  s.model = models()[static_cast<std::size_t>(e.model)];
+  s.gaussians = e.gaussians;
+  s.scale = e.scale;
+  s.albedo_mode = e.albedo == 1 ? scene::AlbedoMode::PrePost : scene::AlbedoMode::PostScatter;
+  const double thickness =
+      e.thickness_mm > 0.0f ? double(e.thickness_mm) : std::numeric_limits<double>::infinity();
+  if (e.kind == SourceKind::Preset && e.preset >= 0) {
+    s.source = scene::PresetSource{std::string(profiles::presets()[std::size_t(e.preset)].name)};
+  } else if (e.kind == SourceKind::Artist) {
+    profiles::ArtistParameters p;
+    for (int c = 0; c < 3; ++c) {
+      p.color[c] = e.color[c];
+      p.mfp_mm[c] = e.mfp_mm[c];
+    }
+    p.eta = e.artist_eta;
+    p.thickness_mm = thickness;
+    if (auto err = check_artist(p)) {
+      e.error = err->what();
+      return std::nullopt;
+    }
+    s.source = scene::ArtistSource{p};
+  } else {
+    e.kind = SourceKind::Coefficients;
+    profiles::Medium m;
+    for (int c = 0; c < 3; ++c) {
+      m.sigma_a[c] = e.sigma_a[c];
+      m.sigma_s[c] = e.sigma_s[c];
+      m.g[c] = e.g[c];
+      m.eta[c] = e.eta[c];
+    }
+    m.thickness_mm = thickness;
+    s.source = scene::CoefficientSource{m};
+  }
+  // Everything but the artist inversion is cheap: check it here, so that bad input never
+  // reaches the worker (and the frame stays as it is).
+  if (e.kind != SourceKind::Artist) {
+    auto made = scene::make_sss_material(s.source, s.model, s.gaussians, s.scale, s.albedo_mode);
+    if (auto* err = std::get_if<FieldError>(&made)) {
+      e.error = err->what();
+      return std::nullopt;
+    }
+    // The model's own limits (multipole: a finite slab). Only multipole has any, and
+    // building a pbd profile here would cost ~10 ms (its total reflectance).
+    if (s.model == profiles::Model::Multipole) {
+      try {
+        const profiles::RgbProfile check(s.model,
+                                         std::get<scene::SssMaterial>(made).effective_medium());
+      } catch (const std::invalid_argument& ex) {
+        e.error = ex.what();
+        return std::nullopt;
+      }
+    }
+  } else if (s.gaussians < scene::kMinGaussians || s.gaussians > scene::kMaxGaussians ||
+             !std::isfinite(s.scale) || !(s.scale > 0.0)) {
+    auto made = scene::make_sss_material(scene::PresetSource{"skin1"}, s.model, s.gaussians,
+                                         s.scale, s.albedo_mode);
+    if (auto* err = std::get_if<FieldError>(&made)) e.error = err->what();
+    return std::nullopt;
+  }
+  return s;
+}
+
+bool MaterialEditor::apply(std::size_t edit) {
+  const auto edited = Clock::now();
+  MaterialEdit& e = edits_.at(edit);
+  std::optional<SssSpec> spec = spec_from_fields(e);
+  if (!spec) return false;
+  e.error.clear();
+  pending_[e.index] = std::move(spec);
+  submit(edited);
+  return true;
+}
+
+void MaterialEditor::submit(Clock::time_point edited) {
+  FitRequest request;
+  request.materials = applied_;
+  request.specs = pending_;
+  request.separable_taps = taps_;
+  request.edited = edited;
+  running_max_frame_ms_ = 0.0;
+  worker_.submit(std::move(request));
+}
+
+bool MaterialEditor::update(renderer::Renderer& r) {
+  std::optional<FitResult> result = worker_.take();
+  if (!result) return false;
+  // The newest request: every pending spec is in it.
+  for (auto& p : pending_) p.reset();
+  if (!result->error.empty()) {
+    for (MaterialEdit& e : edits_)
+      if (result->error_material < 0 || e.index == std::size_t(result->error_material))
+        e.error = result->error;
+    return false;
+  }
+  if (result->data.separable_taps != r.options().separable_taps) {
+    taps_ = r.options().separable_taps;  // the taps changed meanwhile: fit again
+    submit(result->request.edited);
+    return false;
+  }
+  const auto start = Clock::now();
+  try {
+    r.set_materials(result->request.materials, std::move(result->data));
+  } catch (const std::exception& ex) {
+    for (MaterialEdit& e : edits_) e.error = ex.what();
+    return false;
+  }
+  const double upload_ms = ms_since(start);
+  applied_ = std::move(result->request.materials);
+  for (MaterialEdit& e : edits_) {
+    if (e.index < result->plots.size() && result->plots[e.index])
+      e.plot = std::move(result->plots[e.index]);
+  }
+  if (result->request.edited != Clock::time_point{}) {
+    latency_.fit_ms = result->fit_ms;
+    latency_.upload_ms = upload_ms;
+    edited_ = result->request.edited;
+    awaiting_present_ = true;
+  }
+  return true;
+}
+
+void MaterialEditor::frame_presented(double frame_ms) {
+  if (worker_.busy() || awaiting_present_)
+    running_max_frame_ms_ = std::max(running_max_frame_ms_, frame_ms);
+  if (!awaiting_present_) return;
+  awaiting_present_ = false;
+  latency_.edit_to_frame_ms = ms_since(edited_);
+  latency_.max_frame_ms = running_max_frame_ms_;
+  ++latency_.edits;
+}
+
+}  // namespace sss::app

@@ -1,0 +1,111 @@
+// MaterialEditor: the state and logic of the viewer's material panel, without ImGui. The
+// widgets (Ui.cpp) edit the fields of a MaterialEdit and call the methods below; tests
+// call the same methods, so a scripted edit goes through the code path of a click.
+//
+// An edit is checked at once (a bad number shows its FieldError and changes nothing),
+// then resolved and fitted on the FitWorker; update() on the render thread uploads the
+// newest finished fit before the next frame (Renderer::set_materials(materials, data))
+// and frame_presented() closes the edit → frame latency.
+#pragma once
+
+#include "FitWorker.h"
+#include "ProfilePlot.h"
+
+#include "renderer/Renderer.h"
+#include "renderer/scene/Scene.h"
+
+#include <array>
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sss::app {
+
+enum class SourceKind { Preset, Coefficients, Artist };
+
+struct MaterialEdit {
+  std::size_t index = 0;  // into the scene's materials
+  std::string name;
+  SourceKind kind = SourceKind::Preset;
+  int preset = -1;  // into profiles::presets() while kind == Preset
+  int model = 0;    // into MaterialEditor::models()
+  int gaussians = scene::kDefaultGaussians;
+  float scale = 1.0f;
+  int albedo = 0;  // 0 post-scatter, 1 pre-post
+  // The coefficient fields (mm^-1), per channel R, G, B; thickness 0: semi-infinite.
+  std::array<float, 3> sigma_a{}, sigma_s{}, g{}, eta{1.3f, 1.3f, 1.3f};
+  float thickness_mm = 0.0f;
+  // The artist fields: diffuse colour (total reflectance) and reduced mfp in mm.
+  std::array<float, 3> color{0.5f, 0.5f, 0.5f}, mfp_mm{1.0f, 1.0f, 1.0f};
+  float artist_eta = 1.3f;
+  std::string error;                // the last edit's FieldError, shown in red
+  std::optional<ProfilePlot> plot;  // of the material the frame shows
+};
+
+// Timings of the last applied edit, ms; < 0 until known.
+struct RefitLatency {
+  double fit_ms = -1.0;            // worker: resolve + fit + kernel + plot
+  double upload_ms = -1.0;         // render thread: Renderer::set_materials(materials, data)
+  double edit_to_frame_ms = -1.0;  // the edit call → the first frame with it presented
+  double max_frame_ms = 0.0;       // the longest window frame while the refit ran
+  int edits = 0;                   // applied edits measured
+};
+
+class MaterialEditor {
+ public:
+  MaterialEditor(const scene::Scene& scene, int separable_taps,
+                 FitWorker::Compute compute = FitWorker::compute_default);
+
+  // The models offered: all of profiles::kAllModels except mc (2^20 photons per channel
+  // take seconds per edit).
+  static const std::vector<profiles::Model>& models();
+
+  std::vector<MaterialEdit>& edits() { return edits_; }
+  const std::vector<MaterialEdit>& edits() const { return edits_; }
+
+  // The widgets' calls. Each returns false (error set, nothing submitted) for input that
+  // cannot be right; true when a refit was queued.
+  bool select_preset(std::size_t edit, int preset);  // fills the coefficient fields
+  bool select_model(std::size_t edit, int model);
+  // Switches the fields: Coefficients from the current medium; Artist from its total
+  // reflectance and reduced mfp; Preset keeps the current preset (or skin1).
+  bool set_source_kind(std::size_t edit, SourceKind kind);
+  // After the widgets changed the edit's fields (coefficients, artist values, gaussians,
+  // scale, albedo): checks and queues a refit. Editing a coefficient of a preset makes
+  // the source Coefficients first.
+  bool apply(std::size_t edit);
+
+  // Render thread, before render_frame(): uploads the newest finished fit, if any, and
+  // returns true if it did. Errors the renderer raises show on the material.
+  bool update(renderer::Renderer& r);
+  // The window calls this after presenting a frame (frame_ms: its wall-clock time).
+  void frame_presented(double frame_ms = 0.0);
+  bool busy() const { return worker_.busy() || awaiting_present_; }
+  bool fitting() const { return worker_.busy(); }
+  // Tests: waits for the worker (not the present), true if it went idle.
+  bool wait_idle(std::chrono::milliseconds timeout) const { return worker_.wait_idle(timeout); }
+
+  const RefitLatency& latency() const { return latency_; }
+  const std::vector<scene::Material>& applied() const { return applied_; }
+  const FitWorker& worker() const { return worker_; }
+  // Set by the UI when the user edits the renderer's taps; the next request uses them.
+  void set_separable_taps(int taps) { taps_ = taps; }
+
+ private:
+  void fill_coefficients(MaterialEdit& e, const profiles::Medium& m);
+  std::optional<SssSpec> spec_from_fields(MaterialEdit& e);
+  void submit(Clock::time_point edited);
+
+  std::vector<scene::Material> applied_;  // what the renderer draws
+  std::vector<std::optional<SssSpec>> pending_;  // per material: edited, not applied yet
+  std::vector<MaterialEdit> edits_;
+  int taps_;
+  RefitLatency latency_;
+  Clock::time_point edited_{};  // of the result awaiting its first present
+  bool awaiting_present_ = false;
+  double running_max_frame_ms_ = 0.0;
+  FitWorker worker_;  // last: stopped first
+};
+
+}  // namespace sss::app
