@@ -15,8 +15,10 @@ MaterialData build_material_data(const scene::Scene& scene, int separable_taps) 
   return build_material_data(scene.materials, separable_taps);
 }
 
-MaterialData build_material_data(const std::vector<scene::Material>& materials,
-                                 int separable_taps) {
+namespace {
+
+MaterialData build(const std::vector<scene::Material>& materials, int separable_taps,
+                   const MaterialData* previous, const std::vector<bool>* reuse) {
   if (materials.size() > shader::kMaxMaterials)
     throw std::invalid_argument("the scene has " + std::to_string(materials.size()) +
                                 " materials; the renderer supports " +
@@ -25,20 +27,30 @@ MaterialData build_material_data(const std::vector<scene::Material>& materials,
       separable_taps > static_cast<int>(shader::kMaxTaps))
     throw std::invalid_argument("separable taps must be odd, 3.." +
                                 std::to_string(shader::kMaxTaps));
+  const bool can_reuse = previous != nullptr && reuse != nullptr &&
+                         previous->separable_taps == separable_taps &&
+                         previous->profiles.size() == materials.size() &&
+                         reuse->size() == materials.size();
   MaterialData data;
   data.separable_taps = separable_taps;
-  for (const scene::Material& m : materials) {
+  for (std::size_t index = 0; index < materials.size(); ++index) {
+    const scene::Material& m = materials[index];
     shader::GpuMaterial g;
     g.surface = {0.04f * m.specular, m.metallic, m.roughness, 0.0f};
     g.reflectance = {1.0f, 1.0f, 1.0f, 0.0f};
     std::optional<MaterialProfile> profile;
     if (m.sss.enabled) {
-      const profiles::RgbProfile rgb(m.sss.model, m.sss.effective_medium());
-      profiles::FitOptions options;
-      options.gaussians = m.sss.gaussians;
-      MaterialProfile p{profiles::fit_gaussians(profiles::make_fit_target(rgb), options),
-                        profiles::make_separable_kernel(rgb, separable_taps)};
-      const Rgb total = rgb.total_reflectance();
+      MaterialProfile p;
+      if (can_reuse && (*reuse)[index] && previous->profiles[index]) {
+        p = *previous->profiles[index];
+      } else {
+        const profiles::RgbProfile rgb(m.sss.model, m.sss.effective_medium());
+        profiles::FitOptions options;
+        options.gaussians = m.sss.gaussians;
+        p = {profiles::fit_gaussians(profiles::make_fit_target(rgb), options),
+             profiles::make_separable_kernel(rgb, separable_taps)};
+      }
+      const Rgb total = p.kernel.total_reflectance;  // the profile's total_reflectance()
       g.reflectance = {float(total[0]), float(total[1]), float(total[2]), 1.0f};
       const auto count = p.fit.variances_mm2.size();
       g.surface.w = float(count);
@@ -62,6 +74,19 @@ MaterialData build_material_data(const std::vector<scene::Material>& materials,
   }
   if (data.gpu.empty()) data.gpu.emplace_back();  // a storage buffer cannot be empty
   return data;
+}
+
+}  // namespace
+
+MaterialData build_material_data(const std::vector<scene::Material>& materials,
+                                 int separable_taps) {
+  return build(materials, separable_taps, nullptr, nullptr);
+}
+
+MaterialData build_material_data(const std::vector<scene::Material>& materials,
+                                 int separable_taps, const MaterialData& previous,
+                                 const std::vector<bool>& reuse) {
+  return build(materials, separable_taps, &previous, &reuse);
 }
 
 MaterialTable::MaterialTable(const vk::Context& context, const scene::Scene& scene,

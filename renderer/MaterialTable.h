@@ -40,6 +40,13 @@ struct MaterialData {
 MaterialData build_material_data(const scene::Scene& scene, int separable_taps);
 MaterialData build_material_data(const std::vector<scene::Material>& materials,
                                  int separable_taps);
+// The same, but material i keeps previous.profiles[i] (fit and kernel) instead of being
+// refitted where reuse[i] holds: the caller vouches that its model, medium, scale and
+// Gaussian count are unchanged. Ignored (everything refitted) unless `previous` was built
+// with these taps for as many materials. Equal, bit for bit, to a full rebuild.
+MaterialData build_material_data(const std::vector<scene::Material>& materials,
+                                 int separable_taps, const MaterialData& previous,
+                                 const std::vector<bool>& reuse);
 
 class MaterialTable {
  public:

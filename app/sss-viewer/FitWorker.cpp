@@ -17,10 +17,19 @@ void FitWorker::compute_default(FitRequest& request, FitResult& result) {
     }
     request.materials[i].sss = std::get<scene::SssMaterial>(std::move(made));
   }
-  result.data = renderer::build_material_data(request.materials, request.separable_taps);
-  result.plots.resize(request.materials.size());
-  for (std::size_t i = 0; i < request.materials.size(); ++i)
-    if (request.materials[i].sss.enabled && result.data.profiles[i])
+  const std::size_t n = request.materials.size();
+  std::vector<bool> reuse(n, false);
+  if (request.previous)
+    for (std::size_t i = 0; i < n; ++i) reuse[i] = i >= request.specs.size() || !request.specs[i];
+  result.data = request.previous ? renderer::build_material_data(request.materials,
+                                                                 request.separable_taps,
+                                                                 *request.previous, reuse)
+                                 : renderer::build_material_data(request.materials,
+                                                                 request.separable_taps);
+  const bool reused = request.previous && request.previous->separable_taps == request.separable_taps;
+  result.plots.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (request.materials[i].sss.enabled && result.data.profiles[i] && !(reused && reuse[i]))
       result.plots[i] = make_profile_plot(request.materials[i].sss, result.data.profiles[i]->fit);
 }
 

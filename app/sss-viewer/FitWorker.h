@@ -18,6 +18,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -45,13 +46,16 @@ struct FitRequest {
   std::vector<std::optional<SssSpec>> specs;
   int separable_taps = 17;
   Clock::time_point edited{};  // when the user made the edit (latency measurement)
+  // The data the renderer draws `materials` with: the materials without a spec keep
+  // their fits from it (and get no new plot) instead of being refitted. Null: all.
+  std::shared_ptr<const renderer::MaterialData> previous;
 };
 
 struct FitResult {
   std::uint64_t id = 0;
   FitRequest request;
   renderer::MaterialData data;                    // empty when `error` is set
-  std::vector<std::optional<ProfilePlot>> plots;  // per material, SSS ones only
+  std::vector<std::optional<ProfilePlot>> plots;  // per refitted SSS material
   std::string error;   // a spec did not resolve, or build_material_data threw
   int error_material = -1;  // the material whose spec failed; -1: not one material
   double fit_ms = 0.0;                            // the worker's time for this request

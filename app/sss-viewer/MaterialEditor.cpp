@@ -132,8 +132,9 @@ bool MaterialEditor::set_source_kind(std::size_t edit, SourceKind kind) {
     // The colour that reproduces the current look: the model's total reflectance (scale
     // does not change it), and the reduced mfp per channel.
     try {
-      const profiles::RgbProfile profile(current.sss.model, m);
-      const Rgb total = profile.total_reflectance();
+      Rgb total = e.total_reflectance;
+      if (!(total[0] > 0.0))  // not known yet: pbd's total costs ~10 ms here
+        total = profiles::RgbProfile(current.sss.model, m).total_reflectance();
       for (int c = 0; c < 3; ++c) {
         e.color[c] = std::clamp(static_cast<float>(total[c]), 0.001f, 0.999f);
         e.mfp_mm[c] = static_cast<float>(m.channel(c).mfp_reduced());
@@ -232,6 +233,7 @@ void MaterialEditor::submit(Clock::time_point edited) {
   request.specs = pending_;
   request.separable_taps = taps_;
   request.edited = edited;
+  request.previous = applied_data_;
   running_max_frame_ms_ = 0.0;
   worker_.submit(std::move(request));
 }
@@ -252,6 +254,7 @@ bool MaterialEditor::update(renderer::Renderer& r) {
     submit(result->request.edited);
     return false;
   }
+  auto data = std::make_shared<const renderer::MaterialData>(result->data);
   const auto start = Clock::now();
   try {
     r.set_materials(result->request.materials, std::move(result->data));
@@ -261,9 +264,14 @@ bool MaterialEditor::update(renderer::Renderer& r) {
   }
   const double upload_ms = ms_since(start);
   applied_ = std::move(result->request.materials);
+  applied_data_ = std::move(data);
   for (MaterialEdit& e : edits_) {
     if (e.index < result->plots.size() && result->plots[e.index])
       e.plot = std::move(result->plots[e.index]);
+    if (e.index < applied_data_->gpu.size()) {
+      const auto& reflectance = applied_data_->gpu[e.index].reflectance;
+      e.total_reflectance = {reflectance.x, reflectance.y, reflectance.z};
+    }
   }
   if (result->request.edited != Clock::time_point{}) {
     latency_.fit_ms = result->fit_ms;

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,6 +40,7 @@ struct MaterialEdit {
   // The artist fields: diffuse colour (total reflectance) and reduced mfp in mm.
   std::array<float, 3> color{0.5f, 0.5f, 0.5f}, mfp_mm{1.0f, 1.0f, 1.0f};
   float artist_eta = 1.3f;
+  Rgb total_reflectance{};          // of the material the frame shows (0: not known yet)
   std::string error;                // the last edit's FieldError, shown in red
   std::optional<ProfilePlot> plot;  // of the material the frame shows
 };
@@ -98,6 +100,7 @@ class MaterialEditor {
   void submit(Clock::time_point edited);
 
   std::vector<scene::Material> applied_;  // what the renderer draws
+  std::shared_ptr<const renderer::MaterialData> applied_data_;  // its fits (null at start)
   std::vector<std::optional<SssSpec>> pending_;  // per material: edited, not applied yet
   std::vector<MaterialEdit> edits_;
   int taps_;

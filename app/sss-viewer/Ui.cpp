@@ -73,7 +73,8 @@ void draw_axes(ImDrawList* dl, const LogAxes& a, bool x_labels, const char* y_ti
     dl->AddLine(ImVec2(x, a.p0.y), ImVec2(x, a.p1.y), grid);
     if (x_labels) {
       const std::string s = decade_label(e);
-      dl->AddText(ImVec2(x - ImGui::CalcTextSize(s.c_str()).x * 0.5f, a.p1.y + 1), text, s.c_str());
+      const float w = ImGui::CalcTextSize(s.c_str()).x;
+      dl->AddText(ImVec2(std::min(x - w * 0.5f, a.p1.x - w), a.p1.y + 1), text, s.c_str());
     }
   }
   dl->AddText(ImVec2(a.p1.x - ImGui::CalcTextSize(y_title).x - 3, a.p0.y + 1), text, y_title);

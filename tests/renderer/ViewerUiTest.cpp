@@ -30,6 +30,7 @@
 #include <cstring>
 #include <future>
 #include <limits>
+#include <memory>
 #include <string>
 #include <variant>
 
@@ -296,6 +297,45 @@ TEST(FitWorker, ReportsAFieldErrorOfASpecAndKeepsWorking) {
   ASSERT_EQ(r->plots.size(), 1u);
   EXPECT_TRUE(r->plots[0].has_value());
   EXPECT_EQ(r->data.profiles.size(), 1u);
+}
+
+TEST(FitWorker, RefitsOnlyTheEditedMaterial) {
+  // build_material_data with reuse equals a full rebuild, bit for bit, and the worker
+  // passes the unchanged materials' fits through (no new plot for them).
+  std::vector<scene::Material> materials(3);
+  materials[0].sss = scene::preset_sss_material("skin1");
+  materials[2].sss = std::get<scene::SssMaterial>(
+      scene::make_sss_material(scene::PresetSource{"marble"}, profiles::Model::Pbd));
+  const auto previous = std::make_shared<const MaterialData>(build_material_data(materials, 17));
+  std::vector<scene::Material> next = materials;
+  next[0].sss = scene::preset_sss_material("ketchup");
+  next[0].roughness = 0.25f;  // the surface row follows the material, not `previous`
+  const MaterialData full = build_material_data(next, 17);
+  const MaterialData reused = build_material_data(next, 17, *previous, {false, true, true});
+  ASSERT_EQ(full.gpu.size(), reused.gpu.size());
+  EXPECT_EQ(std::memcmp(full.gpu.data(), reused.gpu.data(), full.gpu.size() * sizeof(full.gpu[0])), 0);
+  EXPECT_EQ(full.max_gaussians, reused.max_gaussians);
+  // Another tap count: everything is refitted.
+  const MaterialData other = build_material_data(next, 9, *previous, {true, true, true});
+  EXPECT_EQ(other.profiles[0]->kernel.offsets_mm.size(), 9u);
+
+  app::FitWorker w;
+  app::FitRequest q;
+  q.materials = materials;
+  q.specs.resize(3);
+  app::SssSpec spec;
+  spec.source = scene::PresetSource{"ketchup"};
+  q.specs[0] = spec;
+  q.previous = previous;
+  w.submit(q);
+  ASSERT_TRUE(w.wait_idle(60s));
+  const auto r = w.take();
+  ASSERT_TRUE(r.has_value());
+  ASSERT_TRUE(r->error.empty()) << r->error;
+  EXPECT_TRUE(r->plots[0].has_value());
+  EXPECT_FALSE(r->plots[2].has_value());  // pbd marble: kept, not refitted
+  EXPECT_EQ(r->data.profiles[2]->kernel.weights, previous->profiles[2]->kernel.weights);
+  EXPECT_NE(r->data.profiles[0]->kernel.weights, previous->profiles[0]->kernel.weights);
 }
 
 TEST(ProfilePlot, SamplesTheModelAndTheFit) {
