@@ -262,7 +262,12 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   ImGui_ImplVulkan_DestroyFontUploadObjects();
 
   OrbitCamera camera(r.camera(), scene.bounds());
-  ViewerUi ui(scene);
+  ViewerUi ui(scene, options.separable_taps);
+  if (!a.test_edit.empty() && !ui.script_edit(a.test_edit)) {
+    std::cerr << "sss-viewer: error: --test-edit: expected preset=NAME or model=NAME, got '"
+              << a.test_edit << "'\n";
+    return kExitUsage;
+  }
   bool r_was_down = false;
 
   auto recreate_swapchain = [&](VkExtent2D size) {
@@ -394,11 +399,12 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     const auto now = std::chrono::steady_clock::now();
     frame_ms = std::chrono::duration<double, std::milli>(now - last).count();
     last = now;
+    ui.frame_presented(frame_ms);
     if (frames > 1) {  // the first frame includes start-up
       timed_ms += frame_ms;
       ++timed_frames;
     }
-    if (screenshot && frames >= a.frames) break;
+    if (screenshot && frames >= a.frames && !(!a.test_edit.empty() && ui.busy())) break;
   }
   vk::wait_for_fence(ctx, fence.get());
   ctx.wait_idle();
@@ -426,6 +432,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       std::printf("%-16s %10.3f\n", "window frame", timed_ms / timed_frames);
       std::printf("%-16s %10.1f\n", "fps", 1000.0 * timed_frames / timed_ms);
     }
+    ui.print_stats(stdout);
   }
   return kExitOk;
 }
