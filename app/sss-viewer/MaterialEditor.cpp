@@ -143,8 +143,8 @@ bool MaterialEditor::set_source_kind(std::size_t edit, SourceKind kind) {
     } catch (const std::exception&) {
       // keep the fields as they were
     }
-  } else if (kind == SourceKind::Preset && e.preset < 0) {
-    return select_preset(edit, preset_index("skin1"));
+  } else if (kind == SourceKind::Preset) {
+    return select_preset(edit, e.preset >= 0 ? e.preset : preset_index("skin1"));
   } else {
     fill_coefficients(e, m);
   }

@@ -71,7 +71,7 @@ class MaterialEditor {
   bool select_preset(std::size_t edit, int preset);  // fills the coefficient fields
   bool select_model(std::size_t edit, int model);
   // Switches the fields: Coefficients from the current medium; Artist from its total
-  // reflectance and reduced mfp; Preset keeps the current preset (or skin1).
+  // reflectance and reduced mfp; Preset selects the last preset (or skin1).
   bool set_source_kind(std::size_t edit, SourceKind kind);
   // After the widgets changed the edit's fields (coefficients, artist values, gaussians,
   // scale, albedo): checks and queues a refit. Editing a coefficient of a preset makes
