@@ -19,6 +19,8 @@
 #include "profiles/SeparableKernel.h"
 #include "renderer/scene/BuiltinScenes.h"
 
+#include "common/CliRun.h"
+
 #include <gtest/gtest.h>
 #include <imgui.h>
 #include <imgui_internal.h>
@@ -27,7 +29,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <future>
 #include <limits>
 #include <memory>
@@ -429,6 +433,44 @@ TEST_F(ViewerUiTest, PanelDrawsNarrowAndUploadsTheRefit) {
   }
   ImGui::DestroyContext();
 }
+
+#ifdef SSS_VIEWER_EXE
+// The window: --test-edit makes one edit through the panel's calls at the first frame,
+// --screenshot waits until its refit is presented, --stats prints the latency rows.
+TEST(ViewerWindowEdit, ScriptedPresetEditReachesTheScreenshot) {
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "no xvfb-run";
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string plain = (dir / "sss_viewer_ui_plain.png").string();
+  const std::string edited = (dir / "sss_viewer_ui_edited.png").string();
+  auto run = [](const std::string& args) {
+    return sss::testing::run_shell("SSS_VALIDATION=1 xvfb-run -a -s \"-screen 0 640x480x24\" " +
+                                   std::string(SSS_VIEWER_EXE) +
+                                   " builtin:bunny --width 160 --height 90 --frames 3 " + args);
+  };
+  const auto a = run("--screenshot " + plain);
+  ASSERT_EQ(a.code, 0) << a.out;
+  const auto b = run("--stats --test-edit preset=marble --screenshot " + edited);
+  ASSERT_EQ(b.code, 0) << b.out;
+  for (const char* row : {"refit fit", "refit upload", "edit->frame", "refit max frame"})
+    EXPECT_NE(b.out.find(row), std::string::npos) << row << "\n" << b.out;
+  EXPECT_EQ(b.out.find("validation"), std::string::npos) << b.out;
+  auto mean_green = [](const std::string& path) {
+    auto loaded = image::read_image(path);
+    if (!std::holds_alternative<image::Image>(loaded)) return -1.0;
+    const image::Image& im = std::get<image::Image>(loaded);
+    double sum = 0.0;
+    for (std::size_t i = 1; i < im.rgba.size(); i += 4) sum += im.rgba[i];
+    return sum / double(im.rgba.size() / 4);
+  };
+  const double g_plain = mean_green(plain), g_edited = mean_green(edited);
+  ASSERT_GT(g_plain, 0.0);
+  EXPECT_GT(g_edited, 1.3 * g_plain);  // marble is far brighter in green than skin1
+  const auto bad = run("--test-edit preset=nothing --screenshot " + edited);
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  std::filesystem::remove(plain);
+  std::filesystem::remove(edited);
+}
+#endif
 
 }  // namespace
 }  // namespace sss::renderer::testing
