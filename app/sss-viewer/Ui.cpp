@@ -211,7 +211,7 @@ void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {
   if (editor_.fitting())
     ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "fitting...");
   else if (l.edits > 0)
-    ImGui::TextDisabled("refit %.1f + upload %.1f ms, edit->frame %.0f ms", l.fit_ms, l.upload_ms,
+    ImGui::TextDisabled("fit %.0f, upload %.1f, edit->frame %.0f ms", l.fit_ms, l.upload_ms,
                         l.edit_to_frame_ms);
   for (std::size_t i = 0; i < editor_.edits().size(); ++i) {
     MaterialEdit& e = editor_.edits()[i];
