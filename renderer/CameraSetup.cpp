@@ -1,7 +1,9 @@
 #include "renderer/CameraSetup.h"
 
+#include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sss::renderer {
@@ -39,6 +41,16 @@ shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32
   u.scale = {float(mm_per_unit), camera.proj[0][0], std::abs(camera.proj[1][1]), exposure};
   u.options = {float(light_count), float(sss_mode), 0.0f, 0.0f};
   return u;
+}
+
+float surface_key_stride(const CameraSetup& camera, const scene::Bounds& bounds,
+                         double mm_per_unit) {
+  double far_mm = 0.0;
+  if (!bounds.empty())
+    far_mm = (double(glm::dot(bounds.center() - camera.position, camera.forward)) +
+              double(bounds.radius())) * mm_per_unit;
+  const double needed = 2.0 * std::max(far_mm, 0.0) + 1024.0;
+  return float(std::exp2(std::ceil(std::log2(needed))));
 }
 
 }  // namespace sss::renderer

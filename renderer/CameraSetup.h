@@ -2,6 +2,7 @@
 // image y down), view, and the frame uniforms built from them.
 #pragma once
 
+#include "renderer/scene/Bounds.h"
 #include "renderer/scene/Camera.h"
 #include "shaders/shared/frame.h"
 
@@ -28,5 +29,11 @@ shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32
                                           std::uint32_t height, double mm_per_unit,
                                           float exposure, std::uint32_t light_count,
                                           int sss_mode);
+
+// The separable SSS pass's surface key stride (FrameUniforms::options.z, sss.glsl): a power
+// of two >= 2 x the farthest view depth of `bounds` in mm + 1024 mm, so that keys of two
+// materials never come within 1024 mm (more than any kernel range) of each other.
+float surface_key_stride(const CameraSetup& camera, const scene::Bounds& bounds,
+                         double mm_per_unit);
 
 }  // namespace sss::renderer

@@ -9,7 +9,7 @@ vk::DescriptorSetLayoutBuilder bindings() {
   const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
   vk::DescriptorSetLayoutBuilder b;
   b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs).add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
-  for (uint32_t i = 2; i <= 6; ++i) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
+  for (uint32_t i : {2, 3, 4, 6}) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
   b.add(7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs).add(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
   return b;
 }
@@ -31,7 +31,6 @@ void CompositePass::write_descriptors() {
       .combined_image(2, t.albedo, nearest)
       .combined_image(3, t.irradiance, nearest, general)
       .combined_image(4, t.specular, nearest, general)
-      .combined_image(5, t.blur_a, nearest, general)
       .combined_image(6, t.accum, nearest, general)
       .storage_image(7, t.hdr)
       .storage_image(8, t.display)

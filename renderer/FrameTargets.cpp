@@ -32,19 +32,22 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
                "gbuffer depth");
   normal = make(context, w, h, kNormalFormat, attachment, "gbuffer normal");
   albedo = make(context, w, h, kAlbedoFormat, attachment, "gbuffer albedo");
-  irradiance = make(context, w, h, kLightingFormat, kComputeUsage, "irradiance");
+  uv_stretch = make(context, w, h, kUvStretchFormat, attachment, "gbuffer uv stretch");
+  irradiance = make(context, w, h, kKeyedFormat, kComputeUsage, "irradiance");
   specular = make(context, w, h, kLightingFormat, kComputeUsage, "specular");
   surface = make(context, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, kComputeUsage, "surface");
   blur_temp = make(context, w, h, kLightingFormat, kComputeUsage, "sss temp");
   blur_a = make(context, w, h, kLightingFormat, kComputeUsage, "sss a");
   blur_b = make(context, w, h, kLightingFormat, kComputeUsage, "sss b");
   accum = make(context, w, h, kLightingFormat, kComputeUsage, "sss accum");
+  sss_line = make(context, w, h, kKeyedFormat, kComputeUsage, "sss line");
   hdr = make(context, w, h, kHdrFormat, kComputeUsage, "hdr");
   display = make(context, w, h, kDisplayFormat, kComputeUsage, "display");
 }
 
 std::vector<const vk::Image*> FrameTargets::compute_targets() const {
-  return {&irradiance, &specular, &surface, &blur_temp, &blur_a, &blur_b, &accum, &hdr, &display};
+  return {&irradiance, &specular, &surface, &blur_temp, &blur_a, &blur_b, &accum, &sss_line, &hdr,
+          &display};
 }
 
 }  // namespace sss::renderer

@@ -20,7 +20,11 @@ namespace sss::renderer {
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // xyz normal, w roughness
 inline constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;       // rgb albedo, a id
+inline constexpr VkFormat kUvStretchFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // mm per u, v; has UVs
 inline constexpr VkFormat kLightingFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// Irradiance and the separable pass's horizontal result: rgb value, alpha the surface key
+// (depth mm + id x stride, sss.glsl), which needs float32.
+inline constexpr VkFormat kKeyedFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 inline constexpr VkFormat kHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 inline constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;  // sRGB-encoded by hand
 
@@ -32,9 +36,13 @@ struct FrameTargets {
   vk::Image shadow;  // D32 array, one layer per light
   std::vector<vk::ImageViewHandle> shadow_layers;
   vk::Image depth, normal, albedo;          // G-buffer
-  vk::Image irradiance, specular;           // lighting
+  // uv-stretch debug view only: drawn by the G-buffer's second pipeline; like normal and
+  // albedo, a colour attachment then SHADER_READ_ONLY_OPTIMAL in every frame.
+  vk::Image uv_stretch;
+  vk::Image irradiance, specular;           // lighting (irradiance: kKeyedFormat)
   vk::Image surface;  // lighting, for SSS: view depth in mm, material id (rgba32f)
-  vk::Image blur_temp, blur_a, blur_b, accum;  // SSS
+  vk::Image blur_temp, blur_a, blur_b, accum;  // SSS gaussians
+  vk::Image sss_line;  // SSS separable: the horizontal pass's result (kKeyedFormat)
   vk::Image hdr, display;                   // composite
 
   // The compute targets (GENERAL layout), for the frame's initial transition.

@@ -107,9 +107,10 @@ Renderer::~Renderer() { context_.wait_idle(); }
 
 void Renderer::write_frame_uniforms() {
   const CameraSetup camera = make_camera_setup(camera_, options_.width, options_.height);
-  const shader::FrameUniforms uniforms =
+  shader::FrameUniforms uniforms =
       make_frame_uniforms(camera, options_.width, options_.height, mm_per_unit_,
                           options_.exposure, lights_.count, sss_mode_index(options_));
+  uniforms.options.z = surface_key_stride(camera, bounds_, mm_per_unit_);
   frame_uniforms_.write(&uniforms, sizeof(uniforms));
 }
 
@@ -235,6 +236,8 @@ void Renderer::record(VkCommandBuffer cmd) {
       vk::image_barrier(targets_.normal, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, before, color_access),
       vk::image_barrier(targets_.albedo, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, before, color_access),
+      vk::image_barrier(targets_.uv_stretch, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, before, color_access)};
   for (const vk::Image* image : targets_.compute_targets())
     barriers.push_back(vk::image_barrier(*image, VK_IMAGE_LAYOUT_UNDEFINED,

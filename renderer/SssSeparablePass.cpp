@@ -12,8 +12,12 @@ vk::DescriptorSetLayoutBuilder bindings() {
   b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
       .add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)
       .add(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
+      .add(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
       .add(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
+      .add(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
+      .add(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
+      .add(7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
+      .add(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
   return b;
 }
 }  // namespace
@@ -30,25 +34,29 @@ SssSeparablePass::SssSeparablePass(const FrameResources& resources)
 void SssSeparablePass::write_descriptors() {
   const FrameTargets& t = r_.targets;
   const VkSampler nearest = r_.samplers.nearest.get();
-  const VkSampler linear = r_.samplers.linear.get();
-  const auto write = [&](VkDescriptorSet set, const vk::Image& in, const vk::Image& out) {
+  const auto write = [&](VkDescriptorSet set, const vk::Image& in) {
     vk::DescriptorWriter(set)
         .uniform_buffer(0, r_.frame_uniforms)
         .storage_buffer(1, r_.materials)
-        .combined_image(2, t.surface, nearest, VK_IMAGE_LAYOUT_GENERAL)
-        .combined_image(4, in, linear, VK_IMAGE_LAYOUT_GENERAL)
-        .storage_image(5, out)
+        .combined_image(2, t.albedo, nearest)
+        .combined_image(3, t.specular, nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .combined_image(4, in, nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .storage_image(5, t.sss_line)
+        .storage_image(6, t.hdr)
+        .storage_image(7, t.display)
+        .storage_image(8, t.blur_a)
         .update(r_.context);
   };
-  write(horizontal_, t.irradiance, t.blur_temp);
-  write(vertical_, t.blur_temp, t.blur_a);
+  write(horizontal_, t.irradiance);
+  write(vertical_, t.sss_line);
 }
 
 void SssSeparablePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
   auto scope = timer.scope(cmd, kName);
   for (int pass = 0; pass < 2; ++pass) {
     shader::BlurPush push;
-    push.direction = pass == 0 ? shader::vec4{1, 0, 0, 1} : shader::vec4{0, 1, 0, 0};
+    push.direction = pass == 0 ? shader::vec4{1, 0, 0, 1}
+                               : shader::vec4{0, 1, write_scattered_ ? 1.0f : 0.0f, 0};
     program_.bind(cmd, pass == 0 ? horizontal_ : vertical_);
     vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
                        &push);

@@ -1,8 +1,11 @@
 // SssSeparablePass ("sss separable"): Jimenez et al. 2015. Each SSS material's 1D kernel
 // (profiles::make_separable_kernel: offsets in mm, RGB weights summing to 1) is applied
-// horizontally to the irradiance (-> blur_temp), then vertically (-> blur_a), with the
-// kernel's mm turned into pixels from the depth and the projection and follow-surface
-// fallback (sss.glsl). Composite multiplies blur_a by the total reflectance.
+// horizontally to the irradiance (-> sss_line), then vertically, with the kernel's mm
+// turned into pixels from the depth and the projection and follow-surface fallback: one
+// bilinear fetch per tap of value + surface key (rgba32f, sss.glsl). The vertical half
+// also composites the pixels it scattered (x total reflectance x albedo / pi + specular
+// -> hdr, display; composite.glsl), so that the scattered result never goes through an
+// image; CompositePass does every other pixel.
 #pragma once
 
 #include "renderer/ComputeProgram.h"
@@ -20,12 +23,15 @@ class SssSeparablePass {
   // Points the sets at the current targets (after FrameTargets were recreated; none of
   // them may be in use by the GPU).
   void write_descriptors();
+  // The scattered debug view: the vertical pass also writes R * E into blur_a.
+  void set_write_scattered(bool on) { write_scattered_ = on; }
 
  private:
   const FrameResources& r_;
   ComputeProgram program_;
   VkDescriptorSet horizontal_ = VK_NULL_HANDLE;
   VkDescriptorSet vertical_ = VK_NULL_HANDLE;
+  bool write_scattered_ = false;
 };
 
 }  // namespace sss::renderer

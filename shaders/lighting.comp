@@ -14,10 +14,13 @@ layout(set = 0, binding = 3) uniform sampler2D depth_tex;
 layout(set = 0, binding = 4) uniform sampler2D normal_tex;
 layout(set = 0, binding = 5) uniform sampler2D albedo_tex;
 layout(set = 0, binding = 6) uniform sampler2DArrayShadow shadow_tex;
-layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D irradiance_img;
+// rgb E, alpha the surface key (sss.glsl) for the separable SSS pass.
+layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D irradiance_img;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D specular_img;
 // For the SSS passes: x distance from the camera plane in mm, y material id (-1: none).
 layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D surface_img;
+
+#include "shared/sss.glsl"
 
 float shadow_visibility(int index, GpuLight light, vec3 p, vec3 n) {
   vec4 c = light.shadow_matrix * vec4(p + n * light.shadow.z, 1.0);
@@ -37,7 +40,7 @@ void main() {
   if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
   int id = material_id(texelFetch(albedo_tex, p, 0));
   if (id < 0) {
-    imageStore(irradiance_img, p, vec4(0.0));
+    imageStore(irradiance_img, p, vec4(0.0, 0.0, 0.0, kBackgroundKey));
     imageStore(specular_img, p, vec4(0.0));
     imageStore(surface_img, p, vec4(0.0, -1.0, 0.0, 0.0));
     return;
@@ -96,6 +99,6 @@ void main() {
   }
   // Pre/post albedo: sqrt(albedo) enters before scattering, the other half after it.
   if (materials[id].kernel.z > 0.5) E *= sqrt(albedo);
-  imageStore(irradiance_img, p, vec4(E, 1.0));
+  imageStore(irradiance_img, p, vec4(E, surface_key(id, depth_mm)));
   imageStore(specular_img, p, vec4(S, 1.0));
 }

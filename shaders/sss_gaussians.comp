@@ -21,6 +21,9 @@ layout(push_constant) uniform Push { BlurPush blur; };
 
 #include "shared/sss.glsl"
 
+// x: distance from the camera plane in mm, y: material id (-1: background).
+vec2 surface_at(ivec2 q) { return texelFetch(surface_tex, q, 0).xy; }
+
 float variance(int id, int g) { return g < 0 ? 0.0 : materials[id].variances[g / 4][g % 4]; }
 
 void main() {

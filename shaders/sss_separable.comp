@@ -2,8 +2,16 @@
 #extension GL_GOOGLE_include_directive : require
 // Screen-space SSS, separable mode (Jimenez 2015): one 1D pass of the material's kernel
 // (offsets in mm, RGB weights summing to 1) along direction.xy. Run horizontally on the
-// irradiance, then vertically on the result; composite multiplies by the total
-// reflectance.
+// irradiance (-> line_img), then vertically on the result, where it also composites the
+// pixels it scattered (composite.glsl: x total reflectance x albedo / pi + specular ->
+// hdr, display); composite.comp does the other pixels.
+//
+// The input is rgba32f: rgb the value, alpha the surface key (sss.glsl: depth in mm +
+// material id x stride), so a tap reads its two texels once each (value and what follow
+// surface needs): the key difference from the centre's, over the kernel's range, lerps a
+// texel toward the centre value, and a texel of another material or the background (key
+// difference > any range) is the centre value. (One bilinear fetch per tap would halve
+// the fetches, but lavapipe does not filter rgba32f.)
 #include "shared/frame.h"
 #include "shared/common.glsl"
 
@@ -11,54 +19,62 @@ layout(local_size_x = SSS_WORKGROUP_2D_X, local_size_y = SSS_WORKGROUP_2D_Y) in;
 
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) readonly buffer Materials { GpuMaterial materials[]; };
-layout(set = 0, binding = 2) uniform sampler2D surface_tex;  // depth mm, material id
-layout(set = 0, binding = 4) uniform sampler2D input_tex;  // bilinear
-layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D output_img;
+layout(set = 0, binding = 2) uniform sampler2D albedo_tex;    // vertical: composite
+layout(set = 0, binding = 3) uniform sampler2D specular_tex;  // vertical: composite
+layout(set = 0, binding = 4) uniform sampler2D input_tex;     // texelFetch
+layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D line_img;  // horizontal
+layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D hdr_img;   // vertical
+layout(set = 0, binding = 7, rgba8) uniform writeonly image2D display_img;
+// The scattered debug view only (blur.direction.z = 1): R * E of the pixels it scattered.
+layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D scattered_img;
 layout(push_constant) uniform Push { BlurPush blur; };
 
 #include "shared/sss.glsl"
-
-vec3 convolve(int id, ivec2 p, ivec2 size, float z, vec3 center) {
-  vec2 dir = blur.direction.xy;
-  float ppm = pixels_per_mm(dir, z);
-  float width_mm = materials[id].kernel.y;
-  int taps = int(materials[id].kernel.x);
-  vec3 sum = vec3(0.0);
-  for (int i = 0; i < taps; ++i) {
-    vec4 tap = materials[id].taps[i];
-    // Linear interpolation along dir between the two texels around the tap (the tap
-    // sits on the pixel row or column, so this is the bilinear sample); a texel of
-    // another material or the background is replaced by the centre value first.
-    float t = tap.w * ppm;  // in pixels from p
-    float f = floor(t);
-    ivec2 q0 = clamp(p + ivec2(dir * f), ivec2(0), size - 1);
-    ivec2 q1 = clamp(p + ivec2(dir * (f + 1.0)), ivec2(0), size - 1);
-    vec3 v0 = center, v1 = center;
-    if (q0 != p) {
-      vec2 there = surface_at(q0);
-      v0 = follow_surface(texelFetch(input_tex, q0, 0).rgb, center, int(there.y), id, there.x, z, width_mm);
-    }
-    if (q1 != p) {
-      vec2 there = surface_at(q1);
-      v1 = follow_surface(texelFetch(input_tex, q1, 0).rgb, center, int(there.y), id, there.x, z, width_mm);
-    }
-    vec3 value = mix(v0, v1, t - f);
-    sum += tap.rgb * value;
-  }
-  return sum;
-}
+#include "shared/composite.glsl"
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+  bool vertical = blur.direction.y > 0.5;
+  vec4 center = texelFetch(input_tex, p, 0);
+  int id = key_material(center.a);
+  // Pixels that do not scatter: the horizontal pass copies them (value and key: the
+  // vertical pass's taps read every pixel), the vertical pass leaves them to composite.
+  if (id < 0 || materials[id].reflectance.w < 0.5) {
+    if (!vertical) imageStore(line_img, p, center);
+    return;
+  }
+  vec2 dir = blur.direction.xy;
+  float z = key_depth(center.a, id);
+  float ppm = pixels_per_mm(dir, z);
+  float inv_width = 1.0 / materials[id].kernel.y;
+  int taps = int(materials[id].kernel.x);
   ivec2 size = ivec2(frame.viewport.xy);
-  if (any(greaterThanEqual(p, size))) return;
-  vec2 here = surface_at(p);
-  int id = int(here.y);
-  // Pixels that do not scatter: the horizontal pass copies them (the vertical pass's
-  // bilinear taps may touch them at silhouettes); the vertical pass leaves them unwritten,
-  // as composite reads its output only where a material scatters.
-  if (id < 0 || materials[id].reflectance.w < 0.5) return;
-  vec3 center = texelFetch(input_tex, p, 0).rgb;
-  vec3 sum = convolve(id, p, size, here.x, center);
-  imageStore(output_img, p, vec4(sum, 1.0));
+  ivec2 step = ivec2(dir);
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < taps; ++i) {
+    vec4 tap = materials[id].taps[i];
+    // Linear interpolation along dir between the two texels around the tap (the tap sits
+    // on the pixel row or column, so this is the bilinear sample), each replaced first by
+    // follow surface: lerped toward the centre by its key difference over the range, the
+    // centre value itself on another material or the background.
+    float t = tap.w * ppm;  // in pixels from p
+    float f = floor(t);
+    vec4 s0 = texelFetch(input_tex, clamp(p + step * int(f), ivec2(0), size - 1), 0);
+    vec4 s1 = texelFetch(input_tex, clamp(p + step * int(f + 1.0), ivec2(0), size - 1), 0);
+    vec3 v0 = mix(s0.rgb, center.rgb, clamp(abs(s0.a - center.a) * inv_width, 0.0, 1.0));
+    vec3 v1 = mix(s1.rgb, center.rgb, clamp(abs(s1.a - center.a) * inv_width, 0.0, 1.0));
+    sum += tap.rgb * mix(v0, v1, t - f);
+  }
+  if (!vertical) {
+    imageStore(line_img, p, vec4(sum, center.a));
+    return;
+  }
+  vec3 diffuse = materials[id].reflectance.rgb * sum;
+  if (blur.direction.z > 0.5) imageStore(scattered_img, p, vec4(diffuse, 1.0));
+  vec4 albedo_id = texelFetch(albedo_tex, p, 0);
+  vec3 L = composite_radiance(id, albedo_id.rgb, diffuse,
+                              texelFetch(specular_tex, p, 0).rgb);
+  imageStore(hdr_img, p, vec4(L, 1.0));
+  imageStore(display_img, p, vec4(display_encode(L), 1.0));
 }

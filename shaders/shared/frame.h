@@ -45,7 +45,8 @@ struct FrameUniforms {
   vec4 forward;        // xyz camera view direction (world, unit)
   vec4 viewport;       // width, height, 1/width, 1/height
   vec4 scale;          // x mm per scene unit, y P[0][0], z |P[1][1]|, w exposure
-  vec4 options;        // x light count, y sss mode (0 off, 1 separable, 2 gaussians), z, w
+  vec4 options;        // x light count, y sss mode (0 off, 1 separable, 2 gaussians),
+                       // z surface key stride in mm (sss.glsl), w
 };
 
 struct GpuLight {
@@ -83,6 +84,11 @@ struct DrawPush {  // G-buffer and shadow draws (view_proj comes from the unifor
 
 struct BlurPush {  // screen-space SSS passes
   vec4 direction;  // xy pixel direction (1,0) or (0,1); z Gaussian index; w 1 = first
+};
+
+struct DebugPush {  // debug view pass (debug_view.comp)
+  vec4 view;  // x DebugView index, y thickness heat-map top in mm, z kernel-radius heat-map
+              // top as log2(pixels), w uv-stretch top in mm per unit of UV
 };
 
 #ifdef __cplusplus

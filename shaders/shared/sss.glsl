@@ -1,12 +1,25 @@
-// What both screen-space SSS passes share: material ids, view depth in mm, the kernel's
-// pixels per mm, and the follow-surface fallback (not shared with C++).
+// What the screen-space SSS passes share: the surface key, the kernel's pixels per mm, and
+// the follow-surface fallback (not shared with C++).
 #ifndef SSS_SHADERS_SSS_GLSL
 #define SSS_SHADERS_SSS_GLSL
 
-// Needs: frame (FrameUniforms), surface_tex (lighting.comp's surface image).
+// Needs: frame (FrameUniforms).
 
-// x: distance from the camera plane in mm, y: material id (-1: background).
-vec2 surface_at(ivec2 q) { return texelFetch(surface_tex, q, 0).xy; }
+// The surface key that lighting.comp writes into the irradiance alpha (rgba32f) for the
+// separable pass: view depth in mm plus material id x frame.options.z (the key stride, a
+// power of two >= 2 x the scene's farthest depth + 1024 mm, make_frame_uniforms), or
+// kBackgroundKey. Two texels of one material differ in key by their depth difference;
+// texels of two materials (or the background) differ by more than any kernel width, so
+// one bilinear fetch per tap carries the value and what follow-surface needs, and the key
+// of a bilinear mix across a material boundary is as far from the centre's as the other
+// material's. Float32: the key's rounding is 2^-24 x (id + 1) x stride (0.0002 mm for id
+// 0 at a 2048 mm stride).
+const float kBackgroundKey = -1.0e9;
+float surface_key(int id, float z_mm) {
+  return id < 0 ? kBackgroundKey : z_mm + float(id) * frame.options.z;
+}
+int key_material(float key) { return key < 0.0 ? -1 : int(key / frame.options.z); }
+float key_depth(float key, int id) { return key - float(id) * frame.options.z; }
 
 // Pixels per mm along `dir` at view depth z_mm. Orthographic: width / (2 xmag_mm);
 // perspective: the focal length in pixels over the depth.

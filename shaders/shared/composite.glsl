@@ -1,0 +1,27 @@
+// The composite of one surface pixel (composite.comp, and the separable SSS pass's
+// vertical half, which composites the pixels it scatters): linear radiance and its
+// display code. Not shared with C++.
+#ifndef SSS_SHADERS_COMPOSITE_GLSL
+#define SSS_SHADERS_COMPOSITE_GLSL
+
+// Needs: frame (FrameUniforms), materials (GpuMaterial[]), common.glsl.
+
+// Narkowicz's fit of the ACES filmic curve.
+vec3 filmic(vec3 x) {
+  return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+vec3 srgb_encode(vec3 c) {
+  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+// The display image's value for linear radiance L: exposure, filmic, sRGB encoding.
+vec3 display_encode(vec3 L) { return srgb_encode(filmic(L * frame.scale.w)); }
+
+// L = albedo (1 - metallic) diffuse / pi + specular, where diffuse is R * E (scattered or
+// local) or E (Lambert); pre/post albedo takes the second sqrt(albedo) here.
+vec3 composite_radiance(int id, vec3 albedo, vec3 diffuse, vec3 specular) {
+  float metallic = materials[id].surface.y;  // not the whole GpuMaterial
+  vec3 a = materials[id].kernel.z > 0.5 ? sqrt(albedo) : albedo;
+  return a * (1.0 - metallic) * diffuse / kPi + specular;
+}
+
+#endif
