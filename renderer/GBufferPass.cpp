@@ -5,6 +5,7 @@
 #include "renderer/vk/Pipeline.h"
 #include "renderer/vk/Rendering.h"
 #include "shaders/gbuffer.frag.h"
+#include "shaders/gbuffer_uv_stretch.frag.h"
 #include "shaders/gbuffer.vert.h"
 #include "shaders/shared/frame.h"
 
@@ -23,6 +24,25 @@ vk::DescriptorSetLayoutBuilder bindings() {
         shader::kMaxTextures);
   return b;
 }
+
+vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout layout,
+                                  bool uv_stretch) {
+  vk::GraphicsPipelineBuilder builder;
+  builder.vertex_shader(sss_spv_gbuffer_vert)
+      .fragment_shader(uv_stretch ? std::span<const uint32_t>(sss_spv_gbuffer_uv_stretch_frag)
+                                  : std::span<const uint32_t>(sss_spv_gbuffer_frag))
+      .vertex_binding(0, sizeof(GpuVertex))
+      .vertex_attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, position))
+      .vertex_attribute(1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal))
+      .vertex_attribute(2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv))
+      .vertex_attribute(3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, tangent))
+      .color(kNormalFormat)
+      .color(kAlbedoFormat);
+  if (uv_stretch) builder.color(kUvStretchFormat);
+  return builder.depth(kDepthFormat, vk::DepthTest::Write)
+      .cull(VK_CULL_MODE_NONE)
+      .build(context, layout, uv_stretch ? "gbuffer uv stretch" : "gbuffer");
+}
 }  // namespace
 
 GBufferPass::GBufferPass(const FrameResources& resources)
@@ -31,21 +51,7 @@ GBufferPass::GBufferPass(const FrameResources& resources)
       layout_(vk::create_pipeline_layout(r_.context, set_layout_.get(), sizeof(shader::DrawPush),
                                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                          kName)),
-      pipeline_(vk::GraphicsPipelineBuilder()
-                    .vertex_shader(sss_spv_gbuffer_vert)
-                    .fragment_shader(sss_spv_gbuffer_frag)
-                    .vertex_binding(0, sizeof(GpuVertex))
-                    .vertex_attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT,
-                                      offsetof(GpuVertex, position))
-                    .vertex_attribute(1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal))
-                    .vertex_attribute(2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv))
-                    .vertex_attribute(3, 0, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                      offsetof(GpuVertex, tangent))
-                    .color(kNormalFormat)
-                    .color(kAlbedoFormat)
-                    .depth(kDepthFormat, vk::DepthTest::Write)
-                    .cull(VK_CULL_MODE_NONE)
-                    .build(r_.context, layout_.get(), kName)),
+      pipeline_(build_pipeline(r_.context, layout_.get(), false)),
       pool_(r_.context, bindings(), 1, kName) {
   set_ = pool_.allocate(set_layout_.get());
   vk::DescriptorWriter writer(set_);
@@ -56,14 +62,22 @@ GBufferPass::GBufferPass(const FrameResources& resources)
   writer.update(r_.context);
 }
 
+void GBufferPass::set_uv_stretch(bool on) {
+  if (on && !uv_stretch_pipeline_) uv_stretch_pipeline_ = build_pipeline(r_.context, layout_.get(), true);
+  uv_stretch_ = on;
+}
+
 void GBufferPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
   auto scope = timer.scope(cmd, kName);
   const FrameTargets& t = r_.targets;
-  const std::array<vk::ColorTarget, 2> colors = {vk::ColorTarget(t.normal.view()),
-                                                 vk::ColorTarget(t.albedo.view())};
+  const std::array<vk::ColorTarget, 3> colors = {vk::ColorTarget(t.normal.view()),
+                                                 vk::ColorTarget(t.albedo.view()),
+                                                 vk::ColorTarget(t.uv_stretch.view())};
   const vk::DepthTarget depth(t.depth.view());
-  vk::begin_rendering(cmd, t.depth.extent(), colors, &depth);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+  vk::begin_rendering(cmd, t.depth.extent(),
+                      std::span<const vk::ColorTarget>(colors.data(), uv_stretch_ ? 3 : 2), &depth);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                    uv_stretch_ ? uv_stretch_pipeline_.get() : pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_, 0,
                           nullptr);
   r_.scene.draw(cmd, layout_.get());
@@ -79,6 +93,8 @@ void GBufferPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
       cmd, {vk::image_barrier(t.normal, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
             vk::image_barrier(t.albedo, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
+            vk::image_barrier(t.uv_stretch, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
             vk::image_barrier(t.depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth_write, sampled)});

@@ -15,12 +15,18 @@ class GBufferPass {
   explicit GBufferPass(const FrameResources& resources);
   // Expects the colour targets in COLOR_ATTACHMENT_OPTIMAL, depth in DEPTH_ATTACHMENT_OPTIMAL.
   void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  // The uv-stretch debug view: draw with gbuffer_uv_stretch.frag, which also writes
+  // targets.uv_stretch (its pipeline is built on first use). Off: the frame's pipeline,
+  // uv_stretch is only moved to SHADER_READ_ONLY_OPTIMAL.
+  void set_uv_stretch(bool on);
 
  private:
   const FrameResources& r_;
   vk::DescriptorSetLayoutHandle set_layout_;
   vk::PipelineLayoutHandle layout_;
   vk::PipelineHandle pipeline_;
+  vk::PipelineHandle uv_stretch_pipeline_;  // built by set_uv_stretch(true)
+  bool uv_stretch_ = false;
   vk::DescriptorPool pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
 };

@@ -2,6 +2,7 @@
 
 #include "renderer/CameraSetup.h"
 #include "renderer/CompositePass.h"
+#include "renderer/DebugViewPass.h"
 #include "renderer/GBufferPass.h"
 #include "renderer/LightingPass.h"
 #include "renderer/ShadowPass.h"
@@ -135,6 +136,7 @@ void Renderer::recreate_targets(std::uint32_t width, std::uint32_t height,
   if (separable_) separable_->write_descriptors();
   if (gaussians_) gaussians_->write_descriptors();
   composite_->write_descriptors();
+  if (debug_) debug_->write_descriptors();
 }
 
 void Renderer::update_sss_pass() {
@@ -150,6 +152,20 @@ void Renderer::update_sss_pass() {
     gaussians_ = std::make_unique<SssGaussiansPass>(resources_, gaussians);
   else
     gaussians_->set_gaussians(gaussians);
+  update_debug_view();
+}
+
+void Renderer::update_debug_view() {
+  const DebugView view = options_.debug_view;
+  if (view == DebugView::None) {
+    debug_.reset();
+  } else {
+    if (!debug_) debug_ = std::make_unique<DebugViewPass>(resources_);
+    const double diameter = bounds_.empty() ? 1.0 : 2.0 * double(bounds_.radius()) * mm_per_unit_;
+    debug_->set_view(view, float(diameter));
+  }
+  gbuffer_->set_uv_stretch(view == DebugView::UvStretch);
+  if (separable_) separable_->set_write_scattered(view == DebugView::Scattered);
 }
 
 void Renderer::set_camera(const scene::Camera& camera) {
@@ -250,6 +266,7 @@ void Renderer::record(VkCommandBuffer cmd) {
   if (separable_) separable_->record(cmd, timer_);
   if (gaussians_) gaussians_->record(cmd, timer_);
   composite_->record(cmd, timer_);
+  if (debug_) debug_->record(cmd, timer_);
 }
 
 void Renderer::render_frame() {

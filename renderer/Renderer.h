@@ -45,6 +45,7 @@ class LightingPass;
 class SssSeparablePass;
 class SssGaussiansPass;
 class CompositePass;
+class DebugViewPass;
 
 struct FrameStats {
   std::vector<vk::PassTime> passes;  // GPU ms per pass, in frame order
@@ -114,6 +115,8 @@ class Renderer {
                         std::uint32_t shadow_size);
   // separable_ / gaussians_ for options_ and the material table.
   void update_sss_pass();
+  // debug_ and what the view needs from the other passes, for options_.debug_view.
+  void update_debug_view();
 
   const vk::Context& context_;
   RenderOptions options_;
@@ -136,6 +139,7 @@ class Renderer {
   std::unique_ptr<SssSeparablePass> separable_;
   std::unique_ptr<SssGaussiansPass> gaussians_;
   std::unique_ptr<CompositePass> composite_;
+  std::unique_ptr<DebugViewPass> debug_;  // only while options_.debug_view != None
   vk::CommandPoolHandle pool_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   vk::FenceHandle fence_;

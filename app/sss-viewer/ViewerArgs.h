@@ -26,6 +26,7 @@ struct ViewerArgs {
   MaterialOverrideArgs material;  // --model, --gaussians, --albedo, MEDIUM
   int taps = 17;
   float exposure = 1.0f;
+  std::string debug_view = "none";  // --debug-view: renderer::parse_debug_view names
   bool stats = false;
   std::string device;
   std::string vsync = "on";  // window: on (FIFO) | off (MAILBOX / IMMEDIATE)

@@ -27,6 +27,24 @@ namespace {
 
 int usage(const std::string& message) { return usage_error("sss-viewer", message); }
 
+std::string debug_view_names() {
+  std::string names;
+  for (renderer::DebugView v : renderer::all_debug_views())
+    names += (names.empty() ? "" : " | ") + std::string(renderer::debug_view_name(v));
+  return names;
+}
+
+std::string debug_view_help() {
+  return "The PNG / window shows an intermediate instead of the shaded frame (the EXR stays "
+         "shaded): " + debug_view_names() + " (default none). irradiance: E/pi, specular, "
+         "scattered: diffuse after SSS before albedo (/pi), all tonemapped; kernel-radius: "
+         "viridis on log2 pixels, 1 px (dark blue) .. 64 px (yellow), magenta below 1 px "
+         "(the screen kernel undersamples the profile); profile-id: one colour per material; "
+         "thickness: mm through the object along light 0, viridis 0 .. the scene's bounding "
+         "diameter; uv-stretch: red = mm per unit u, green = mm per unit v, 0 .. pi x the "
+         "bounding diameter, grey without UVs";
+}
+
 void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
   const renderer::FrameStats& s = r.stats();
   std::printf("frame %ux%u, sss %s, mode %s, %d frame(s)\n", r.options().width,
@@ -57,6 +75,7 @@ int main(int argc, char** argv) {
   add_material_override_options(app, a.material);
   app.add_option("--taps", a.taps, "Separable kernel taps (odd, 3..33; default 17)");
   app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1)");
+  app.add_option("--debug-view", a.debug_view, debug_view_help());
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
   app.add_option("--vsync", a.vsync, "Window: on (FIFO, default) | off (MAILBOX or IMMEDIATE)");
@@ -101,6 +120,10 @@ int main(int argc, char** argv) {
   options.width = static_cast<std::uint32_t>(a.width);
   options.height = static_cast<std::uint32_t>(a.height);
   options.exposure = a.exposure;
+  const auto debug_view = renderer::parse_debug_view(a.debug_view);
+  if (!debug_view)
+    return usage("--debug-view: expected " + debug_view_names() + ", got '" + a.debug_view + "'");
+  options.debug_view = *debug_view;
 
   auto loaded = scene::load_scene(a.scene);
   if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what());

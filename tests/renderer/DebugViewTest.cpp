@@ -1,0 +1,285 @@
+// Debug views (RenderOptions::debug_view, debug_view.comp): what each view shows, checked
+// where the answer is known exactly, plus what every view leaves alone (the HDR frame).
+//
+// Tolerances. The display image is rgba8, so a value shown directly is within 0.5/255 of
+// the shader's float; every "same as" comparison below allows 1.5 codes (the half-code
+// rounding plus the float differences between the test's C++ and the shader's GLSL of the
+// same formula: filmic + sRGB pow, ~1e-6 relative, far below a code). Heat maps are decoded
+// back through the same viridis fit (nearest of 4096 samples): a channel's 0.5-code rounding
+// moves the decoded t by at most 0.5 / 255 / max |dc/dt| ~ 0.002 where the views are read
+// (|dc/dt| >= 0.9 for some channel over t in [0.1, 0.9]); the 4096-sample search adds
+// 1.2e-4. So t is known to 0.003: thickness (t x 291.5 mm) to 0.9 mm, the kernel radius
+// (2^(6 t) pixels) to 6 x 0.003 x ln 2 = 1.3 %, the uv stretch (linear in codes, top 916 mm)
+// to 0.5 / 255 x 916 = 1.8 mm. The bounds used are 1.5 mm, 3 % and 2.5 mm.
+#include "RenderTest.h"
+
+#include "renderer/DebugViewPass.h"
+#include "renderer/scene/BuiltinScenes.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <set>
+#include <vector>
+
+namespace sss::renderer::testing {
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+constexpr float kCode = 1.0f / 255.0f;
+
+// composite.glsl's display_encode (exposure applied by the caller).
+float filmic(float x) {
+  return std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+}
+float srgb(float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
+float encode(float x) { return srgb(filmic(x)); }
+
+// debug_view.comp's viridis fit.
+std::array<float, 3> viridis(float t) {
+  static const float c[7][3] = {{0.2777273272234177f, 0.005407344544966578f, 0.3340998053353061f},
+                                {0.1050930431085774f, 1.404613529898575f, 1.384590162594685f},
+                                {-0.3308618287255563f, 0.214847559468213f, 0.09509516302823659f},
+                                {-4.634230498983486f, -5.799100973351585f, -19.33244095627987f},
+                                {6.228269936347081f, 14.17993336680509f, 56.69055260068105f},
+                                {4.776384997670288f, -13.74514537774601f, -65.35303263337234f},
+                                {-5.435455855934631f, 4.645852612178535f, 26.3124352495832f}};
+  std::array<float, 3> out{};
+  for (int k = 0; k < 3; ++k) {
+    float v = c[6][k];
+    for (int i = 5; i >= 0; --i) v = c[i][k] + t * v;
+    out[k] = std::clamp(v, 0.0f, 1.0f);
+  }
+  return out;
+}
+
+// The t whose viridis colour is nearest to the pixel's.
+float decode_viridis(const float* p) {
+  float best_t = 0.0f, best = 1e30f;
+  for (int i = 0; i <= 4096; ++i) {
+    const float t = float(i) / 4096.0f;
+    const auto c = viridis(t);
+    const float d = (c[0] - p[0]) * (c[0] - p[0]) + (c[1] - p[1]) * (c[1] - p[1]) +
+                    (c[2] - p[2]) * (c[2] - p[2]);
+    if (d < best) best = d, best_t = t;
+  }
+  return best_t;
+}
+
+RenderOptions view_options(std::uint32_t w, std::uint32_t h, DebugView view,
+                           SssMode sss = SssMode::Screen) {
+  RenderOptions o = small_options(w, h, sss, SssKind::Separable);
+  o.debug_view = view;
+  return o;
+}
+
+// builtin:edge lit everywhere (E = 1 at normal incidence), white, no specular.
+scene::Scene lit_slab(double half_width_mm = 20.0) {
+  scene::EdgeOptions e;
+  e.half_width_mm = half_width_mm;
+  scene::Scene s = scene::edge_scene(e);
+  s.lights[0].mask.reset();
+  return s;
+}
+
+// The scene's bounding diameter in mm: the thickness heat map's top (DebugViewPass).
+float diameter_mm(const scene::Scene& s) { return float(2.0 * s.bounds().radius() * s.mm_per_unit); }
+
+class DebugViewTest : public RenderTest {};
+
+TEST(DebugViewNames, ParseEveryNameBackAndRejectOthers) {
+  std::set<std::string_view> names;
+  for (DebugView v : all_debug_views()) {
+    names.insert(debug_view_name(v));
+    EXPECT_EQ(parse_debug_view(debug_view_name(v)), v);
+  }
+  EXPECT_EQ(names.size(), 8u);
+  EXPECT_EQ(all_debug_views().front(), DebugView::None);
+  EXPECT_FALSE(parse_debug_view("Irradiance"));
+  EXPECT_FALSE(parse_debug_view(""));
+}
+
+// Every view changes the display image only: the HDR frame is the shaded frame, bit for
+// bit (lavapipe is deterministic), so an EXR written with a view on is still the render.
+TEST_F(DebugViewTest, HdrStaysTheShadedFrameInEveryView) {
+  const scene::Scene s = scene::materials_scene();
+  const Frame shaded = render(s, view_options(96, 54, DebugView::None));
+  for (DebugView v : all_debug_views()) {
+    const Frame f = render(s, view_options(96, 54, v));
+    ASSERT_EQ(f.hdr.rgba.size(), shaded.hdr.rgba.size());
+    EXPECT_EQ(std::memcmp(f.hdr.rgba.data(), shaded.hdr.rgba.data(),
+                          f.hdr.rgba.size() * sizeof(float)),
+              0)
+        << debug_view_name(v);
+    if (v == DebugView::None) {
+      EXPECT_EQ(f.display.rgba, shaded.display.rgba);
+    } else {
+      EXPECT_NE(f.display.rgba, shaded.display.rgba) << debug_view_name(v);
+    }
+    for (std::size_t i = 3; i < f.display.rgba.size(); i += 4)  // the same coverage alpha
+      ASSERT_EQ(f.display.rgba[i], shaded.display.rgba[i]) << debug_view_name(v) << " " << i;
+  }
+}
+
+// Irradiance: E / pi tonemapped. On the lit edge scene E = 1 at every slab pixel (the light
+// at normal incidence); on builtin:edge the half x > 0 is masked off (E = 0, black).
+TEST_F(DebugViewTest, IrradianceIsTheTonemappedLightingInput) {
+  const int n = 32;
+  const Frame lit = render(lit_slab(), view_options(n, n, DebugView::Irradiance));
+  const float expected = encode(1.0f / kPi);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(lit.display.pixel(x, y)[c], expected, 1.5f * kCode);
+  const Frame edge = render(scene::edge_scene(), view_options(n, n, DebugView::Irradiance));
+  EXPECT_NEAR(edge.display.pixel(n / 4, n / 2)[1], expected, 1.5f * kCode);  // lit half
+  EXPECT_EQ(edge.display.pixel(3 * n / 4, n / 2)[1], 0.0f);                  // masked half
+  EXPECT_EQ(edge.display.pixel(3 * n / 4, n / 2)[3], 1.0f);                  // still geometry
+}
+
+// Specular: the GGX term alone. With N = L = V (light and orthographic camera straight
+// down on the slab): D = 1 / (pi a^2), the visibility term 1 / (4 (NdotL NdotV)) x ... =
+// 0.25 for alpha = roughness^2 = 1, F = F0: S = F0 / (4 pi) x E. Exposure 100 puts it mid-curve.
+TEST_F(DebugViewTest, SpecularIsTheTonemappedSpecularTerm) {
+  scene::Scene s = lit_slab();
+  s.materials[0].specular = 1.0f;
+  RenderOptions o = view_options(16, 16, DebugView::Specular);
+  o.exposure = 100.0f;
+  const Frame f = render(s, o);
+  const float f0 = f.materials.gpu[0].surface.x;
+  ASSERT_GT(f0, 0.0f);
+  const float expected = encode(100.0f * f0 / (4.0f * kPi));
+  ASSERT_GT(expected, 0.3f);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(f.display.pixel(8, 8)[c], expected, 1.5f * kCode);
+  const Frame none = render(lit_slab(), o);  // specular 0: black
+  EXPECT_EQ(none.display.pixel(8, 8)[0], 0.0f);
+}
+
+// Scattered: (R * E) / pi before albedo. The slab is white with no specular, so the
+// shaded frame is exactly that (L = 1 x diffuse / pi): the view equals the frame, in both
+// SSS modes, and it is blurred across the light's edge where the irradiance view is a step.
+TEST_F(DebugViewTest, ScatteredIsTheDiffuseBeforeAlbedo) {
+  const int n = 64;
+  for (SssMode mode : {SssMode::Off, SssMode::Screen}) {
+    const Frame shaded = render(scene::edge_scene(), view_options(n, n, DebugView::None, mode));
+    const Frame view = render(scene::edge_scene(), view_options(n, n, DebugView::Scattered, mode));
+    for (std::size_t i = 0; i < view.display.rgba.size(); ++i)
+      ASSERT_NEAR(view.display.rgba[i], shaded.display.rgba[i], 1.5f * kCode)
+          << sss_mode_name(mode) << " " << i;
+  }
+  const Frame e = render(scene::edge_scene(), view_options(n, n, DebugView::Irradiance));
+  const Frame s = render(scene::edge_scene(), view_options(n, n, DebugView::Scattered));
+  const int x = n / 2 + 1;  // just inside the masked half: E = 0, light scattered in
+  EXPECT_EQ(e.display.pixel(x, n / 2)[0], 0.0f);
+  EXPECT_GT(s.display.pixel(x, n / 2)[0], 10.0f * kCode);
+}
+
+// Kernel radius: range_mm x pixels per mm, on log2 pixels 0..6 (1..64 px). Orthographic
+// builtin:edge spans 2 x half_width mm over n pixels, so the radius is range_mm n / (2 hw)
+// pixels; zooming in 2x doubles it; zoomed out below 1 px it is magenta.
+TEST_F(DebugViewTest, KernelRadiusIsTheKernelExtentInPixels) {
+  const int n = 48;
+  const auto radius_px = [&](double half_width_mm, float* range_mm) {
+    const Frame f = render(lit_slab(half_width_mm), view_options(n, n, DebugView::KernelRadius));
+    *range_mm = f.materials.gpu[0].kernel.y;
+    const float t = decode_viridis(f.display.pixel(n / 2, n / 2));
+    return std::exp2(t * DebugViewPass::kKernelRadiusTopLog2);
+  };
+  float range_mm = 0.0f;
+  const float wide = radius_px(20.0, &range_mm);
+  const float expected = range_mm * float(n) / 40.0f;
+  ASSERT_GT(expected, 1.5f);
+  ASSERT_LT(expected, 60.0f);
+  EXPECT_NEAR(wide, expected, 0.03f * expected);
+  const float zoomed = radius_px(10.0, &range_mm);  // closer: twice the pixels per mm
+  EXPECT_NEAR(zoomed / wide, 2.0f, 0.06f);
+  const Frame far = render(lit_slab(100.0 * expected), view_options(n, n, DebugView::KernelRadius));
+  const float* m = far.display.pixel(n / 2, n / 2);
+  EXPECT_EQ(m[0], 1.0f);
+  EXPECT_EQ(m[1], 0.0f);
+  EXPECT_EQ(m[2], 1.0f);
+}
+
+// Profile id: one flat colour per material (every pixel of a sphere the same, no two
+// spheres alike), black background with alpha 0.
+TEST_F(DebugViewTest, ProfileIdGivesEachMaterialOneDistinctColour) {
+  const scene::Scene s = scene::materials_scene();
+  const Frame f = render(s, view_options(192, 108, DebugView::ProfileId));
+  std::set<std::array<int, 3>> colours;
+  for (int y = 0; y < f.display.height; ++y)
+    for (int x = 0; x < f.display.width; ++x) {
+      const float* p = f.display.pixel(x, y);
+      if (p[3] == 0.0f) {
+        ASSERT_EQ(p[0] + p[1] + p[2], 0.0f);
+        continue;
+      }
+      colours.insert({int(std::lround(p[0] * 255)), int(std::lround(p[1] * 255)),
+                      int(std::lround(p[2] * 255))});
+    }
+  EXPECT_EQ(colours.size(), s.materials.size());  // every sphere is in view
+  for (auto a = colours.begin(); a != colours.end(); ++a)
+    for (auto b = std::next(a); b != colours.end(); ++b) {
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs((*a)[c] - (*b)[c]));
+      EXPECT_GE(d, 24) << "two materials look alike";
+    }
+}
+
+// Thickness along light 0 (straight down) through the 50 mm slab: 0 on the lit top face;
+// seen from below, every pixel of the bottom face is 50 mm from the top face.
+TEST_F(DebugViewTest, ThicknessIsTheDistanceThroughTheObjectAlongTheLight) {
+  const int n = 32;
+  scene::Scene top = lit_slab();
+  const float top_mm = diameter_mm(top);
+  const Frame lit = render(top, view_options(n, n, DebugView::Thickness));
+  for (int y = 0; y < n; y += 3)
+    for (int x = 0; x < n; x += 3)
+      EXPECT_LT(decode_viridis(lit.display.pixel(x, y)) * top_mm, 1.5f) << x << "," << y;
+
+  scene::Scene below = top;
+  const float mm = float(1.0 / below.mm_per_unit);
+  below.cameras[0].world =
+      scene::look_at_world({0.0f, -150 * mm, 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
+  const Frame f = render(below, view_options(n, n, DebugView::Thickness));
+  for (int y = 0; y < n; y += 3)
+    for (int x = 0; x < n; x += 3) {
+      ASSERT_EQ(f.display.pixel(x, y)[3], 1.0f);
+      EXPECT_NEAR(decode_viridis(f.display.pixel(x, y)) * top_mm, 50.0f, 1.5f) << x << "," << y;
+    }
+}
+
+// UV stretch: the slab's top face maps uv 0..1 across its 200 mm in both directions, so
+// 200 mm per unit of u (red) and of v (green), over a top of pi x the bounding diameter;
+// the bunny has no UVs: flat grey.
+TEST_F(DebugViewTest, UvStretchIsMmOfSurfacePerUnitOfUv) {
+  const int n = 32;
+  const scene::Scene s = lit_slab();
+  const float top = kPi * diameter_mm(s);
+  const Frame f = render(s, view_options(n, n, DebugView::UvStretch));
+  for (int y = 1; y < n - 1; y += 3)
+    for (int x = 1; x < n - 1; x += 3) {
+      EXPECT_NEAR(f.display.pixel(x, y)[0] * top, 200.0f, 2.5f) << x << "," << y;
+      EXPECT_NEAR(f.display.pixel(x, y)[1] * top, 200.0f, 2.5f) << x << "," << y;
+      EXPECT_EQ(f.display.pixel(x, y)[2], 0.0f);
+    }
+  auto loaded = scene::load_scene("builtin:bunny");
+  const scene::Scene bunny = std::get<scene::Scene>(std::move(loaded));
+  const Frame b = render(bunny, view_options(64, 36, DebugView::UvStretch));
+  int geometry = 0;
+  for (int y = 0; y < b.display.height; ++y)
+    for (int x = 0; x < b.display.width; ++x) {
+      const float* p = b.display.pixel(x, y);
+      if (p[3] == 0.0f) continue;
+      ++geometry;
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(p[c], 0.25f, 0.5f * kCode);
+    }
+  EXPECT_GT(geometry, 100);
+}
+
+}  // namespace
+}  // namespace sss::renderer::testing
