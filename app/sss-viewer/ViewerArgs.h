@@ -32,6 +32,9 @@ struct ViewerArgs {
   std::string vsync = "on";  // window: on (FIFO) | off (MAILBOX / IMMEDIATE)
   bool validation = false;   // --validation or SSS_VALIDATION=1
   bool test_resize = false;  // hidden: resize and minimize the window between frames
+  std::string test_open;     // hidden: opens this file after two frames, as a drop would
+  // hidden: renders the reference at frame 2 and shows it: split | reference | error
+  std::string test_compare;
   std::string test_edit;     // hidden: preset=NAME | model=NAME, edited at the first frame
 };
 

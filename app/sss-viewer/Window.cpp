@@ -3,10 +3,12 @@
 #include "ExitCodes.h"
 #include "CliSupport.h"
 #include "OrbitCamera.h"
+#include "Tools.h"
 #include "Ui.h"
 
 #include "renderer/Renderer.h"
 #include "renderer/image/Image.h"
+#include "renderer/scene/BuiltinScenes.h"
 #include "renderer/vk/Barrier.h"
 #include "renderer/vk/Check.h"
 #include "renderer/vk/Commands.h"
@@ -22,6 +24,8 @@
 #include <imgui_impl_vulkan.h>
 
 #include <chrono>
+#include <cmath>
+#include <memory>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -187,6 +191,62 @@ void drive_camera(GLFWwindow* window, OrbitCamera& camera, bool& r_was_down, flo
   r_was_down = r_down;
 }
 
+// Files dropped on the window since the last frame (GLFW calls back from glfwPollEvents
+// on this thread).
+std::vector<std::string>& dropped_files() {
+  static std::vector<std::string> files;
+  return files;
+}
+
+// What belongs to one loaded scene; opening another file replaces all of it.
+struct Session {
+  scene::Scene scene;
+  std::string source;  // the path or builtin:NAME it came from
+  std::unique_ptr<renderer::Renderer> renderer;
+  std::unique_ptr<OrbitCamera> camera;
+  std::unique_ptr<ViewerUi> ui;
+};
+
+std::unique_ptr<Session> make_session(const vk::Context& ctx, scene::Scene scene, std::string source,
+                                      const renderer::RenderOptions& options) {
+  auto s = std::make_unique<Session>();
+  s->scene = std::move(scene);
+  s->source = std::move(source);
+  s->renderer = std::make_unique<renderer::Renderer>(ctx, s->scene, options);
+  s->camera = std::make_unique<OrbitCamera>(s->renderer->camera(), s->scene.bounds());
+  s->ui = std::make_unique<ViewerUi>(s->scene, options.separable_taps);
+  return s;
+}
+
+std::string window_title(const Session& s) {
+  return "sss-viewer - " + (s.scene.name.empty() ? s.source : s.scene.name);
+}
+
+// Loads `path` as the viewer's command line would (a missing camera or light is added)
+// and builds its renderer with the current options. On failure the current session
+// stays and the message says why.
+std::unique_ptr<Session> open_scene(const vk::Context& ctx, const std::string& path,
+                                    const renderer::RenderOptions& options, std::string& message) {
+  auto loaded = scene::load_scene(path);
+  if (auto* e = std::get_if<scene::LoadError>(&loaded)) {
+    message = e->what();
+    return nullptr;
+  }
+  scene::Scene scene = std::move(std::get<scene::Scene>(loaded));
+  scene::add_camera_if_missing(scene);
+  scene::add_light_if_missing(scene);
+  try {
+    auto s = make_session(ctx, std::move(scene), path, options);
+    message = "opened " + path;
+    for (const std::string& w : s->scene.warnings) message += "\nwarning: " + w;
+    for (const std::string& w : s->renderer->warnings()) message += "\nwarning: " + w;
+    return s;
+  } catch (const std::exception& e) {
+    message = path + ": " + e.what();
+    return nullptr;
+  }
+}
+
 int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options,
         bool validation) {
   Glfw glfw;
@@ -226,8 +286,12 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     options.width = static_cast<uint32_t>(fb_w);
     options.height = static_cast<uint32_t>(fb_h);
   }
-  renderer::Renderer r(ctx, scene, options);
-  for (const std::string& w : r.warnings()) std::cerr << "sss-viewer: warning: " << w << '\n';
+  std::unique_ptr<Session> session = make_session(ctx, scene, a.scene, options);
+  for (const std::string& w : session->renderer->warnings())
+    std::cerr << "sss-viewer: warning: " << w << '\n';
+  glfwSetDropCallback(window, [](GLFWwindow*, int count, const char** paths) {
+    for (int i = 0; i < count; ++i) dropped_files().emplace_back(paths[i]);
+  });
 
   vk::Swapchain sc(ctx, {uint32_t(std::max(fb_w, 0)), uint32_t(std::max(fb_h, 0))}, a.vsync == "on");
   VkExtent2D swap_for{uint32_t(std::max(fb_w, 0)), uint32_t(std::max(fb_h, 0))};
@@ -261,9 +325,8 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   vk::submit_once(ctx, [](VkCommandBuffer c) { ImGui_ImplVulkan_CreateFontsTexture(c); });
   ImGui_ImplVulkan_DestroyFontUploadObjects();
 
-  OrbitCamera camera(r.camera(), scene.bounds());
-  ViewerUi ui(scene, options.separable_taps);
-  if (!a.test_edit.empty() && !ui.script_edit(a.test_edit)) {
+  ViewerTools tools(ctx);
+  if (!a.test_edit.empty() && !session->ui->script_edit(a.test_edit)) {
     std::cerr << "sss-viewer: error: --test-edit: expected preset=NAME or model=NAME, got '"
               << a.test_edit << "'\n";
     return kExitUsage;
@@ -285,9 +348,37 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   int simulated_minimized = 0;  // --test-resize: frames reported as 0x0
   double frame_ms = 0.0, timed_ms = 0.0;
   int timed_frames = 0;
+  std::optional<std::string> open_request_ui;  // from the Tools window, for the next frame
+  bool test_opened = false;
   auto last = std::chrono::steady_clock::now();
   while (!glfwWindowShouldClose(window)) {
     glfwPollEvents();
+    std::optional<std::string> open_request = std::move(open_request_ui);
+    open_request_ui.reset();
+    if (!dropped_files().empty()) {
+      open_request = dropped_files().back();  // several at once: the last one
+      dropped_files().clear();
+    }
+    if (!a.test_open.empty() && frames == 2 && !test_opened) {  // tests: as if dropped
+      open_request = a.test_open;
+      test_opened = true;
+    }
+    if (open_request) {
+      // The frame in flight reads the old renderer's display image: wait for it first.
+      vk::wait_for_fence(ctx, fence.get());
+      std::string message;
+      renderer::RenderOptions next_options = session->renderer->options();
+      if (auto next = open_scene(ctx, *open_request, next_options, message)) {
+        tools.reset();
+        session = std::move(next);  // the old renderer goes here, its frame finished
+        glfwSetWindowTitle(window, window_title(*session).c_str());
+      }
+      std::cerr << "sss-viewer: " << message << '\n';
+      tools.set_message(message);
+    }
+    renderer::Renderer& r = *session->renderer;
+    OrbitCamera& camera = *session->camera;
+    ViewerUi& ui = *session->ui;
     if (a.test_resize) {
       // Exercise resize and minimize between frames (Xvfb has no window manager, so
       // iconify may do nothing there: 0x0 is also simulated for two iterations).
@@ -319,12 +410,19 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     drive_camera(window, camera, r_was_down, float(fb.width), float(fb.height));
+    // One frame in flight: the previous blit and UI pass finish before the panels may
+    // change (or read back) the renderer's resources.
+    vk::wait_for_fence(ctx, fence.get());
     ui.draw(r, frame_ms);
+    LiveState live{&session->scene, session->source, ui.editor().applied(), ui.lights()};
+    if (!a.test_compare.empty() && frames == 2 && !tools.reference_running() && !tools.metrics()) {
+      tools.start_reference(r, live);
+      tools.set_view(a.test_compare == "split" ? 1 : a.test_compare == "reference" ? 2 : 3, 0.5f);
+    }
+    if (std::optional<std::string> path = tools.draw(r, live)) open_request_ui = *path;
     ImGui::Render();
     if (camera.take_changed()) r.set_camera(camera.camera());
 
-    // One frame in flight: the previous blit and UI pass are done before this frame.
-    vk::wait_for_fence(ctx, fence.get());
     r.render_frame();
     uint32_t index = 0;
     if (!sc.acquire(acquired.get(), index)) {
@@ -356,6 +454,25 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     vkCmdBlitImage(cmd, display.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
                    same ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
+    if (const auto overlay = tools.overlay()) {
+      // The compare view: the reference or the heat map over the columns left of the
+      // split (both stay in TRANSFER_SRC_OPTIMAL from their upload).
+      const vk::Image& over = *overlay->image;
+      const int32_t src_w = int32_t(std::lround(overlay->split * float(over.width())));
+      const int32_t dst_w = int32_t(std::lround(overlay->split * float(sc.extent().width)));
+      if (src_w > 0 && dst_w > 0) {
+        vk::pipeline_barrier(cmd, {vk::image_barrier(target, color_range,
+                                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                                     kBlitWrite, kBlitWrite)});
+        VkImageBlit part = blit;
+        part.srcOffsets[1] = {src_w, int32_t(over.height()), 1};
+        part.dstOffsets[1] = {dst_w, int32_t(sc.extent().height), 1};
+        vkCmdBlitImage(cmd, over.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &part,
+                       same ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
+      }
+    }
     vk::pipeline_barrier(
         cmd, {vk::image_barrier(display, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                 renderer::Renderer::display_layout(), kBlitRead, vk::kAllCommands),
@@ -404,10 +521,19 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       timed_ms += frame_ms;
       ++timed_frames;
     }
-    if (screenshot && frames >= a.frames && !(!a.test_edit.empty() && ui.busy())) break;
+    if (!a.test_compare.empty() && !tools.compare_error().empty()) {
+      std::cerr << "sss-viewer: error: compare: " << tools.compare_error() << '\n';
+      vk::wait_for_fence(ctx, fence.get());
+      return kExitRuntime;
+    }
+    const bool waiting = (!a.test_edit.empty() && ui.busy()) ||
+                         (!a.test_compare.empty() && (frames <= 2 || !tools.metrics()));
+    if (screenshot && frames >= a.frames && !waiting) break;
   }
   vk::wait_for_fence(ctx, fence.get());
   ctx.wait_idle();
+  const renderer::Renderer& r = *session->renderer;
+  const ViewerUi& ui = *session->ui;
 
   if (screenshot) {
     if (lower_extension(a.screenshot) == ".exr")
@@ -433,6 +559,9 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       std::printf("%-16s %10.1f\n", "fps", 1000.0 * timed_frames / timed_ms);
     }
     ui.print_stats(stdout);
+    if (const auto& m = tools.metrics())
+      std::printf("compare: relative RMSE %.6f, PSNR %.2f dB, SSIM %.4f, max abs %.4f\n",
+                  m->relative_rmse, m->psnr_db, m->ssim, m->max_abs_error);
   }
   return kExitOk;
 }

@@ -85,6 +85,10 @@ int main(int argc, char** argv) {
   // tests and timing: one material edit through the panel's code path at the first frame;
   // --screenshot then waits for its refit to be presented (--stats prints its latency)
   app.add_option("--test-edit", a.test_edit)->group("");
+  app.add_option("--test-open", a.test_open)->group("");  // tests: open a file, as a drop does
+  // tests: the Compare button at frame 2, then split | reference | error is shown;
+  // --screenshot waits for the comparison (--stats prints its metrics)
+  app.add_option("--test-compare", a.test_compare)->group("");
   if (const auto stop = parse_command_line(app, argc, argv, "sss-viewer")) return *stop;
 
   if (const char* v = std::getenv("SSS_VALIDATION"); v != nullptr && std::string(v) == "1")
@@ -102,6 +106,9 @@ int main(int argc, char** argv) {
     if (!a.screenshot.empty() && shot != ".png" && shot != ".exr")
       return usage("--screenshot: expected a .png or .exr file name, got '" + a.screenshot + "'");
   }
+  if (!a.test_compare.empty() && a.test_compare != "split" && a.test_compare != "reference" &&
+      a.test_compare != "error")
+    return usage("--test-compare: expected split, reference or error");
   if (a.vsync != "on" && a.vsync != "off")
     return usage("--vsync: expected on or off, got '" + a.vsync + "'");
   if (a.sss == "texture") return usage("texture-space SSS is not available yet (issue 6)");

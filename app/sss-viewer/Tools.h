@@ -1,0 +1,149 @@
+// The viewer's "Tools" window (top right, beside the material panels of Ui.h):
+//   - Open: a glTF/GLB by path (or dropped on the window; Window.cpp reloads it);
+//   - Compare: the CPU reference (renderer/reference) renders the current view on a
+//     worker thread with progress; then the frame can be shown split A/B against it,
+//     as the reference alone, or as an error heat map, with the metrics of sss-compare;
+//   - Export: the current SSS materials into a new glTF (extras.sss, GltfExport.h; for
+//     built-in scenes a JSON of the blocks), and a material's kernel as JSON or C header
+//     (the format of `sss-fit fit --out`). Nothing is ever overwritten silently.
+// Every file is written atomically (image::write_file_atomically).
+#pragma once
+
+#include "renderer/image/Image.h"
+#include "renderer/image/Metrics.h"
+#include "renderer/reference/ReferenceRenderer.h"
+#include "renderer/scene/Scene.h"
+#include "renderer/vk/Image.h"
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace sss::vk {
+class Context;
+}
+namespace sss::renderer {
+class Renderer;
+}
+
+namespace sss::app {
+
+// What the window shows now: the loaded scene with the live materials, lights and view.
+struct LiveState {
+  const scene::Scene* scene = nullptr;  // meshes, textures, instances as loaded
+  std::string source;                   // the path, or builtin:NAME
+  std::vector<scene::Material> materials;
+  std::vector<scene::Light> lights;
+};
+
+// The CPU reference of one view, rendered on a worker thread. Destroying or starting
+// another cancels the running one (render_reference checks between rows).
+class ReferenceJob {
+ public:
+  ReferenceJob() = default;
+  ~ReferenceJob() { cancel(); }
+  ReferenceJob(const ReferenceJob&) = delete;
+  ReferenceJob& operator=(const ReferenceJob&) = delete;
+
+  void start(scene::Scene scene, const reference::ReferenceOptions& options);
+  void cancel();  // waits for the worker to stop
+  bool running() const { return running_.load(); }
+  // "points 42%" while running.
+  std::string progress() const;
+  double fraction() const;
+  // The finished image, once (then empty); or the error of a failed run.
+  std::optional<reference::ReferenceImage> take();
+  std::string take_error();
+
+ private:
+  std::thread worker_;
+  std::atomic<bool> cancel_{false}, running_{false};
+  mutable std::mutex mutex_;
+  std::string stage_;
+  double fraction_ = 0.0;
+  std::optional<reference::ReferenceImage> result_;
+  std::string error_;
+};
+
+class ViewerTools {
+ public:
+  explicit ViewerTools(const vk::Context& context) : context_(context) {}
+
+  // Draws the Tools window (between ImGui::NewFrame and ImGui::Render). The state must
+  // be what the renderer draws now. Returns a path when the user asked to open one.
+  std::optional<std::string> draw(renderer::Renderer& r, const LiveState& live);
+
+  // The "Render reference of this view" button: starts the CPU reference of what the
+  // renderer draws now (same camera, size, exposure, materials and lights).
+  void start_reference(const renderer::Renderer& r, const LiveState& live);
+  bool reference_running() const { return job_.running(); }
+  // The comparison of the finished reference with the frame, once there is one.
+  const std::optional<image::Metrics>& metrics() const { return metrics_; }
+  // Why the last reference or comparison failed (empty: it did not).
+  const std::string& compare_error() const { return compare_error_; }
+  // 0 live, 1 split A/B, 2 reference, 3 error heat map (the radio buttons).
+  void set_view(int view, float split = 0.5f) {
+    view_ = view;
+    split_ = split;
+    expand_ = true;  // and show the panel with the metrics
+  }
+
+  // A new scene: cancels the reference and forgets the comparison.
+  void reset();
+  void set_message(std::string message) { message_ = std::move(message); }
+
+  // What to blit over the frame: `image` (kDisplayFormat, TRANSFER_SRC_OPTIMAL, frame
+  // size) over the columns left of `split` (a fraction of the width; 1 = all of it).
+  struct Overlay {
+    const vk::Image* image = nullptr;
+    float split = 1.0f;
+  };
+  std::optional<Overlay> overlay() const;
+
+ private:
+  void draw_open();
+  // Takes a finished reference: uploads it and compares it with the frame.
+  void poll_reference(renderer::Renderer& r, const LiveState& live);
+  void draw_compare(renderer::Renderer& r, const LiveState& live);
+  void draw_export(const renderer::Renderer& r, const LiveState& live);
+  void compare_now(renderer::Renderer& r);
+  void render_heat(int width, int height);  // errors_ -> heat_image_ at heat_max_
+  vk::Image upload(const image::Image& img, const char* name) const;
+
+  const vk::Context& context_;
+  char open_path_[512] = "";
+  std::optional<std::string> open_request_;
+  std::string message_;
+
+  ReferenceJob job_;
+  float spacing_mfp_ = 0.5f;
+  float error_bound_ = 0.3f;
+  std::string job_key_;                          // the state the running job renders
+  std::optional<reference::ReferenceImage> reference_;
+  std::string reference_key_;                    // the state the reference shows
+  std::optional<image::Metrics> metrics_;
+  double heat_max_ = 0.0;
+  std::vector<float> errors_;          // per pixel, live vs reference display
+  std::vector<std::uint8_t> mask_;     // 1: geometry in both
+  vk::Image reference_image_, heat_image_;
+  bool expand_ = false;  // open the window and the Compare section at the next draw
+  int view_ = 0;  // 0 live, 1 split, 2 reference, 3 heat map
+  float split_ = 0.5f;
+  std::string compare_error_;
+
+  int kernel_material_ = 0;
+  char gltf_path_[512] = "";
+  char kernel_path_[512] = "";
+  bool replace_ = false;
+  std::string last_source_;
+  std::string export_message_;
+};
+
+// The key of a view for staleness: camera, size, exposure, materials and lights.
+std::string live_key(const renderer::Renderer& r, const LiveState& live);
+
+}  // namespace sss::app

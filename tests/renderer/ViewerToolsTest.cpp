@@ -1,0 +1,139 @@
+// The viewer's Tools window, driven through its own code paths under xvfb-run with the
+// validation layer on: opening a file (the drop path) replaces the scene without a
+// restart, a file that cannot be loaded leaves the scene as it was, and the in-viewer
+// comparison with the CPU reference gives the numbers sss-compare gives for the same
+// two images.
+#include <gtest/gtest.h>
+
+#include "renderer/image/Image.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "common/CliRun.h"
+
+#if defined(SSS_VIEWER_EXE) && defined(SSS_REFERENCE_EXE) && defined(SSS_COMPARE_EXE)
+
+namespace {
+
+using sss::testing::CliRun;
+using sss::testing::run_shell;
+
+bool have_xvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
+
+CliRun run_windowed(const std::string& args) {
+  return run_shell("SSS_VALIDATION=1 xvfb-run -a -s \"-screen 0 1280x720x24\" " +
+                   std::string(SSS_VIEWER_EXE) + " " + args);
+}
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("sss_viewer_tools_test_" + name)).string();
+}
+
+sss::image::Image read_png(const std::string& path) {
+  auto image = sss::image::read_image(path);
+  if (!std::holds_alternative<sss::image::Image>(image)) return {};
+  return std::get<sss::image::Image>(std::move(image));
+}
+
+bool has_validation_message(const std::string& output) {
+  return output.find("[vulkan validation") != std::string::npos ||
+         output.find("[vulkan performance") != std::string::npos;
+}
+
+// The largest difference in 8-bit codes between two PNGs of the same size (-1: sizes
+// differ or unreadable).
+float max_code_difference(const std::string& a_path, const std::string& b_path) {
+  const sss::image::Image a = read_png(a_path), b = read_png(b_path);
+  if (a.width == 0 || a.width != b.width || a.height != b.height) return -1.0f;
+  float d = 0.0f;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i) d = std::max(d, std::fabs(a.rgba[i] - b.rgba[i]));
+  return d * 255.0f;
+}
+
+std::string headless(const std::string& scene, const std::string& png) {
+  const CliRun h = run_shell(std::string(SSS_VIEWER_EXE) + " " + scene +
+                             " --headless --width 192 --height 108 --out " + png);
+  return h.code == 0 ? std::string() : h.out;
+}
+
+TEST(ViewerTools, OpeningAFileReplacesTheScene) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string tile = std::string(SSS_SOURCE_DIR) + "/assets/textured_tile.glb";
+  const std::string shot = temp_path("open.png"), expected = temp_path("open_headless.png");
+  std::filesystem::remove(shot);
+  const CliRun w = run_windowed("builtin:sphere --width 192 --height 108 --frames 5 --test-open " +
+                                tile + " --screenshot " + shot);
+  ASSERT_EQ(w.code, 0) << w.out;
+  EXPECT_FALSE(has_validation_message(w.out)) << w.out;
+  EXPECT_NE(w.out.find("opened " + tile), std::string::npos) << w.out;
+  ASSERT_EQ(headless(tile, expected), "");
+  // The same Renderer on the same scene and view: equal to one 8-bit code (as in
+  // ViewerWindowTest), so the window really shows the opened file, framed on load.
+  EXPECT_LE(max_code_difference(shot, expected), 1.0f);
+  std::filesystem::remove(shot);
+  std::filesystem::remove(expected);
+}
+
+TEST(ViewerTools, AFileThatDoesNotLoadLeavesTheScene) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string bad = std::string(SSS_SOURCE_DIR) + "/tests/data/bad/not_json.gltf";
+  const std::string shot = temp_path("bad.png"), expected = temp_path("bad_headless.png");
+  for (const std::string& path : {bad, std::string("/nonexistent/scene.glb")}) {
+    std::filesystem::remove(shot);
+    const CliRun w = run_windowed("builtin:sphere --width 192 --height 108 --frames 5 --test-open " +
+                                  path + " --screenshot " + shot);
+    ASSERT_EQ(w.code, 0) << w.out;  // the viewer goes on
+    EXPECT_FALSE(has_validation_message(w.out)) << w.out;
+    EXPECT_NE(w.out.find(path), std::string::npos) << w.out;  // the message names the file
+    EXPECT_EQ(w.out.find("opened"), std::string::npos) << w.out;
+    ASSERT_EQ(headless("builtin:sphere", expected), "");
+    EXPECT_LE(max_code_difference(shot, expected), 1.0f) << path;
+  }
+  std::filesystem::remove(shot);
+  std::filesystem::remove(expected);
+}
+
+// The viewer renders the reference of its view on a worker thread and compares it with
+// its frame. sss-reference renders the same view (same defaults: spacing 0.5 mfp, error
+// bound 0.3 sr, seed 1) and sss-compare compares it with the window's screenshot: the
+// two relative RMSEs must agree. The reference is deterministic for a seed whatever the
+// thread count (points are sampled on one thread; each pixel is summed alone), so the
+// only slack is the print precision of the viewer's line (6 decimals).
+TEST(ViewerTools, CompareGivesTheNumbersOfSssCompare) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string shot = temp_path("cmp.png"), ref = temp_path("cmp_ref.png");
+  std::filesystem::remove(shot);
+  const CliRun w = run_windowed("builtin:sphere --width 160 --height 90 --frames 3 --stats "
+                                "--test-compare split --screenshot " + shot);
+  ASSERT_EQ(w.code, 0) << w.out;
+  EXPECT_FALSE(has_validation_message(w.out)) << w.out;
+  const std::string key = "compare: relative RMSE ";
+  const auto at = w.out.find(key);
+  ASSERT_NE(at, std::string::npos) << w.out;
+  const double viewer_rmse = std::atof(w.out.c_str() + at + key.size());
+
+  const CliRun r = run_shell(std::string(SSS_REFERENCE_EXE) +
+                             " builtin:sphere --width 160 --height 90 --quiet --out " + ref);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const CliRun c = run_shell(std::string(SSS_COMPARE_EXE) + " " + shot + " " + ref + " --json");
+  ASSERT_TRUE(c.code == 0 || c.code == 3) << c.out;
+  const auto report = nlohmann::json::parse(c.out.substr(c.out.find('{')));
+  const double cli_rmse = report["metrics"]["relative_rmse"].get<double>();
+  EXPECT_NEAR(viewer_rmse, cli_rmse, 1e-6) << w.out << c.out;
+  // And the frame is close to the reference: the golden suite's sphere limit is 2%
+  // relative RMSE in linear radiance; display codes (filmic curve, slope < 1 over most
+  // of the range) stay below that.
+  EXPECT_LT(viewer_rmse, 0.02) << w.out;
+  std::filesystem::remove(shot);
+  std::filesystem::remove(ref);
+}
+
+}  // namespace
+
+#endif
