@@ -1,5 +1,7 @@
 #include "Tools.h"
 
+#include "CliSupport.h"
+
 #include "renderer/FrameTargets.h"
 #include "renderer/Renderer.h"
 #include "renderer/image/AtomicFile.h"
@@ -380,6 +382,58 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
   }
 }
 
+std::string write_new_file(const std::string& path, const std::string& bytes, bool replace) {
+  if (!replace && exists(path))
+    return path + " exists: tick 'replace existing files' or change the name";
+  try {
+    image::write_file_atomically(path, bytes);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "saved " + path;
+}
+
+std::string export_materials(const LiveState& live, const std::string& path, bool replace) {
+  if (path.empty()) return "no file name given";
+  if (is_builtin(live.source)) {
+    nlohmann::ordered_json doc;
+    doc["scene"] = live.source;
+    doc["materials"] = nlohmann::ordered_json::array();
+    for (const scene::Material& m : live.materials) {
+      nlohmann::ordered_json entry = {{"name", m.name}};
+      if (m.sss.enabled)
+        entry["extras"]["sss"] = nlohmann::ordered_json::parse(scene::sss_extras_json(m.sss).dump());
+      doc["materials"].push_back(entry);
+    }
+    return write_new_file(path, doc.dump(2) + "\n", replace);
+  }
+  auto bytes = scene::gltf_with_sss_materials(live.source, live.materials, path);
+  if (auto* e = std::get_if<scene::LoadError>(&bytes)) return e->what();
+  return write_new_file(path, std::get<std::string>(bytes), replace);
+}
+
+std::string export_kernel(const renderer::Renderer& r, const LiveState& live, std::size_t material,
+                          const std::string& path, bool replace) {
+  if (material >= live.materials.size() || material >= r.materials().profiles.size() ||
+      !r.materials().profiles[material])
+    return "material " + std::to_string(material) + " has no fitted SSS profile";
+  const renderer::MaterialProfile& profile = *r.materials().profiles[material];
+  const scene::Material& m = live.materials[material];
+  const profiles::KernelInfo info{std::string(profiles::model_name(m.sss.model)), describe(m)};
+  std::string bytes;
+  try {
+    if (lower_extension(path) == ".h")
+      bytes = profiles::kernel_to_c_header(
+          profile.fit, info, &profile.kernel,
+          c_identifier(std::filesystem::path(path).stem().string()));
+    else
+      bytes = profiles::kernel_to_json(profile.fit, info, &profile.kernel);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return write_new_file(path, bytes, replace);
+}
+
 void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live) {
   if (!ImGui::CollapsingHeader("Export")) return;
   const bool builtin = is_builtin(live.source);
@@ -416,51 +470,17 @@ void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live
   }
   ImGui::Checkbox("replace existing files", &replace_);
 
-  const auto write = [&](const std::string& path, const std::string& bytes) {
-    if (!replace_ && exists(path)) {
-      export_message_ = path + " exists: tick 'replace existing files' or change the name";
-      return false;
-    }
-    image::write_file_atomically(path, bytes);
-    export_message_ = "saved " + path;
-    return true;
-  };
-  try {
-    if (save_gltf) {
-      const std::string out = gltf_path_;
-      if (builtin) {
-        nlohmann::ordered_json doc;
-        doc["scene"] = live.source;
-        for (const scene::Material& m : live.materials)
-          doc["materials"].push_back(
-              {{"name", m.name},
-               {"extras", {{"sss", m.sss.enabled ? nlohmann::ordered_json::parse(
-                                                       scene::sss_extras_json(m.sss).dump())
-                                                 : nlohmann::ordered_json()}}}});
-        if (write(out, doc.dump(2) + "\n")) copy_to(gltf_path_, sizeof gltf_path_, scene::unused_path(out));
-      } else {
-        auto bytes = scene::gltf_with_sss_materials(live.source, live.materials, out);
-        if (auto* e = std::get_if<scene::LoadError>(&bytes))
-          export_message_ = e->what();
-        else if (write(out, std::get<std::string>(bytes)))
-          copy_to(gltf_path_, sizeof gltf_path_, scene::default_export_path(live.source));
-      }
-    }
-    if (save_json || save_header) {
-      const std::size_t index = std::size_t(sss[std::size_t(kernel_material_)]);
-      const auto& profile = r.materials().profiles.at(index);
-      if (!profile) throw std::runtime_error("the material has no fitted profile yet");
-      const scene::Material& m = live.materials[index];
-      const profiles::KernelInfo info{std::string(profiles::model_name(m.sss.model)), describe(m)};
-      const std::string base = kernel_path_;
-      if (save_json)
-        write(base + ".json", profiles::kernel_to_json(profile->fit, info, &profile->kernel));
-      else
-        write(base + ".h", profiles::kernel_to_c_header(profile->fit, info, &profile->kernel,
-                                                        c_identifier(std::filesystem::path(base).filename().string())));
-    }
-  } catch (const std::exception& e) {
-    export_message_ = e.what();
+  if (save_gltf) {
+    const std::string out = gltf_path_;
+    export_message_ = export_materials(live, out, replace_);
+    if (export_message_.rfind("saved ", 0) == 0)  // the next save gets a new name
+      copy_to(gltf_path_, sizeof gltf_path_,
+              builtin ? scene::unused_path(out) : scene::default_export_path(live.source));
+  }
+  if (save_json || save_header) {
+    const std::size_t index = std::size_t(sss[std::size_t(kernel_material_)]);
+    export_message_ = export_kernel(r, live, index,
+                                    std::string(kernel_path_) + (save_json ? ".json" : ".h"), replace_);
   }
   if (!export_message_.empty()) ImGui::TextWrapped("%s", export_message_.c_str());
 }

@@ -143,6 +143,18 @@ class ViewerTools {
   std::string export_message_;
 };
 
+// The Export section's actions (the buttons call them); each returns "saved PATH" or
+// why nothing was written. An existing file is replaced only with `replace`; the input
+// glTF never is. Files are written atomically.
+std::string write_new_file(const std::string& path, const std::string& bytes, bool replace);
+// A glTF/GLB source: a copy with every material's extras.sss (GltfExport.h). A built-in
+// scene: {"scene", "materials": [{"name", "extras": {"sss": {...}}}]} as JSON.
+std::string export_materials(const LiveState& live, const std::string& path, bool replace);
+// The fit and separable kernel the renderer draws `material` with, as the JSON of
+// `sss-fit fit --json` or (for a .h path) a C header whose prefix is the file's stem.
+std::string export_kernel(const renderer::Renderer& r, const LiveState& live, std::size_t material,
+                          const std::string& path, bool replace);
+
 // The key of a view for staleness: camera, size, exposure, materials and lights.
 std::string live_key(const renderer::Renderer& r, const LiveState& live);
 

@@ -5,7 +5,13 @@
 // two images.
 #include <gtest/gtest.h>
 
+#include "RenderTest.h"
+#include "Tools.h"
+
 #include "renderer/image/Image.h"
+#include "renderer/scene/BuiltinScenes.h"
+#include "renderer/scene/GltfExport.h"
+#include "renderer/scene/SssExtras.h"
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +19,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "common/CliRun.h"
@@ -137,3 +145,100 @@ TEST(ViewerTools, CompareGivesTheNumbersOfSssCompare) {
 }  // namespace
 
 #endif
+
+namespace sss::app {
+namespace {
+
+class ViewerExport : public renderer::testing::RenderTest {};
+
+std::string slurp_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+// The Export buttons' actions on the textured tile, edited: the copy loads back with the
+// edit; a second export never replaces the first without `replace`; the input is never
+// written; the kernel files carry the fit the renderer draws with.
+TEST_F(ViewerExport, MaterialsGoToANewGltfAndKernelsToJsonAndHeader) {
+  const auto dir = std::filesystem::temp_directory_path() / "sss_viewer_export_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string input = (dir / "tile.glb").string();
+  std::filesystem::copy_file(std::string(SSS_SOURCE_DIR) + "/assets/textured_tile.glb", input);
+  const std::string before = slurp_file(input);
+
+  auto loaded = scene::load_scene(input);
+  ASSERT_TRUE(std::holds_alternative<scene::Scene>(loaded));
+  scene::Scene scene = std::get<scene::Scene>(std::move(loaded));
+  scene::add_camera_if_missing(scene);
+  scene::add_light_if_missing(scene);
+  std::size_t sss = scene.materials.size();
+  for (std::size_t i = 0; i < scene.materials.size(); ++i)
+    if (scene.materials[i].sss.enabled) sss = i;
+  ASSERT_LT(sss, scene.materials.size()) << "the tile has an SSS material";
+  std::vector<scene::Material> edited = scene.materials;
+  edited[sss].sss = std::get<scene::SssMaterial>(scene::make_sss_material(
+      scene::PresetSource{"marble"}, profiles::Model::Pbd, 4, 1.5));
+  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(64, 36));
+  r.set_materials(edited);
+  const LiveState live{&scene, input, edited, scene.lights};
+
+  const std::string out = scene::default_export_path(input);
+  EXPECT_EQ(export_materials(live, out, false), "saved " + out);
+  EXPECT_NE(export_materials(live, out, false).find("exists"), std::string::npos);
+  EXPECT_EQ(export_materials(live, out, true), "saved " + out);
+  EXPECT_NE(export_materials(live, input, true).find("overwrite"), std::string::npos);
+  EXPECT_EQ(slurp_file(input), before);  // the input is never written
+
+  auto back = scene::load_scene(out);
+  ASSERT_TRUE(std::holds_alternative<scene::Scene>(back));
+  const scene::SssMaterial& m = std::get<scene::Scene>(back).materials[sss].sss;
+  EXPECT_EQ(m.model, profiles::Model::Pbd);
+  EXPECT_EQ(m.gaussians, 4);
+  EXPECT_EQ(m.scale, 1.5);
+  EXPECT_EQ(m.medium.sigma_a, edited[sss].sss.medium.sigma_a);
+
+  const std::string json_path = (dir / "k.json").string(), header = (dir / "k.h").string();
+  EXPECT_EQ(export_kernel(r, live, sss, json_path, false), "saved " + json_path);
+  EXPECT_EQ(export_kernel(r, live, sss, header, false), "saved " + header);
+  const auto doc = nlohmann::json::parse(slurp_file(json_path));
+  const auto& fit = r.materials().profiles[sss]->fit;
+  ASSERT_EQ(doc["variances_mm2"].size(), fit.variances_mm2.size());
+  for (std::size_t i = 0; i < fit.variances_mm2.size(); ++i)
+    EXPECT_EQ(doc["variances_mm2"][i].get<double>(), fit.variances_mm2[i]);
+  EXPECT_EQ(doc["model"], "pbd");
+  EXPECT_NE(slurp_file(header).find("k_variances_mm2"), std::string::npos);
+  // A material without SSS has no kernel: a message, no file.
+  for (std::size_t i = 0; i < scene.materials.size(); ++i)
+    if (!edited[i].sss.enabled) {
+      EXPECT_NE(export_kernel(r, live, i, (dir / "none.json").string(), false).find("no fitted"),
+                std::string::npos);
+      EXPECT_FALSE(std::filesystem::exists(dir / "none.json"));
+    }
+  std::filesystem::remove_all(dir);
+}
+
+// A built-in scene has no glTF: the blocks go to a JSON that parse_sss_extras reads back.
+TEST_F(ViewerExport, BuiltinSceneExportsTheSssBlocks) {
+  const auto dir = std::filesystem::temp_directory_path() / "sss_viewer_export_builtin";
+  std::filesystem::create_directories(dir);
+  const scene::Scene scene = scene::sphere_scene();
+  const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights};
+  const std::string path = (dir / "sphere-sss.json").string();
+  std::filesystem::remove(path);
+  EXPECT_EQ(export_materials(live, path, false), "saved " + path);
+  const auto doc = nlohmann::json::parse(slurp_file(path));
+  ASSERT_EQ(doc["materials"].size(), scene.materials.size());
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    if (!scene.materials[i].sss.enabled) continue;
+    auto parsed = scene::parse_sss_extras(doc["materials"][i]["extras"]["sss"]);
+    ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(parsed));
+    EXPECT_EQ(std::get<scene::SssMaterial>(parsed).medium.sigma_s, scene.materials[i].sss.medium.sigma_s);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace sss::app
