@@ -43,6 +43,33 @@ shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32
   return u;
 }
 
+PixelRect geometry_rect(const CameraSetup& camera, const scene::Bounds& bounds,
+                        std::uint32_t width, std::uint32_t height) {
+  const PixelRect full{0, 0, width, height};
+  if (bounds.empty()) return full;
+  const glm::mat4 view_proj = camera.proj * camera.view;
+  double x_min = 1e30, y_min = 1e30, x_max = -1e30, y_max = -1e30;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner((i & 1) ? bounds.max.x : bounds.min.x,
+                           (i & 2) ? bounds.max.y : bounds.min.y,
+                           (i & 4) ? bounds.max.z : bounds.min.z);
+    const glm::vec4 clip = view_proj * glm::vec4(corner, 1.0f);
+    if (!(clip.w > 1e-6f)) return full;  // behind the camera plane (perspective)
+    // pixel = (ndc + 1) / 2 x size, as pixel_ndc() in common.glsl inverts it
+    const double px = (double(clip.x) / clip.w + 1.0) * 0.5 * width;
+    const double py = (double(clip.y) / clip.w + 1.0) * 0.5 * height;
+    x_min = std::min(x_min, px), x_max = std::max(x_max, px);
+    y_min = std::min(y_min, py), y_max = std::max(y_max, py);
+  }
+  const auto clamp_to = [](double v, std::uint32_t size) {
+    return static_cast<std::uint32_t>(std::clamp(v, 0.0, double(size)));
+  };
+  PixelRect r{clamp_to(std::floor(x_min) - 2.0, width), clamp_to(std::floor(y_min) - 2.0, height),
+              clamp_to(std::ceil(x_max) + 2.0, width), clamp_to(std::ceil(y_max) + 2.0, height)};
+  if (r.x1 <= r.x0 || r.y1 <= r.y0) r = {0, 0, 1, 1};  // nothing in view: one pixel
+  return r;
+}
+
 float surface_key_stride(const CameraSetup& camera, const scene::Bounds& bounds,
                          double mm_per_unit) {
   double far_mm = 0.0;

@@ -30,6 +30,18 @@ shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32
                                           float exposure, std::uint32_t light_count,
                                           int sss_mode);
 
+// The pixels the screen passes must cover: the projection of `bounds`' eight corners,
+// grown by 2 pixels (so that the rect's border pixels are background: taps clamped to the
+// rect read background there, as they would outside it), clamped to the image. The whole
+// image when a corner is behind the camera plane or the bounds are empty. x1, y1 exclusive.
+struct PixelRect {
+  std::uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  std::uint32_t width() const { return x1 - x0; }
+  std::uint32_t height() const { return y1 - y0; }
+};
+PixelRect geometry_rect(const CameraSetup& camera, const scene::Bounds& bounds,
+                        std::uint32_t width, std::uint32_t height);
+
 // The separable SSS pass's surface key stride (FrameUniforms::options.z, sss.glsl): a power
 // of two >= 2 x the farthest view depth of `bounds` in mm + 1024 mm, so that keys of two
 // materials never come within 1024 mm (more than any kernel range) of each other.

@@ -40,7 +40,7 @@ void CompositePass::write_descriptors() {
 void CompositePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
   auto scope = timer.scope(cmd, kName);
   program_.bind(cmd, set_);
-  ComputeProgram::dispatch(cmd, r_.targets.width, r_.targets.height);
+  ComputeProgram::dispatch(cmd, r_.rect);
 }
 
 }  // namespace sss::renderer

@@ -28,6 +28,11 @@ struct ComputeProgram {
   void bind(VkCommandBuffer cmd, VkDescriptorSet set) const;
   // Groups of SSS_WORKGROUP_2D covering width x height.
   static void dispatch(VkCommandBuffer cmd, uint32_t width, uint32_t height);
+  // Groups covering rect (the shaders offset gl_GlobalInvocationID by FrameUniforms::rect).
+  template <class Rect>
+  static void dispatch(VkCommandBuffer cmd, const Rect& rect) {
+    dispatch(cmd, rect.width(), rect.height());
+  }
 
   vk::DescriptorSetLayoutHandle set_layout;
   vk::PipelineLayoutHandle layout;

@@ -2,6 +2,7 @@
 // uniform and storage buffers, the samplers and the scene's geometry. Owned by Renderer.
 #pragma once
 
+#include "renderer/CameraSetup.h"
 #include "renderer/FrameTargets.h"
 #include "renderer/GpuScene.h"
 #include "renderer/vk/Buffer.h"
@@ -27,6 +28,8 @@ struct FrameResources {
   const vk::Buffer& materials;       // GpuMaterial[]
   const Samplers& samplers;
   const GpuScene& scene;
+  // The rect the screen passes dispatch over (geometry_rect; FrameUniforms::rect).
+  const PixelRect& rect;
 };
 
 }  // namespace sss::renderer

@@ -41,8 +41,10 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
   blur_b = make(context, w, h, kLightingFormat, kComputeUsage, "sss b");
   accum = make(context, w, h, kLightingFormat, kComputeUsage, "sss accum");
   sss_line = make(context, w, h, kKeyedFormat, kComputeUsage, "sss line");
-  hdr = make(context, w, h, kHdrFormat, kComputeUsage, "hdr");
-  display = make(context, w, h, kDisplayFormat, kComputeUsage, "display");
+  // Cleared each frame outside the screen passes' rect (Renderer::record).
+  hdr = make(context, w, h, kHdrFormat, kComputeUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "hdr");
+  display = make(context, w, h, kDisplayFormat, kComputeUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                 "display");
 }
 
 std::vector<const vk::Image*> FrameTargets::compute_targets() const {

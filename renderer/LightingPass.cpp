@@ -43,7 +43,7 @@ void LightingPass::write_descriptors() {
 void LightingPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
   auto scope = timer.scope(cmd, kName);
   program_.bind(cmd, set_);
-  ComputeProgram::dispatch(cmd, r_.targets.width, r_.targets.height);
+  ComputeProgram::dispatch(cmd, r_.rect);
   compute_barrier(cmd);
 }
 

@@ -90,7 +90,7 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
                               vk::MemoryUsage::Dynamic, "lights"}),
       samplers_(make_samplers(context)),
       resources_{context, targets_, frame_uniforms_, light_buffer_,
-                 materials_.buffer(), samplers_, scene_},
+                 materials_.buffer(), samplers_, scene_, rect_},
       pool_(vk::create_command_pool(context, VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT)),
       fence_(vk::create_fence(context)),
       timer_(context) {
@@ -112,6 +112,8 @@ void Renderer::write_frame_uniforms() {
       make_frame_uniforms(camera, options_.width, options_.height, mm_per_unit_,
                           options_.exposure, lights_.count, sss_mode_index(options_));
   uniforms.options.z = surface_key_stride(camera, bounds_, mm_per_unit_);
+  rect_ = geometry_rect(camera, bounds_, options_.width, options_.height);
+  uniforms.rect = {float(rect_.x0), float(rect_.y0), float(rect_.x1), float(rect_.y1)};
   frame_uniforms_.write(&uniforms, sizeof(uniforms));
 }
 
@@ -240,10 +242,11 @@ void Renderer::record(VkCommandBuffer cmd) {
           VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
   const vk::Scope color_access{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  const vk::Scope compute_access{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+  const vk::Scope compute_access{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
                                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT |
                                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-                                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+                                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                                     VK_ACCESS_2_TRANSFER_WRITE_BIT};
   std::vector<VkImageMemoryBarrier2> barriers = {
       vk::image_barrier(targets_.shadow, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, before, depth_access),
@@ -259,6 +262,15 @@ void Renderer::record(VkCommandBuffer cmd) {
     barriers.push_back(vk::image_barrier(*image, VK_IMAGE_LAYOUT_UNDEFINED,
                                          VK_IMAGE_LAYOUT_GENERAL, before, compute_access));
   vk::pipeline_barrier(cmd, barriers);
+  // The screen passes write only rect_: the rest of the output is background (zero).
+  const VkClearColorValue zero{};
+  const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  for (const vk::Image* image : {&targets_.hdr, &targets_.display})
+    vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+  const VkMemoryBarrier2 cleared = vk::memory_barrier(
+      {VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT},
+      {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT});
+  vk::pipeline_barrier(cmd, {}, {}, {&cleared, 1});
 
   shadow_->record(cmd, timer_);
   gbuffer_->record(cmd, timer_);

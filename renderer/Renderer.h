@@ -132,6 +132,7 @@ class Renderer {
   vk::Buffer frame_uniforms_;
   vk::Buffer light_buffer_;
   Samplers samplers_;
+  PixelRect rect_;  // geometry_rect of the current camera and size (write_frame_uniforms)
   FrameResources resources_;
   std::unique_ptr<ShadowPass> shadow_;
   std::unique_ptr<GBufferPass> gbuffer_;

@@ -60,7 +60,7 @@ void SssSeparablePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
     program_.bind(cmd, pass == 0 ? horizontal_ : vertical_);
     vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
                        &push);
-    ComputeProgram::dispatch(cmd, r_.targets.width, r_.targets.height);
+    ComputeProgram::dispatch(cmd, r_.rect);
     compute_barrier(cmd);
   }
 }

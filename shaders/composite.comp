@@ -23,8 +23,8 @@ layout(set = 0, binding = 8, rgba8) uniform writeonly image2D display_img;
 #include "shared/composite.glsl"
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy) + ivec2(frame.rect.xy);  // the geometry's rect
+  if (any(greaterThanEqual(p, ivec2(frame.rect.zw)))) return;
   vec4 albedo_id = texelFetch(albedo_tex, p, 0);
   int id = material_id(albedo_id);
   if (id < 0) {

@@ -27,17 +27,30 @@ float shadow_visibility(int index, GpuLight light, vec3 p, vec3 n) {
   vec3 s = c.xyz / c.w;
   vec2 uv = s.xy * 0.5 + 0.5;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || s.z > 1.0) return 1.0;
-  vec2 texel = 1.0 / vec2(textureSize(shadow_tex, 0).xy);
-  float sum = 0.0;
-  for (int y = -1; y <= 1; ++y)
-    for (int x = -1; x <= 1; ++x)
-      sum += texture(shadow_tex, vec4(uv + vec2(x, y) * texel, float(index), s.z - light.shadow.w));
+  // 3x3 PCF: the mean of 9 bilinear comparison taps one texel apart. Along an axis those
+  // weigh the 4 texels i-1 .. i+2 around the point (i = floor(u - 0.5), f its fraction, in
+  // texels) by (1 - f, 1, 1, f) / 3, which 2 bilinear taps give exactly: one on texels
+  // i-1, i at fraction 1 / (2 - f) with weight (2 - f) / 3, one on i+1, i+2 at fraction
+  // f / (1 + f) with weight (1 + f) / 3. So 4 taps instead of 9, the same filter.
+  vec2 size = vec2(textureSize(shadow_tex, 0).xy);
+  vec2 t = uv * size - 0.5;
+  vec2 i = floor(t);
+  vec2 f = t - i;
+  vec2 w0 = 2.0 - f, w1 = 1.0 + f;
+  vec2 p0 = (i - 1.0 + 1.0 / w0 + 0.5) / size;  // texel centres are at k + 0.5
+  vec2 p1 = (i + 1.0 + f / w1 + 0.5) / size;
+  float ref = s.z - light.shadow.w;
+  float layer = float(index);
+  float sum = w0.x * w0.y * texture(shadow_tex, vec4(p0.x, p0.y, layer, ref)) +
+              w1.x * w0.y * texture(shadow_tex, vec4(p1.x, p0.y, layer, ref)) +
+              w0.x * w1.y * texture(shadow_tex, vec4(p0.x, p1.y, layer, ref)) +
+              w1.x * w1.y * texture(shadow_tex, vec4(p1.x, p1.y, layer, ref));
   return sum / 9.0;
 }
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy) + ivec2(frame.rect.xy);  // the geometry's rect
+  if (any(greaterThanEqual(p, ivec2(frame.rect.zw)))) return;
   int id = material_id(texelFetch(albedo_tex, p, 0));
   if (id < 0) {
     imageStore(irradiance_img, p, vec4(0.0, 0.0, 0.0, kBackgroundKey));

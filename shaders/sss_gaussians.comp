@@ -27,9 +27,9 @@ vec2 surface_at(ivec2 q) { return texelFetch(surface_tex, q, 0).xy; }
 float variance(int id, int g) { return g < 0 ? 0.0 : materials[id].variances[g / 4][g % 4]; }
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = ivec2(frame.viewport.xy);
-  if (any(greaterThanEqual(p, size))) return;
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy) + ivec2(frame.rect.xy);  // the geometry's rect
+  if (any(greaterThanEqual(p, ivec2(frame.rect.zw)))) return;
+  ivec2 lo = ivec2(frame.rect.xy), hi = ivec2(frame.rect.zw) - 1;  // border: background
   vec2 dir = blur.direction.xy;
   int g = int(blur.direction.z);
   bool vertical = dir.y > 0.5;
@@ -57,7 +57,7 @@ void main() {
     for (int k = -half_taps; k <= half_taps; ++k) {
       if (k == 0) continue;
       float offset = float(k * stride);
-      ivec2 q = clamp(p + ivec2(dir * offset), ivec2(0), size - 1);
+      ivec2 q = clamp(p + ivec2(dir * offset), lo, hi);
       vec2 there = surface_at(q);
       vec3 value = follow_surface(texelFetch(input_tex, q, 0).rgb, center, int(there.y), id,
                                   there.x, z, width_mm);

@@ -33,8 +33,8 @@ layout(push_constant) uniform Push { BlurPush blur; };
 #include "shared/composite.glsl"
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy) + ivec2(frame.rect.xy);  // the geometry's rect
+  if (any(greaterThanEqual(p, ivec2(frame.rect.zw)))) return;
   bool vertical = blur.direction.y > 0.5;
   vec4 center = texelFetch(input_tex, p, 0);
   int id = key_material(center.a);
@@ -49,7 +49,7 @@ void main() {
   float ppm = pixels_per_mm(dir, z);
   float inv_width = 1.0 / materials[id].kernel.y;
   int taps = int(materials[id].kernel.x);
-  ivec2 size = ivec2(frame.viewport.xy);
+  ivec2 lo = ivec2(frame.rect.xy), hi = ivec2(frame.rect.zw) - 1;  // border: background
   ivec2 step = ivec2(dir);
   vec3 sum = vec3(0.0);
   for (int i = 0; i < taps; ++i) {
@@ -60,8 +60,8 @@ void main() {
     // centre value itself on another material or the background.
     float t = tap.w * ppm;  // in pixels from p
     float f = floor(t);
-    vec4 s0 = texelFetch(input_tex, clamp(p + step * int(f), ivec2(0), size - 1), 0);
-    vec4 s1 = texelFetch(input_tex, clamp(p + step * int(f + 1.0), ivec2(0), size - 1), 0);
+    vec4 s0 = texelFetch(input_tex, clamp(p + step * int(f), lo, hi), 0);
+    vec4 s1 = texelFetch(input_tex, clamp(p + step * int(f + 1.0), lo, hi), 0);
     vec3 v0 = mix(s0.rgb, center.rgb, clamp(abs(s0.a - center.a) * inv_width, 0.0, 1.0));
     vec3 v1 = mix(s1.rgb, center.rgb, clamp(abs(s1.a - center.a) * inv_width, 0.0, 1.0));
     sum += tap.rgb * mix(v0, v1, t - f);

@@ -47,6 +47,9 @@ struct FrameUniforms {
   vec4 scale;          // x mm per scene unit, y P[0][0], z |P[1][1]|, w exposure
   vec4 options;        // x light count, y sss mode (0 off, 1 separable, 2 gaussians),
                        // z surface key stride in mm (sss.glsl), w
+  vec4 rect;           // x0, y0, x1, y1 (pixels, x1 y1 exclusive): the screen passes
+                       // (lighting, SSS, composite) cover this rect; outside it every pixel
+                       // is background (CameraSetup.h: geometry_rect)
 };
 
 struct GpuLight {
@@ -93,7 +96,7 @@ struct DebugPush {  // debug view pass (debug_view.comp)
 
 #ifdef __cplusplus
 static_assert(sizeof(mat4) == 64);
-static_assert(sizeof(FrameUniforms) == 3 * 64 + 5 * 16);
+static_assert(sizeof(FrameUniforms) == 3 * 64 + 6 * 16);
 static_assert(sizeof(GpuLight) == 64 + 5 * 16);
 static_assert(sizeof(GpuMaterial) == 16 * (3 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
 static_assert(sizeof(DrawPush) == 112);
