@@ -214,6 +214,28 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
     }
     ImGui::EndCombo();
   }
+  // The view's scale (renderer/README.md, "Debug views").
+  const char* legend = nullptr;
+  switch (o.debug_view) {
+    case renderer::DebugView::KernelRadius:
+      legend = "kernel radius, log2 px: dark blue 1, green ~8, yellow >= 64; magenta < 1 px "
+               "(the screen kernel undersamples the profile)";
+      break;
+    case renderer::DebugView::Thickness:
+      legend = "mm through the object along light 0: viridis 0 .. the scene's size; grey: no "
+               "shadow map there";
+      break;
+    case renderer::DebugView::UvStretch:
+      legend = "mm per unit of u (red) and v (green), 0 .. pi x the scene's size; grey: no UVs";
+      break;
+    case renderer::DebugView::ProfileId: legend = "one flat colour per material"; break;
+    default: break;
+  }
+  if (legend != nullptr) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", legend);
+    ImGui::PopStyleColor();
+  }
   if (!changed) return;
   o.sss = mode == 0 ? renderer::SssMode::Off : renderer::SssMode::Screen;
   if (mode != 0) o.kind = mode == 1 ? renderer::SssKind::Separable : renderer::SssKind::Gaussians;
