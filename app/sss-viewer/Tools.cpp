@@ -154,7 +154,7 @@ std::string live_key(const renderer::Renderer& r, const LiveState& live) {
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) k["camera"].push_back(c.world[i][j]);
   k["lens"] = {int(c.projection), c.yfov, c.xmag, c.znear, c.zfar};
-  k["size"] = {r.options().width, r.options().height, r.options().exposure};
+  k["size"] = {live.width, live.height, r.options().exposure};
   for (const scene::Material& m : live.materials)
     k["materials"].push_back(m.sss.enabled ? scene::sss_extras_json(m.sss) : nlohmann::json());
   for (const scene::Light& l : live.lights) {
@@ -172,6 +172,7 @@ void ViewerTools::reset() {
   (void)job_.take_error();
   reference_.reset();
   metrics_.reset();
+  compare_pending_ = false;
   reference_image_ = {};
   heat_image_ = {};
   view_ = 0;
@@ -283,8 +284,8 @@ void ViewerTools::start_reference(const renderer::Renderer& r, const LiveState& 
   s.lights = live.lights;
   s.cameras = {r.camera()};
   reference::ReferenceOptions o;
-  o.width = r.options().width;
-  o.height = r.options().height;
+  o.width = live.width > 0 ? live.width : r.options().width;
+  o.height = live.height > 0 ? live.height : r.options().height;
   o.exposure = r.options().exposure;
   o.spacing_mfp = spacing_mfp_;
   o.max_solid_angle = error_bound_;
@@ -307,8 +308,14 @@ void ViewerTools::poll_reference(renderer::Renderer& r, const LiveState& live) {
     } catch (const std::exception& e) {
       compare_error_ = e.what();
     }
-    if (live_key(r, live) == reference_key_) compare_now(r);
+    compare_pending_ = live_key(r, live) == reference_key_;
     if (view_ == 0) view_ = 1;
+  }
+  // Compare the full-size frame (not a scaled one drawn while the view moves).
+  if (compare_pending_ && reference_ && r.options().width == std::uint32_t(reference_->display.width) &&
+      r.options().height == std::uint32_t(reference_->display.height)) {
+    compare_pending_ = false;
+    compare_now(r);
   }
   if (std::string e = job_.take_error(); !e.empty()) compare_error_ = "reference: " + e;
 }
@@ -350,7 +357,7 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
     fg->AddText(ImVec2(split_ * size.x + 8.0f, size.y - 22.0f), IM_COL32_WHITE, "live");
     ImGui::TextDisabled("left: reference, right: live frame");
   }
-  if (!stale && ImGui::Button("Compare the current frame")) compare_now(r);
+  if (!stale && ImGui::Button("Compare the current frame")) compare_pending_ = true;
   if (!metrics_) return;
   const image::Metrics& m = *metrics_;
   ImGui::Text("relative RMSE %.2f%%   RMSE %.4f", 100.0 * m.relative_rmse, m.rmse);

@@ -38,6 +38,9 @@ struct LiveState {
   std::string source;                   // the path, or builtin:NAME
   std::vector<scene::Material> materials;
   std::vector<scene::Light> lights;
+  // The window's framebuffer: the size of the reference (the renderer may draw a scaled
+  // frame while the view moves).
+  std::uint32_t width = 0, height = 0;
 };
 
 // The CPU reference of one view, rendered on a worker thread. Destroying or starting
@@ -134,6 +137,7 @@ class ViewerTools {
   int view_ = 0;  // 0 live, 1 split, 2 reference, 3 heat map
   float split_ = 0.5f;
   std::string compare_error_;
+  bool compare_pending_ = false;  // the reference arrived; compare once the frame is full size
 
   int kernel_material_ = 0;
   char gltf_path_[512] = "";

@@ -214,6 +214,10 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
     }
     ImGui::EndCombo();
   }
+  ImGui::SliderFloat("moving scale", &interactive_scale_, 0.25f, 1.0f, "%.2f");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Render size while the view moves or a slider is dragged\n"
+                      "(1 = always full size); full size 0.3 s after the last change");
   // The view's scale (renderer/README.md, "Debug views").
   const char* legend = nullptr;
   switch (o.debug_view) {

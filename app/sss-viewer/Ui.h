@@ -38,6 +38,11 @@ class ViewerUi {
 
   MaterialEditor& editor() { return editor_; }
 
+  // The window renders at this fraction of its size while the view moves or a widget is
+  // dragged (1: always full size); the SSS panel's "moving scale" slider sets it.
+  float interactive_scale() const { return interactive_scale_; }
+  void set_interactive_scale(float s) { interactive_scale_ = s; }
+
   // The light panel's logic (the widgets call it): light `i` shines from azimuth/elevation
   // (degrees; the light travels towards the origin's side), with intensity and colour.
   bool set_light(renderer::Renderer& r, std::size_t i, float azimuth_deg, float elevation_deg,
@@ -58,7 +63,8 @@ class ViewerUi {
   int light_ = 0;  // the light the panel edits
   float azimuth_deg_ = 0.0f, elevation_deg_ = 0.0f, intensity_ = 1.0f;
   float light_color_[3] = {1.0f, 1.0f, 1.0f};
-  bool plot_error_ = true;  // the plot shows the fit's relative error below
+  bool plot_error_ = true;
+  float interactive_scale_ = 0.5f;  // the plot shows the fit's relative error below
   std::string script_;
   double smoothed_ms_ = 0.0;
   char shot_name_[256] = "sss-viewer";

@@ -35,6 +35,8 @@ struct ViewerArgs {
   std::string test_open;     // hidden: opens this file after two frames, as a drop would
   // hidden: renders the reference at frame 2 and shows it: split | reference | error
   std::string test_compare;
+  float interactive_scale = 0.5f;  // --interactive-scale: render size while the view moves
+  bool test_interaction = false;   // hidden: every frame counts as interacting (timing)
   std::string test_edit;     // hidden: preset=NAME | model=NAME, edited at the first frame
 };
 

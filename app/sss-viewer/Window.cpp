@@ -287,6 +287,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     options.height = static_cast<uint32_t>(fb_h);
   }
   std::unique_ptr<Session> session = make_session(ctx, scene, a.scene, options);
+  session->ui->set_interactive_scale(a.interactive_scale);
   for (const std::string& w : session->renderer->warnings())
     std::cerr << "sss-viewer: warning: " << w << '\n';
   glfwSetDropCallback(window, [](GLFWwindow*, int count, const char** paths) {
@@ -334,6 +335,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   bool r_was_down = false;
 
   auto recreate_swapchain = [&](VkExtent2D size) {
+    vk::wait_for_fence(ctx, fence.get());  // the last frame's UI pass uses the framebuffers
     framebuffers.clear();
     sc.recreate(size);
     swap_for = size;
@@ -350,6 +352,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   int timed_frames = 0;
   std::optional<std::string> open_request_ui;  // from the Tools window, for the next frame
   bool test_opened = false;
+  auto last_interaction = std::chrono::steady_clock::time_point{};
   auto last = std::chrono::steady_clock::now();
   while (!glfwWindowShouldClose(window)) {
     glfwPollEvents();
@@ -368,7 +371,10 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       vk::wait_for_fence(ctx, fence.get());
       std::string message;
       renderer::RenderOptions next_options = session->renderer->options();
+      next_options.width = uint32_t(std::max(fb_w, 1));  // full size, whatever was drawn last
+      next_options.height = uint32_t(std::max(fb_h, 1));
       if (auto next = open_scene(ctx, *open_request, next_options, message)) {
+        next->ui->set_interactive_scale(session->ui->interactive_scale());
         tools.reset();
         session = std::move(next);  // the old renderer goes here, its frame finished
         glfwSetWindowTitle(window, window_title(*session).c_str());
@@ -400,7 +406,6 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       continue;
     }
     const VkExtent2D fb{uint32_t(fb_w), uint32_t(fb_h)};
-    if (fb.width != r.options().width || fb.height != r.options().height) r.resize(fb.width, fb.height);
     if (!sc.valid() || fb.width != swap_for.width || fb.height != swap_for.height) {
       recreate_swapchain(fb);
       if (!sc.valid()) continue;
@@ -414,14 +419,32 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     // change (or read back) the renderer's resources.
     vk::wait_for_fence(ctx, fence.get());
     ui.draw(r, frame_ms);
-    LiveState live{&session->scene, session->source, ui.editor().applied(), ui.lights()};
+    LiveState live{&session->scene, session->source, ui.editor().applied(), ui.lights(),
+                   fb.width, fb.height};
     if (!a.test_compare.empty() && frames == 2 && !tools.reference_running() && !tools.metrics()) {
       tools.start_reference(r, live);
       tools.set_view(a.test_compare == "split" ? 1 : a.test_compare == "reference" ? 2 : 3, 0.5f);
     }
     if (std::optional<std::string> path = tools.draw(r, live)) open_request_ui = *path;
     ImGui::Render();
-    if (camera.take_changed()) r.set_camera(camera.camera());
+    const bool moved = camera.take_changed();
+    if (moved) r.set_camera(camera.camera());
+
+    // Interactive resolution: while the view moves or a widget is dragged, render at
+    // ui.interactive_scale() of the window and let the blit upscale; the full-size frame
+    // comes back 0.3 s after the last change. --screenshot frames are always full size
+    // (unless --test-interaction, which times the scaled frames).
+    const auto now_steady = std::chrono::steady_clock::now();
+    if ((!screenshot && (moved || ImGui::IsAnyItemActive())) || a.test_interaction)
+      last_interaction = now_steady;
+    const float scale = ui.interactive_scale();
+    const bool scaled = scale < 1.0f && now_steady - last_interaction < std::chrono::milliseconds(300);
+    const VkExtent2D render_size =
+        scaled ? VkExtent2D{std::max(1u, uint32_t(std::lround(float(fb.width) * scale))),
+                            std::max(1u, uint32_t(std::lround(float(fb.height) * scale)))}
+               : fb;
+    if (render_size.width != r.options().width || render_size.height != r.options().height)
+      r.resize(render_size.width, render_size.height);
 
     r.render_frame();
     uint32_t index = 0;
@@ -543,8 +566,8 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   }
   if (a.stats) {
     const renderer::FrameStats& s = r.stats();
-    std::printf("window %ux%u, sss %s, mode %s, present %s, %d frame(s)\n", r.options().width,
-                r.options().height, std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
+    std::printf("window %dx%d (rendered %ux%u), sss %s, mode %s, present %s, %d frame(s)\n",
+                fb_w, fb_h, r.options().width, r.options().height, std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
                 std::string(renderer::sss_kind_name(r.options().kind)).c_str(),
                 sc.present_mode() == VK_PRESENT_MODE_FIFO_KHR        ? "fifo"
                 : sc.present_mode() == VK_PRESENT_MODE_MAILBOX_KHR ? "mailbox"

@@ -81,7 +81,12 @@ int main(int argc, char** argv) {
   app.add_option("--vsync", a.vsync, "Window: on (FIFO, default) | off (MAILBOX or IMMEDIATE)");
   app.add_flag("--validation", a.validation,
                "Load the Vulkan validation layer with synchronization checks (also SSS_VALIDATION=1)");
-  app.add_flag("--test-resize", a.test_resize)->group("");  // tests: resize/minimize the window
+  app.add_option("--interactive-scale", a.interactive_scale,
+                 "Window: render size, as a fraction of the window, while the view moves or a "
+                 "slider is dragged (default 0.5; 1 = always full size)")
+      ->check(CLI::Range(0.1f, 1.0f));
+  app.add_flag("--test-resize", a.test_resize)->group("");
+  app.add_flag("--test-interaction", a.test_interaction)->group("");  // timing: always scaled  // tests: resize/minimize the window
   // tests and timing: one material edit through the panel's code path at the first frame;
   // --screenshot then waits for its refit to be presented (--stats prints its latency)
   app.add_option("--test-edit", a.test_edit)->group("");

@@ -142,6 +142,25 @@ TEST(ViewerTools, CompareGivesTheNumbersOfSssCompare) {
   std::filesystem::remove(ref);
 }
 
+// While the view moves the window renders at --interactive-scale of its size (the blit
+// upscales); a still window renders at full size.
+TEST(ViewerTools, MovingViewRendersAtTheInteractiveScale) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string shot = temp_path("scale.png");
+  const CliRun moving = run_windowed("builtin:sphere --width 160 --height 90 --frames 3 --stats "
+                                     "--interactive-scale 0.5 --test-interaction --screenshot " + shot);
+  ASSERT_EQ(moving.code, 0) << moving.out;
+  EXPECT_FALSE(has_validation_message(moving.out)) << moving.out;
+  EXPECT_NE(moving.out.find("window 160x90 (rendered 80x45)"), std::string::npos) << moving.out;
+  EXPECT_EQ(read_png(shot).width, 80);
+  const CliRun still = run_windowed("builtin:sphere --width 160 --height 90 --frames 3 --stats "
+                                    "--interactive-scale 0.5 --screenshot " + shot);
+  ASSERT_EQ(still.code, 0) << still.out;
+  EXPECT_NE(still.out.find("window 160x90 (rendered 160x90)"), std::string::npos) << still.out;
+  EXPECT_EQ(read_png(shot).width, 160);
+  std::filesystem::remove(shot);
+}
+
 }  // namespace
 
 #endif
