@@ -23,35 +23,21 @@
 #include <sstream>
 #include <string>
 
-#include "common/CliRun.h"
+#include "ViewerRun.h"
 
 #if defined(SSS_VIEWER_EXE) && defined(SSS_REFERENCE_EXE) && defined(SSS_COMPARE_EXE)
 
 namespace {
 
 using sss::testing::CliRun;
+using sss::testing::has_validation_message;
+using sss::testing::have_xvfb;
+using sss::testing::read_png;
 using sss::testing::run_shell;
-
-bool have_xvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
-
-CliRun run_windowed(const std::string& args) {
-  return run_shell("SSS_VALIDATION=1 xvfb-run -a -s \"-screen 0 1280x720x24\" " +
-                   std::string(SSS_VIEWER_EXE) + " " + args);
-}
+using sss::testing::run_windowed;
 
 std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("sss_viewer_tools_test_" + name)).string();
-}
-
-sss::image::Image read_png(const std::string& path) {
-  auto image = sss::image::read_image(path);
-  if (!std::holds_alternative<sss::image::Image>(image)) return {};
-  return std::get<sss::image::Image>(std::move(image));
-}
-
-bool has_validation_message(const std::string& output) {
-  return output.find("[vulkan validation") != std::string::npos ||
-         output.find("[vulkan performance") != std::string::npos;
+  return sss::testing::viewer_temp_path("viewer_tools_test", name);
 }
 
 // The largest difference in 8-bit codes between two PNGs of the same size (-1: sizes
