@@ -5,6 +5,7 @@
 #include "renderer/scene/GltfLoader.h"
 
 #include "GltfTestWriter.h"
+#include "SssExpect.h"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@ namespace {
 
 using testing::GltfTestWriter;
 using testing::TempDir;
+using testing::expect_same_sss;
 
 // One triangle, three materials: SSS coefficients, a plain surface with other extras,
 // and a preset that is disabled.
@@ -51,17 +53,6 @@ std::vector<Material> edited(const Scene& s) {
   EXPECT_EQ(made.index(), 0u);
   m[0].sss = std::get<SssMaterial>(made);
   return m;
-}
-
-void expect_same_sss(const SssMaterial& a, const SssMaterial& b) {
-  EXPECT_EQ(a.enabled, b.enabled);
-  EXPECT_EQ(a.model, b.model);
-  EXPECT_EQ(a.gaussians, b.gaussians);
-  EXPECT_EQ(a.scale, b.scale);
-  EXPECT_EQ(a.albedo_mode, b.albedo_mode);
-  EXPECT_EQ(a.source.index(), b.source.index());
-  EXPECT_EQ(a.medium.sigma_a, b.medium.sigma_a);
-  EXPECT_EQ(a.medium.sigma_s, b.medium.sigma_s);
 }
 
 void check_round_trip(const std::filesystem::path& input, const std::filesystem::path& output) {

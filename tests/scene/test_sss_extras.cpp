@@ -4,6 +4,8 @@
 
 #include "profiles/Presets.h"
 
+#include "SssExpect.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -76,17 +78,7 @@ TEST(SssExtras, WrittenBlockReadsBackAsTheSameMaterial) {
     const SssMaterial a = parse_ok(text);
     const nlohmann::json written = sss_extras_json(a);
     const SssMaterial b = parse_ok(written.dump());
-    EXPECT_EQ(b.enabled, a.enabled);
-    EXPECT_EQ(b.model, a.model);
-    EXPECT_EQ(b.gaussians, a.gaussians);
-    EXPECT_EQ(b.scale, a.scale);
-    EXPECT_EQ(b.albedo_mode, a.albedo_mode);
-    EXPECT_EQ(b.source.index(), a.source.index());
-    EXPECT_EQ(b.medium.sigma_a, a.medium.sigma_a);
-    EXPECT_EQ(b.medium.sigma_s, a.medium.sigma_s);
-    EXPECT_EQ(b.medium.g, a.medium.g);
-    EXPECT_EQ(b.medium.eta, a.medium.eta);
-    EXPECT_EQ(b.medium.thickness_mm, a.medium.thickness_mm);
+    testing::expect_same_sss(b, a);
   }
 }
 
