@@ -12,6 +12,7 @@ vk::DescriptorSetLayoutBuilder bindings() {
       .add(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
       .add(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
   for (uint32_t i = 3; i <= 6; ++i) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
+  b.add(10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);  // shadow depth: thickness
   for (uint32_t i = 7; i <= 9; ++i) b.add(i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
   return b;
 }
@@ -37,6 +38,7 @@ void LightingPass::write_descriptors() {
       .storage_image(7, t.irradiance)
       .storage_image(8, t.specular)
       .storage_image(9, t.surface)
+      .combined_image(10, t.shadow, nearest)
       .update(r_.context);
 }
 

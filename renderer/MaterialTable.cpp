@@ -2,7 +2,12 @@
 
 #include "renderer/vk/Transfer.h"
 
+#include "profiles/Nnls.h"
 #include "profiles/Profile.h"
+
+#include <Eigen/Core>
+
+#include <cmath>
 
 #include <span>
 #include <stdexcept>
@@ -13,6 +18,47 @@ namespace sss::renderer {
 
 MaterialData build_material_data(const scene::Scene& scene, int separable_taps) {
   return build_material_data(scene.materials, separable_taps);
+}
+
+TransmittanceFit fit_transmittance(const profiles::RgbProfile& rgb,
+                                   const std::vector<double>& variances_mm2) {
+  const profiles::FitTarget target = profiles::make_fit_target(rgb);
+  const auto rows = static_cast<Eigen::Index>(target.r_mm.size());
+  const auto n = static_cast<Eigen::Index>(variances_mm2.size());
+  TransmittanceFit out;
+  out.weights.assign(variances_mm2.size(), Rgb{});
+  const Rgb total = rgb.total_transmittance();
+  Eigen::MatrixXd A(rows + 1, n);
+  Eigen::VectorXd b(rows + 1);
+  for (int c = 0; c < 3; ++c) {
+    // Rows weighted by √dr·r: the least squares of r(T − T̃) in dr, the fit's own norm.
+    double norm2 = 0.0;
+    for (Eigen::Index j = 0; j < rows; ++j) {
+      const double s = std::sqrt(target.dr[j]) * target.r_mm[j];
+      for (Eigen::Index i = 0; i < n; ++i)
+        A(j + 1, i) = s * profiles::gaussian_2d(variances_mm2[i], target.r_mm[j]);
+      b(j + 1) = s * rgb.transmittance(target.r_mm[j])[c];
+      norm2 += b(j + 1) * b(j + 1);
+    }
+    if (!(total[c] > 0.0) || !(norm2 > 0.0)) continue;  // nothing transmitted
+    // The energy row Σ_i u_i = total, weighted far above the rest (then made exact).
+    const double k = 1e4 * std::sqrt(norm2) / total[c];
+    A.row(0).setConstant(k);
+    b(0) = k * total[c];
+    const Eigen::VectorXd u = profiles::nnls(A, b);
+    const double sum = u.sum();
+    if (!(sum > 0.0)) continue;
+    double err2 = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) out.weights[i][c] = u(i) * total[c] / sum;
+    for (Eigen::Index j = 0; j < rows; ++j) {
+      double fitted = 0.0;
+      for (Eigen::Index i = 0; i < n; ++i) fitted += out.weights[i][c] * A(j + 1, i);
+      err2 += (fitted - b(j + 1)) * (fitted - b(j + 1));
+    }
+    out.total[c] = total[c];
+    out.relative_error[c] = std::sqrt(err2 / norm2);
+  }
+  return out;
 }
 
 namespace {
@@ -48,7 +94,14 @@ MaterialData build(const std::vector<scene::Material>& materials, int separable_
         profiles::FitOptions options;
         options.gaussians = m.sss.gaussians;
         p = {profiles::fit_gaussians(profiles::make_fit_target(rgb), options),
-             profiles::make_separable_kernel(rgb, separable_taps)};
+             profiles::make_separable_kernel(rgb, separable_taps), std::nullopt};
+        if (m.sss.effective_medium().is_slab())
+          p.transmittance = fit_transmittance(rgb, p.fit.variances_mm2);
+      }
+      if (p.transmittance) {
+        const Rgb t = p.transmittance->total;
+        g.transmit = {float(t[0]), float(t[1]), float(t[2]),
+                      float(m.sss.effective_medium().thickness_mm)};
       }
       const Rgb total = p.kernel.total_reflectance;  // the profile's total_reflectance()
       g.reflectance = {float(total[0]), float(total[1]), float(total[2]), 1.0f};

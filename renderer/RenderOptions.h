@@ -44,6 +44,9 @@ struct RenderOptions {
   float exposure = 1.0f;    // display image only (the EXR is linear, unexposed)
   std::uint32_t shadow_map_size = 1024;
   DebugView debug_view = DebugView::None;
+  // --transmission: light through thin parts of SSS materials, from the shadow maps'
+  // thickness (renderer/README.md "Transmission"). Off: reflection only.
+  bool transmission = true;
 };
 
 }  // namespace sss::renderer

@@ -112,6 +112,7 @@ void Renderer::write_frame_uniforms() {
       make_frame_uniforms(camera, options_.width, options_.height, mm_per_unit_,
                           options_.exposure, lights_.count, sss_mode_index(options_));
   uniforms.options.z = surface_key_stride(camera, bounds_, mm_per_unit_);
+  uniforms.options.w = options_.transmission ? 1.0f : 0.0f;
   rect_ = geometry_rect(camera, bounds_, options_.width, options_.height);
   uniforms.rect = {float(rect_.x0), float(rect_.y0), float(rect_.x1), float(rect_.y1)};
   frame_uniforms_.write(&uniforms, sizeof(uniforms));

@@ -1,7 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Lighting: per pixel, diffuse irradiance E (before albedo) and GGX specular radiance,
-// to separate targets. Only E scatters.
+// to separate targets. Only E scatters. E also carries the light transmitted through
+// thin parts (transmitted_irradiance below), so the SSS passes spread it with no extra
+// pass.
 #include "shared/frame.h"
 #include "shared/common.glsl"
 
@@ -19,8 +21,39 @@ layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D irradiance_img;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D specular_img;
 // For the SSS passes: x distance from the camera plane in mm, y material id (-1: none).
 layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D surface_img;
+// The shadow maps read as depth (no comparison, nearest): thickness for transmission.
+layout(set = 0, binding = 10) uniform sampler2DArray shadow_depth_tex;
 
 #include "shared/sss.glsl"
+#include "shared/thickness.glsl"
+
+// Transmission (DESIGN.md §5 step 5; Jimenez, Whelan, Sundstedt & Gutierrez 2010,
+// "Real-Time Realistic Skin Translucency", IEEE CG&A 30(4)): light entering the far
+// side at the shadow map's first surface crosses the thickness d (mm) and leaves at P.
+// A point source at depth d below the surface gives R(sqrt(r² + d²)) at lateral distance
+// r on it; for the fit R(r) = Σ w_i G(v_i, r) that is Σ w_i exp(-d²/2v_i) G(v_i, r), the
+// same Gaussians with weights scaled per channel, whose total is
+// T(d) = Σ w_i exp(-d²/2v_i). Slabs (transmit.w > 0: the slab thickness) use the
+// multipole's own total transmittance instead (transmit.rgb, the fit of its T(r) with the
+// same variances). The far side's irradiance is E_back = E_light max(-N·L, 0) (the far
+// side faces the light where P faces away from it; Jimenez 2010 uses a wrapped
+// 0.3 + (-N·L), we keep the unwrapped one so a slab lit at normal incidence gets exactly
+// E_light). The result is added to E divided by the total reflectance Σ w_i: the SSS
+// passes blur it with the reflectance profile (Σ w_i G_i, which moves no energy) and the
+// composite multiplies by Σ w_i, so the exitant diffuse is T(d) E_back x albedo / pi,
+// spread by the reflectance profile's shape rather than the transmitted one (for a
+// thickness comparable to the widest Gaussian the transmitted profile is wider).
+vec3 transmittance_total(int id, float d_mm) {
+  vec4 t = materials[id].transmit;
+  if (t.w > 0.0) return t.rgb;
+  vec3 sum = vec3(0.0);
+  int count = int(materials[id].surface.w);
+  for (int g = 0; g < count; ++g) {
+    float v = materials[id].variances[g / 4][g % 4];
+    sum += materials[id].gauss_weights[g].rgb * exp(-d_mm * d_mm / (2.0 * v));
+  }
+  return sum;
+}
 
 float shadow_visibility(int index, GpuLight light, vec3 p, vec3 n) {
   vec4 c = light.shadow_matrix * vec4(p + n * light.shadow.z, 1.0);
@@ -76,6 +109,8 @@ void main() {
 
   vec3 E = vec3(0.0);
   vec3 S = vec3(0.0);
+  vec3 E_back = vec3(0.0);  // x the total transmittance of the thickness, per light
+  bool transmits = frame.options.w > 0.5 && materials[id].reflectance.w > 0.5;
   int count = int(frame.options.x);
   for (int i = 0; i < count; ++i) {
     GpuLight light = light_block.lights[i];
@@ -94,7 +129,13 @@ void main() {
         radiance *= smoothstep(light.direction.w, light.position.w, dot(-L, light.direction.xyz));
     }
     float NdotL = dot(N, L);
-    if (NdotL <= 0.0) continue;
+    if (NdotL <= 0.0) {
+      if (transmits && NdotL < 0.0) {
+        float d = shadow_thickness(shadow_depth_tex, i, light, P);  // -1: no shadow map
+        if (d > 0.0) E_back += radiance * -NdotL * transmittance_total(id, d * frame.scale.x);
+      }
+      continue;
+    }
     float visibility = light.shadow.y > 0.5 ? shadow_visibility(i, light, P, N) : 1.0;
     vec3 incident = radiance * NdotL * visibility;
     E += incident;
@@ -110,6 +151,7 @@ void main() {
       S += D * vis * F * incident;
     }
   }
+  if (transmits) E += E_back / max(materials[id].reflectance.rgb, vec3(1e-6));
   // Pre/post albedo: sqrt(albedo) enters before scattering, the other half after it.
   if (materials[id].kernel.z > 0.5) E *= sqrt(albedo);
   imageStore(irradiance_img, p, vec4(E, surface_key(id, depth_mm)));

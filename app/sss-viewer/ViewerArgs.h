@@ -27,6 +27,7 @@ struct ViewerArgs {
   int taps = 17;
   float exposure = 1.0f;
   std::string debug_view = "none";  // --debug-view: renderer::parse_debug_view names
+  std::string transmission = "on";  // --transmission on | off
   bool stats = false;
   std::string device;
   std::string vsync = "on";  // window: on (FIFO) | off (MAILBOX / IMMEDIATE)

@@ -76,6 +76,9 @@ int main(int argc, char** argv) {
   app.add_option("--taps", a.taps, "Separable kernel taps (odd, 3..33; default 17)");
   app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1)");
   app.add_option("--debug-view", a.debug_view, debug_view_help());
+  app.add_option("--transmission", a.transmission,
+                 "on | off: light through thin parts of SSS materials, thickness from the "
+                 "shadow maps (default on)");
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
   app.add_option("--vsync", a.vsync, "Window: on (FIFO, default) | off (MAILBOX or IMMEDIATE)");
@@ -136,6 +139,9 @@ int main(int argc, char** argv) {
   if (!debug_view)
     return usage("--debug-view: expected " + debug_view_names() + ", got '" + a.debug_view + "'");
   options.debug_view = *debug_view;
+  if (a.transmission != "on" && a.transmission != "off")
+    return usage("--transmission: expected on or off, got '" + a.transmission + "'");
+  options.transmission = a.transmission == "on";
 
   auto loaded = scene::load_scene(a.scene);
   if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what());

@@ -46,7 +46,8 @@ struct FrameUniforms {
   vec4 viewport;       // width, height, 1/width, 1/height
   vec4 scale;          // x mm per scene unit, y P[0][0], z |P[1][1]|, w exposure
   vec4 options;        // x light count, y sss mode (0 off, 1 separable, 2 gaussians),
-                       // z surface key stride in mm (sss.glsl), w
+                       // z surface key stride in mm (sss.glsl), w 1 = transmission
+                       // through thin parts (lighting.comp; RenderOptions::transmission)
   vec4 rect;           // x0, y0, x1, y1 (pixels, x1 y1 exclusive): the screen passes
                        // (lighting, SSS, composite) cover this rect; outside it every pixel
                        // is background (CameraSetup.h: geometry_rect)
@@ -72,6 +73,10 @@ struct GpuMaterial {
   vec4 surface;      // x F0 (0.04 x specular), y metallic, z roughness, w Gaussian count
   vec4 kernel;       // x separable taps, y range_mm (follow-surface width), z 1 = pre/post
                      // sqrt(albedo) (d'Eon & Luebke 2007), 0 = post-scatter albedo; w
+  vec4 transmit;     // rgb a slab's total transmittance (the multipole's T(r) fitted with
+                     // the reflectance fit's variances, MaterialTable.cpp), w its thickness
+                     // in mm; w 0: not a slab (lighting.comp uses the profile through the
+                     // shadow-map thickness)
   vec4 variances[SSS_MAX_GAUSSIANS / 4];  // v_i in mm^2, ascending
   vec4 gauss_weights[SSS_MAX_GAUSSIANS];  // rgb w_i (sum = T)
   vec4 taps[SSS_MAX_TAPS];                // rgb weight (sum 1), w offset in mm
@@ -98,7 +103,7 @@ struct DebugPush {  // debug view pass (debug_view.comp)
 static_assert(sizeof(mat4) == 64);
 static_assert(sizeof(FrameUniforms) == 3 * 64 + 6 * 16);
 static_assert(sizeof(GpuLight) == 64 + 5 * 16);
-static_assert(sizeof(GpuMaterial) == 16 * (3 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
+static_assert(sizeof(GpuMaterial) == 16 * (4 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
 static_assert(sizeof(DrawPush) == 112);
 inline constexpr uint kMaxTextures = SSS_MAX_TEXTURES;
 inline constexpr uint kMaxLights = SSS_MAX_LIGHTS;
