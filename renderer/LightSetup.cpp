@@ -54,6 +54,7 @@ LightSetup make_light_setup(const std::vector<scene::Light>& lights, const scene
       const glm::mat4 proj =
           glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.5f * radius, 3.5f * radius);
       g.shadow_matrix = to_shader(proj * view);
+      g.shadow_inverse = to_shader(glm::inverse(proj * view));
       const float texel = 2.0f * radius / size;
       g.shadow.z = 1.5f * texel;          // normal offset, scene units
       g.shadow.w = 2.0f * texel / (3.0f * radius);  // depth bias, in depth units
@@ -68,6 +69,7 @@ LightSetup make_light_setup(const std::vector<scene::Light>& lights, const scene
       const glm::mat4 view = glm::lookAtRH(p, p + d, any_up(d));
       const glm::mat4 proj = glm::perspectiveRH_ZO(fov, 1.0f, znear, zfar);
       g.shadow_matrix = to_shader(proj * view);
+      g.shadow_inverse = to_shader(glm::inverse(proj * view));
       const float texel = 2.0f * dist * std::tan(0.5f * fov) / size;
       g.shadow.z = 1.5f * texel;
       g.shadow.w = 1e-5f;

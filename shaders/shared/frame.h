@@ -55,6 +55,7 @@ struct FrameUniforms {
 
 struct GpuLight {
   mat4 shadow_matrix;  // world -> shadow clip (layer = index); identity when unshadowed
+  mat4 shadow_inverse; // shadow clip -> world (thickness.glsl), computed on the CPU once
   vec4 color;          // rgb colour x intensity (E for directional, I otherwise), w type
   vec4 direction;      // xyz travel direction (unit), w cos(outer cone)
   vec4 position;       // xyz position, w cos(inner cone)
@@ -102,7 +103,7 @@ struct DebugPush {  // debug view pass (debug_view.comp)
 #ifdef __cplusplus
 static_assert(sizeof(mat4) == 64);
 static_assert(sizeof(FrameUniforms) == 3 * 64 + 6 * 16);
-static_assert(sizeof(GpuLight) == 64 + 5 * 16);
+static_assert(sizeof(GpuLight) == 2 * 64 + 5 * 16);
 static_assert(sizeof(GpuMaterial) == 16 * (4 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
 static_assert(sizeof(DrawPush) == 112);
 inline constexpr uint kMaxTextures = SSS_MAX_TEXTURES;

@@ -24,7 +24,7 @@ float shadow_thickness(sampler2DArray shadow_depth, int layer, GpuLight light, v
   if (d >= s.z) return 0.0;
   // The nearest surface's point on P's shadow-map ray (exact for orthographic and
   // perspective shadow matrices).
-  vec4 q = inverse(light.shadow_matrix) * vec4(s.xy, d, 1.0);
+  vec4 q = light.shadow_inverse * vec4(s.xy, d, 1.0);
   return length(P - q.xyz / q.w);
 }
 
