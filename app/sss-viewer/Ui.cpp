@@ -135,18 +135,19 @@ ViewerUi::ViewerUi(const scene::Scene& scene, int separable_taps)
   if (!lights_.empty()) select_light(0);
 }
 
-bool ViewerUi::script_edit(const std::string& edit) {
+bool valid_script_edit(const std::string& edit) {
   const auto eq = edit.find('=');
-  if (eq == std::string::npos || editor_.edits().empty()) return false;
+  if (eq == std::string::npos) return false;
   const std::string key = edit.substr(0, eq), value = edit.substr(eq + 1);
-  if (key == "preset" && profiles::find_preset(value) == nullptr) return false;
-  if (key == "model") {
-    const auto m = profiles::parse_model(value);
-    const auto& offered = MaterialEditor::models();
-    if (!m || std::find(offered.begin(), offered.end(), *m) == offered.end()) return false;
-  } else if (key != "preset") {
-    return false;
-  }
+  if (key == "preset") return profiles::find_preset(value) != nullptr;
+  if (key != "model") return false;
+  const auto m = profiles::parse_model(value);
+  const auto& offered = MaterialEditor::models();
+  return m && std::find(offered.begin(), offered.end(), *m) != offered.end();
+}
+
+bool ViewerUi::script_edit(const std::string& edit) {
+  if (editor_.edits().empty() || !valid_script_edit(edit)) return false;
   script_ = edit;
   return true;
 }

@@ -16,6 +16,10 @@
 
 namespace sss::app {
 
+// Whether `edit` is a scripted edit script_edit accepts ("preset=NAME" with a known
+// preset, "model=NAME" with an offered model): checked before a window opens.
+bool valid_script_edit(const std::string& edit);
+
 class ViewerUi {
  public:
   explicit ViewerUi(const scene::Scene& scene, int separable_taps = 17);

@@ -5,6 +5,7 @@
 // The command-line contract is DESIGN.md §4; errors exit 2 (usage, input) or 1 (runtime).
 #include "CliSupport.h"
 #include "ViewerArgs.h"
+#include "Ui.h"
 #include "Window.h"
 
 #include "renderer/Renderer.h"
@@ -117,6 +118,8 @@ int main(int argc, char** argv) {
   if (!a.test_compare.empty() && a.test_compare != "split" && a.test_compare != "reference" &&
       a.test_compare != "error")
     return usage("--test-compare: expected split, reference or error");
+  if (!a.test_edit.empty() && !valid_script_edit(a.test_edit))
+    return usage("--test-edit: expected preset=NAME or model=NAME, got '" + a.test_edit + "'");
   if (a.vsync != "on" && a.vsync != "off")
     return usage("--vsync: expected on or off, got '" + a.vsync + "'");
   if (a.sss == "texture") return usage("texture-space SSS is not available yet (issue 6)");

@@ -465,8 +465,12 @@ TEST(ViewerWindowEdit, ScriptedPresetEditReachesTheScreenshot) {
   const double g_plain = mean_green(plain), g_edited = mean_green(edited);
   ASSERT_GT(g_plain, 0.0);
   EXPECT_GT(g_edited, 1.3 * g_plain);  // marble is far brighter in green than skin1
-  const auto bad = run("--test-edit preset=nothing --screenshot " + edited);
+  // A bad edit is a usage error, found before any window opens (so no display needed).
+  const auto bad = sss::testing::run_shell("env -u DISPLAY -u WAYLAND_DISPLAY " +
+                                           std::string(SSS_VIEWER_EXE) +
+                                           " --test-edit preset=nothing --screenshot " + edited);
   EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("preset=nothing"), std::string::npos) << bad.out;
   std::filesystem::remove(plain);
   std::filesystem::remove(edited);
 }
