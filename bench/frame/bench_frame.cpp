@@ -5,7 +5,7 @@
 // the pipelines' variants): on a shared machine the minimum is the figure to compare
 // (contention only adds time), the median says how noisy the run was.
 //   bench_frame [SCENE] [--width W] [--height H] [--frames N] [--warmup N]
-//               [--sss off|screen] [--mode separable|gaussians] [--taps N] [--look-away]
+//               [--sss off|screen] [--mode separable|gaussians] [--taps N] [--transmission on|off] [--look-away]
 // It depends on the renderer library only (not on the viewer), so that it builds while
 // the viewer is being worked on. bench/pass_times.sh runs it.
 #include "renderer/Renderer.h"
@@ -81,6 +81,10 @@ int main(int argc, char** argv) {
       const std::string v = value();
       if (v != "off" && v != "screen") return usage("--sss: expected off or screen");
       options.sss = v == "off" ? renderer::SssMode::Off : renderer::SssMode::Screen;
+    } else if (arg == "--transmission") {
+      const std::string v = value();
+      if (v != "on" && v != "off") return usage("--transmission: expected on or off");
+      options.transmission = v == "on";
     } else if (arg == "--mode") {
       const auto kind = renderer::parse_sss_kind(value());
       if (!kind) return usage("--mode: expected separable or gaussians");
