@@ -76,6 +76,8 @@ std::optional<std::string> check_mesh(const Mesh& mesh) {
   if (!mesh.uv0.empty() && mesh.uv0.size() != n) return "uv0: count differs from positions";
   if (!mesh.tangents.empty() && mesh.tangents.size() != n)
     return "tangents: count differs from positions";
+  if (!mesh.uv_atlas.empty() && mesh.uv_atlas.size() != n)
+    return "uv_atlas: count differs from positions";
   if (mesh.indices.empty() || mesh.indices.size() % 3 != 0)
     return "indices: count must be a positive multiple of 3";
   for (std::uint32_t i : mesh.indices)

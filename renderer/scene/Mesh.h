@@ -22,6 +22,9 @@ struct Mesh {
   std::vector<glm::vec3> normals;   // unit length, one per position
   std::vector<glm::vec2> uv0;       // empty, or one per position
   std::vector<glm::vec4> tangents;  // empty, or one per position: xyz unit, w = ±1 (glTF)
+  // Empty, or one per position: a generated chart atlas for texture-space diffusion
+  // (UvAtlas.h) when uv0 is not usable for it; material textures keep reading uv0.
+  std::vector<glm::vec2> uv_atlas;
   std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
   std::uint32_t material = 0;       // index into Scene::materials
   Bounds bounds;                    // of positions, in the mesh's own space

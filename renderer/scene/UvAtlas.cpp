@@ -1,0 +1,529 @@
+// check_uvs (exact separating-axis overlap tests on a uniform grid) and the box-projection
+// atlas (UvAtlas.h explains the method and its stretch bound).
+#include "renderer/scene/UvAtlas.h"
+
+#include "renderer/scene/Scene.h"
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <numbers>
+#include <type_traits>
+#include <unordered_map>
+
+namespace sss::scene {
+namespace {
+
+using Tri2 = std::array<glm::dvec2, 3>;
+
+double cross2(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
+double signed_area(const Tri2& t) { return 0.5 * cross2(t[1] - t[0], t[2] - t[0]); }
+
+double area3(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::dvec3 e1 = glm::dvec3(b) - glm::dvec3(a);
+  const glm::dvec3 e2 = glm::dvec3(c) - glm::dvec3(a);
+  return 0.5 * glm::length(glm::cross(e1, e2));
+}
+
+// True when the triangles overlap by more than `tol` along each of their 6 edge normals.
+// Triangles that share an edge or a vertex (and do not fold over each other) have depth
+// exactly 0 along the shared edge's normal, since the shared corners project identically.
+bool overlaps(const Tri2& a, const Tri2& b, double tol) {
+  for (const Tri2* t : {&a, &b}) {
+    for (int e = 0; e < 3; ++e) {
+      const glm::dvec2 d = (*t)[(e + 1) % 3] - (*t)[e];
+      const glm::dvec2 n(-d.y, d.x);
+      const double len = glm::length(n);
+      if (!(len > 0.0)) continue;
+      double amin = std::numeric_limits<double>::infinity(), amax = -amin;
+      double bmin = amin, bmax = -amin;
+      for (int i = 0; i < 3; ++i) {
+        const double pa = glm::dot(a[i], n) / len, pb = glm::dot(b[i], n) / len;
+        amin = std::min(amin, pa), amax = std::max(amax, pa);
+        bmin = std::min(bmin, pb), bmax = std::max(bmax, pb);
+      }
+      if (std::min(amax, bmax) - std::max(amin, bmin) <= tol) return false;
+    }
+  }
+  return true;
+}
+
+// Sparse uniform grid of triangle ids, for the overlap searches.
+class TriGrid {
+ public:
+  explicit TriGrid(double cell) : inv_cell_(1.0 / cell) {}
+  template <class F>  // f(id) for every id in a cell the box touches; returns cells visited
+  std::size_t visit(const Tri2& t, F&& f) const {
+    std::size_t visited = 0;
+    for_cells(t, [&](std::int64_t key) {
+      ++visited;
+      const auto it = cells_.find(key);
+      if (it != cells_.end())
+        for (std::uint32_t id : it->second) f(id);
+    });
+    return visited;
+  }
+  void insert(const Tri2& t, std::uint32_t id) {
+    for_cells(t, [&](std::int64_t key) { cells_[key].push_back(id); });
+  }
+  void clear() { cells_.clear(); }
+
+ private:
+  template <class F>
+  void for_cells(const Tri2& t, F&& f) const {
+    const glm::dvec2 lo = glm::min(glm::min(t[0], t[1]), t[2]) * inv_cell_;
+    const glm::dvec2 hi = glm::max(glm::max(t[0], t[1]), t[2]) * inv_cell_;
+    const auto x0 = std::int64_t(std::floor(lo.x)), x1 = std::int64_t(std::floor(hi.x));
+    const auto y0 = std::int64_t(std::floor(lo.y)), y1 = std::int64_t(std::floor(hi.y));
+    for (std::int64_t y = y0; y <= y1; ++y)
+      for (std::int64_t x = x0; x <= x1; ++x) f((y << 32) ^ (x & 0xffffffff));
+  }
+  double inv_cell_;
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells_;
+};
+
+bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+std::string count(std::size_t n, const char* one, const char* many) {
+  return std::to_string(n) + (n == 1 ? " triangle " + std::string(one) : " triangles " + std::string(many));
+}
+
+// 0..5 = +x, -x, +y, -y, +z, -z. The plane basis (u, v) has u × v = the axis, so a face
+// wound CCW around a normal near the axis stays CCW in the projection.
+void axis_basis(int axis, glm::dvec3& u, glm::dvec3& v) {
+  const int i = axis / 2;
+  const double sign = axis % 2 == 0 ? 1.0 : -1.0;
+  u = glm::dvec3(0.0), v = glm::dvec3(0.0);
+  u[(i + 1) % 3] = sign;
+  v[(i + 2) % 3] = 1.0;
+}
+
+}  // namespace
+
+UvCheck check_uvs(const Mesh& mesh, const UvCheckOptions& options) {
+  return check_uvs(mesh, mesh.uv0, options);
+}
+
+UvCheck check_uvs(const Mesh& mesh, const std::vector<glm::vec2>& uv,
+                  const UvCheckOptions& options) {
+  UvCheck r;
+  if (uv.empty()) {
+    r.reason = "no UVs";
+    return r;
+  }
+  if (uv.size() != mesh.positions.size()) {
+    r.reason = "UV count (" + std::to_string(uv.size()) + ") differs from positions (" +
+               std::to_string(mesh.positions.size()) + ")";
+    return r;
+  }
+  const std::size_t n = mesh.triangle_count();
+  const glm::vec3 ext = mesh.bounds.empty() ? glm::vec3(0.0f) : mesh.bounds.max - mesh.bounds.min;
+  double diag2 = glm::dot(glm::dvec3(ext), glm::dvec3(ext));
+  if (!(diag2 > 0.0)) {  // bounds not computed: measure them here
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+    diag2 = mesh.positions.empty() ? 0.0 : glm::dot(hi - lo, hi - lo);
+  }
+  const double min_area3 = 1e-12 * diag2;
+
+  std::vector<Tri2> tri(n);
+  std::vector<double> a3(n), auv(n);
+  std::vector<std::uint8_t> skip(n, 0);  // 1 outside/non-finite, 2 no 3D area
+  double total3 = 0.0, total_uv = 0.0;
+  const double lo = -options.outside_tolerance, hi = 1.0 + options.outside_tolerance;
+  for (std::size_t t = 0; t < n; ++t) {
+    const std::uint32_t* idx = &mesh.indices[3 * t];
+    bool out = false;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec2 w = uv[idx[k]];
+      if (!finite(w) || w.x < lo || w.y < lo || w.x > hi || w.y > hi) out = true;
+      tri[t][k] = glm::dvec2(w);
+    }
+    a3[t] = area3(mesh.positions[idx[0]], mesh.positions[idx[1]], mesh.positions[idx[2]]);
+    if (out) {
+      ++r.outside;
+      skip[t] = 1;
+      continue;
+    }
+    auv[t] = std::abs(signed_area(tri[t]));
+    if (!(a3[t] > min_area3)) {
+      skip[t] = 2;
+      continue;
+    }
+    total3 += a3[t];
+    total_uv += auv[t];
+  }
+  const double density = total3 > 0.0 ? total_uv / total3 : 0.0;
+  std::vector<std::uint32_t> live;
+  for (std::size_t t = 0; t < n; ++t) {
+    if (skip[t]) continue;
+    if (!(auv[t] > 1e-12) || auv[t] < options.min_relative_area * density * a3[t]) {
+      ++r.degenerate;
+      continue;
+    }
+    live.push_back(std::uint32_t(t));
+  }
+
+  // Overlaps: insert the triangles one by one into a grid over [0,1]^2 and test each
+  // against the earlier ones sharing a cell (each pair once, thanks to the stamps).
+  if (!live.empty()) {
+    const double cells = std::clamp(std::ceil(std::sqrt(double(live.size()))), 1.0, 2048.0);
+    TriGrid grid(1.0 / cells);
+    std::vector<std::uint32_t> stamp(n, std::numeric_limits<std::uint32_t>::max());
+    std::vector<std::uint8_t> flagged(n, 0);
+    const std::size_t budget = 256 * live.size() + 1000000;
+    std::size_t work = 0;
+    for (std::uint32_t t : live) {
+      work += grid.visit(tri[t], [&](std::uint32_t o) {
+        if (stamp[o] == t) return;
+        stamp[o] = t;
+        ++work;
+        if (overlaps(tri[t], tri[o], options.overlap_tolerance)) flagged[t] = flagged[o] = 1;
+      });
+      grid.insert(tri[t], t);
+      if (work > budget) {
+        r.overlap_count_is_lower_bound = true;
+        break;
+      }
+    }
+    for (std::uint8_t f : flagged) r.overlapping += f;
+  }
+
+  std::string reason;
+  auto add = [&](const std::string& s) { reason += (reason.empty() ? "" : "; ") + s; };
+  if (r.overlapping)
+    add((r.overlap_count_is_lower_bound ? "at least " : "") + count(r.overlapping, "overlaps in UV", "overlap in UV"));
+  if (r.degenerate) add(count(r.degenerate, "is degenerate in UV", "are degenerate in UV"));
+  if (r.outside) add(count(r.outside, "lies outside [0,1]^2", "lie outside [0,1]^2"));
+  r.usable = reason.empty();
+  r.reason = reason;
+  return r;
+}
+
+UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  UvAtlas atlas;
+  const std::size_t n = mesh.triangle_count();
+  const auto& P = mesh.positions;
+  const auto& I = mesh.indices;
+
+  // 1. Face axes: the closest of ±x, ±y, ±z to the (area-weighted) face normal.
+  std::vector<int> axis(n, 0);
+  std::vector<double> area(n, 0.0);
+  for (std::size_t t = 0; t < n; ++t) {
+    const glm::dvec3 a(P[I[3 * t]]), b(P[I[3 * t + 1]]), c(P[I[3 * t + 2]]);
+    const glm::dvec3 nrm = glm::cross(b - a, c - a);
+    area[t] = 0.5 * glm::length(nrm);
+    int best = 0;
+    double best_dot = -std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 6; ++k) {
+      const double d = (k % 2 == 0 ? 1.0 : -1.0) * nrm[k / 2];
+      if (d > best_dot) best_dot = d, best = k;
+    }
+    axis[t] = best;
+  }
+
+  // Edge adjacency: triangles across each undirected edge, with vertices welded by
+  // position (an input UV seam duplicates vertices; it must not split a chart).
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  // Welding snaps positions to a grid of 1e-6 of the bounding-box diagonal, so a seam
+  // whose two sides were computed separately (a UV sphere's u = 0 and u = 1) still welds.
+  glm::dvec3 pmin(std::numeric_limits<double>::infinity()), pmax(-pmin);
+  for (const glm::vec3& p : P) pmin = glm::min(pmin, glm::dvec3(p)), pmax = glm::max(pmax, glm::dvec3(p));
+  const double diag = P.empty() ? 0.0 : glm::length(pmax - pmin);
+  const double snap = diag > 0.0 ? 1e-6 * diag : 1.0;
+  std::vector<std::uint32_t> weld(P.size());
+  {
+    struct Key {
+      std::int64_t x, y, z;
+      bool operator==(const Key&) const = default;
+    };
+    struct Hash {
+      std::size_t operator()(const Key& k) const {
+        return std::size_t(k.x) * 73856093u ^ std::size_t(k.y) * 19349663u ^ std::size_t(k.z) * 83492791u;
+      }
+    };
+    std::unordered_map<Key, std::uint32_t, Hash> first;
+    first.reserve(P.size());
+    for (std::uint32_t v = 0; v < P.size(); ++v) {
+      const glm::dvec3 q = glm::round((glm::dvec3(P[v]) - pmin) / snap);
+      weld[v] = first.try_emplace(Key{std::int64_t(q.x), std::int64_t(q.y), std::int64_t(q.z)}, v)
+                    .first->second;
+    }
+  }
+  std::unordered_map<std::uint64_t, std::array<std::uint32_t, 2>> edge_map;
+  edge_map.reserve(3 * n);
+  auto edge_key = [&](std::uint32_t a, std::uint32_t b) {
+    a = weld[a], b = weld[b];
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t(a) << 32) | b;
+  };
+  std::vector<std::array<std::uint32_t, 3>> neighbour(n, {kNone, kNone, kNone});
+  for (std::uint32_t t = 0; t < n; ++t)
+    for (int e = 0; e < 3; ++e) {
+      auto [it, fresh] = edge_map.try_emplace(edge_key(I[3 * t + e], I[3 * t + (e + 1) % 3]),
+                                              std::array<std::uint32_t, 2>{t, kNone});
+      if (!fresh && it->second[1] == kNone) it->second[1] = t;
+      // A non-manifold edge (3+ faces) keeps its first two: the others start other charts.
+    }
+  for (std::uint32_t t = 0; t < n; ++t)
+    for (int e = 0; e < 3; ++e) {
+      const auto& pair = edge_map[edge_key(I[3 * t + e], I[3 * t + (e + 1) % 3])];
+      neighbour[t][e] = pair[0] == t ? pair[1] : (pair[1] == t ? pair[0] : kNone);
+    }
+
+  // Smoothing: a face whose neighbours mostly (2 or 3) took another axis takes it too,
+  // if that axis is within 54.7° of its normal (cos θ ≥ 1/√3, the closest axis's own
+  // guarantee, so the stretch bound holds). It removes the one-face charts along the
+  // zigzag where two axes tie.
+  for (int pass = 0; pass < 4; ++pass) {
+    std::vector<int> next = axis;
+    for (std::uint32_t t = 0; t < n; ++t) {
+      if (!(area[t] > 0.0)) continue;
+      for (std::uint32_t a : neighbour[t]) {
+        if (a == kNone || axis[a] == axis[t]) continue;
+        int votes = 0;
+        for (std::uint32_t b : neighbour[t]) votes += b != kNone && axis[b] == axis[a];
+        const glm::dvec3 a0(P[I[3 * t]]);
+        const glm::dvec3 nrm = glm::cross(glm::dvec3(P[I[3 * t + 1]]) - a0, glm::dvec3(P[I[3 * t + 2]]) - a0);
+        const double d = (axis[a] % 2 == 0 ? 1.0 : -1.0) * nrm[axis[a] / 2] / glm::length(nrm);
+        if (votes >= 2 && d >= 1.0 / std::sqrt(3.0)) next[t] = axis[a];
+        break;
+      }
+    }
+    axis.swap(next);
+  }
+
+  // Projected triangles, per face in its own axis plane (scene units).
+  std::vector<Tri2> proj(n);
+  double edge_sum = 0.0;
+  for (std::size_t t = 0; t < n; ++t) {
+    glm::dvec3 u, v;
+    axis_basis(axis[t], u, v);
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 p(P[I[3 * t + k]]);
+      proj[t][k] = glm::dvec2(glm::dot(p, u), glm::dot(p, v));
+    }
+    edge_sum += glm::length(proj[t][1] - proj[t][0]);
+  }
+  const double cell = std::max(2.0 * edge_sum / double(std::max<std::size_t>(n, 1)), 1e-30);
+
+  // 2. Charts: breadth-first growth over edges between faces of one axis, refusing a face
+  //    whose projection overlaps the chart's (so the chart stays injective). The tolerance,
+  //    1e-7 of the diagonal, lets welded seams touch; it stays far below check_uvs's
+  //    1e-5 UV once scaled by s.
+  const double grow_tolerance = 1e-7 * diag;
+  atlas.triangle_chart.assign(n, kNone);
+  TriGrid grid(cell);
+  std::vector<std::uint32_t> stamp(n, kNone), members;
+  std::deque<std::uint32_t> queue;
+  std::vector<std::vector<std::uint32_t>> chart_faces;
+  for (std::uint32_t seed = 0; seed < n; ++seed) {
+    if (atlas.triangle_chart[seed] != kNone) continue;
+    const auto c = std::uint32_t(chart_faces.size());
+    members.clear();
+    grid.clear();
+    queue.assign(1, seed);
+    stamp[seed] = c;  // stamp: considered for chart c
+    while (!queue.empty()) {
+      const std::uint32_t t = queue.front();
+      queue.pop_front();
+      bool clash = false;
+      grid.visit(proj[t], [&](std::uint32_t o) {
+        if (!clash && o != t && overlaps(proj[t], proj[o], grow_tolerance)) clash = true;
+      });
+      if (clash) continue;  // left for a later chart
+      atlas.triangle_chart[t] = c;
+      members.push_back(t);
+      grid.insert(proj[t], t);
+      for (std::uint32_t nb : neighbour[t])
+        if (nb != kNone && atlas.triangle_chart[nb] == kNone && stamp[nb] != c &&
+            axis[nb] == axis[seed]) {
+          stamp[nb] = c;
+          queue.push_back(nb);
+        }
+    }
+    chart_faces.push_back(members);
+  }
+
+  // 3. Per chart: the rotation (of 32 in [0, π/2)) with the smallest bounding box, turned
+  //    to lie flat (width >= height) for the shelf packing.
+  const std::size_t C = chart_faces.size();
+  std::vector<double> angle(C, 0.0);
+  std::vector<glm::dvec2> box_min(C), box_size(C);
+  auto rotate = [](const glm::dvec2& p, double a) {
+    const double cs = std::cos(a), sn = std::sin(a);
+    return glm::dvec2(cs * p.x - sn * p.y, sn * p.x + cs * p.y);
+  };
+  for (std::size_t c = 0; c < C; ++c) {
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 32; ++k) {
+      const double a = 0.5 * std::numbers::pi * k / 32.0;
+      glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+      for (std::uint32_t t : chart_faces[c])
+        for (const glm::dvec2& p : proj[t]) {
+          const glm::dvec2 q = rotate(p, a);
+          lo = glm::min(lo, q), hi = glm::max(hi, q);
+        }
+      double a_final = a;
+      glm::dvec2 size = hi - lo;
+      if (size.y > size.x) {  // a further quarter turn lays it flat
+        a_final = a + 0.5 * std::numbers::pi;
+        lo = glm::dvec2(-hi.y, lo.x);
+        size = glm::dvec2(size.y, size.x);
+      }
+      const double boxed = size.x * size.y;
+      if (boxed < best) best = boxed, angle[c] = a_final, box_min[c] = lo, box_size[c] = size;
+    }
+  }
+
+  // 4. One scale for all charts: the largest s for which the shelf packing fits.
+  std::vector<std::uint32_t> order(C);
+  for (std::uint32_t c = 0; c < C; ++c) order[c] = c;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return box_size[a].y > box_size[b].y; });
+  const double pad = double(options.padding_texels) / double(std::max(options.resolution, 1u));
+  std::vector<glm::dvec2> origin(C);
+  auto pack = [&](double s) {  // true when everything fits; origins of the padded boxes
+    double x = 0.0, y = 0.0, shelf = 0.0;
+    for (std::uint32_t c : order) {
+      const double w = s * box_size[c].x + 2.0 * pad, h = s * box_size[c].y + 2.0 * pad;
+      if (w > 1.0) return false;
+      if (x + w > 1.0) y += shelf, x = 0.0, shelf = 0.0;
+      if (shelf == 0.0) shelf = h;  // sorted: the first box of a shelf is its tallest
+      if (y + h > 1.0) return false;
+      origin[c] = glm::dvec2(x, y);
+      x += w;
+    }
+    return true;
+  };
+  double total_area = 0.0, max_side = 0.0;
+  for (std::size_t c = 0; c < C; ++c) max_side = std::max({max_side, box_size[c].x, box_size[c].y});
+  for (double a : area) total_area += a;
+  double lo_s = 0.0, hi_s = max_side > 0.0 ? 1.0 / max_side : 1.0;
+  for (int it = 0; it < 50; ++it) {
+    const double mid = 0.5 * (lo_s + hi_s);
+    (pack(mid) ? lo_s : hi_s) = mid;
+  }
+  const double s = lo_s;
+  pack(s);
+
+  // 5. UVs and the vertex split: one new vertex per (input vertex, chart).
+  std::unordered_map<std::uint64_t, std::uint32_t> split;
+  split.reserve(2 * P.size());
+  atlas.indices.resize(I.size());
+  atlas.charts.resize(C);
+  for (std::size_t c = 0; c < C; ++c) {
+    atlas.charts[c].axis = axis[chart_faces[c].front()];
+    atlas.charts[c].triangles = chart_faces[c].size();
+    atlas.charts[c].uv_min = glm::vec2(origin[c] + pad);
+    atlas.charts[c].uv_max = glm::vec2(origin[c] + pad + s * box_size[c]);
+  }
+  double covered = 0.0;
+  for (std::uint32_t t = 0; t < n; ++t) {
+    const std::uint32_t c = atlas.triangle_chart[t];
+    atlas.charts[c].area += area[t];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = I[3 * t + k];
+      auto [it, fresh] = split.try_emplace((std::uint64_t(v) << 32) | c,
+                                           std::uint32_t(atlas.source_vertex.size()));
+      if (fresh) {
+        atlas.source_vertex.push_back(v);
+        const glm::dvec2 q = (rotate(proj[t][k], angle[c]) - box_min[c]) * s + origin[c] + pad;
+        atlas.uv.emplace_back(glm::clamp(glm::vec2(q), glm::vec2(0.0f), glm::vec2(1.0f)));
+      }
+      atlas.indices[3 * t + k] = it->second;
+    }
+    const glm::dvec2 a(atlas.uv[atlas.indices[3 * t]]), b(atlas.uv[atlas.indices[3 * t + 1]]),
+        d(atlas.uv[atlas.indices[3 * t + 2]]);
+    covered += std::abs(0.5 * cross2(b - a, d - a));
+  }
+
+  // Stretch: mm per UV over the triangle, relative to 1/s, from the singular values of
+  // the 3D -> UV map (its largest is s, its smallest s·cos θ).
+  double max_stretch = 1.0;
+  for (std::uint32_t t = 0; t < n; ++t) {
+    if (!(area[t] > 0.0)) continue;
+    const glm::dvec3 p0(P[I[3 * t]]), e1 = glm::dvec3(P[I[3 * t + 1]]) - p0,
+                     e2 = glm::dvec3(P[I[3 * t + 2]]) - p0;
+    const glm::dvec2 w0(atlas.uv[atlas.indices[3 * t]]);
+    const glm::dvec2 f1 = glm::dvec2(atlas.uv[atlas.indices[3 * t + 1]]) - w0,
+                     f2 = glm::dvec2(atlas.uv[atlas.indices[3 * t + 2]]) - w0;
+    const glm::dvec3 t1 = glm::normalize(e1);
+    const glm::dvec3 t2 = glm::normalize(e2 - glm::dot(e2, t1) * t1);
+    // Local 2D coords: e1 = (a, 0), e2 = (b, c). J = F · E^-1.
+    const double a = glm::dot(e1, t1), b = glm::dot(e2, t1), cc = glm::dot(e2, t2);
+    if (!(a > 0.0 && cc > 0.0)) continue;
+    const glm::dvec2 j1 = f1 / a;                   // J column 1
+    const glm::dvec2 j2 = (f2 - b * j1) / cc;       // J column 2
+    const double E = 0.5 * (glm::dot(j1, j1) + glm::dot(j2, j2));
+    const double det = std::abs(cross2(j1, j2));
+    const double smin = std::sqrt(std::max(E - std::sqrt(std::max(E * E - det * det, 0.0)), 0.0));
+    if (smin > 0.0) max_stretch = std::max(max_stretch, s / smin);
+  }
+
+  atlas.stats.charts = C;
+  atlas.stats.uv_per_unit = s;
+  atlas.stats.utilization = covered;
+  atlas.stats.max_stretch = max_stretch;
+  atlas.stats.split_vertices = atlas.source_vertex.size() - P.size();
+  atlas.stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  (void)total_area;
+  return atlas;
+}
+
+AtlasStats generate_atlas(Mesh& mesh, const AtlasOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  UvAtlas atlas = build_atlas(mesh, options);
+  auto gather = [&](const auto& src) {
+    std::remove_cvref_t<decltype(src)> out;
+    if (src.empty()) return out;
+    out.reserve(atlas.source_vertex.size());
+    for (std::uint32_t v : atlas.source_vertex) out.push_back(src[v]);
+    return out;
+  };
+  mesh.positions = gather(mesh.positions);
+  mesh.normals = gather(mesh.normals);
+  mesh.uv0 = gather(mesh.uv0);
+  mesh.tangents = gather(mesh.tangents);
+  mesh.indices = std::move(atlas.indices);
+  mesh.uv_atlas = std::move(atlas.uv);
+  atlas.stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return atlas.stats;
+}
+
+const std::vector<glm::vec2>& sss_uvs(const Mesh& mesh) {
+  return mesh.uv_atlas.empty() ? mesh.uv0 : mesh.uv_atlas;
+}
+
+std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options) {
+  std::size_t generated = 0;
+  for (Mesh& mesh : scene.meshes) {
+    if (mesh.material >= scene.materials.size() || !scene.materials[mesh.material].sss.enabled)
+      continue;
+    if (!mesh.uv_atlas.empty()) continue;
+    const UvCheck check = check_uvs(mesh);
+    if (check.usable) continue;
+    const AtlasStats stats = generate_atlas(mesh, options);
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "%zu charts, %.0f%% of the texture used", stats.charts,
+                  100.0 * stats.utilization);
+    scene.warnings.push_back("mesh " + mesh.name + ": generated a UV atlas (" + check.reason +
+                             "; " + detail + ")");
+    ++generated;
+  }
+  return generated;
+}
+
+}  // namespace sss::scene

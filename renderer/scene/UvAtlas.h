@@ -1,0 +1,112 @@
+// UV atlases for texture-space diffusion (issue 6, DESIGN.md §5): whether a mesh's uv0
+// can hold an irradiance texture (check_uvs), and a generated chart atlas for meshes
+// whose uv0 cannot (generate_atlas). The texture path blurs irradiance in UV space with
+// the fit's Gaussians, so the UVs must be injective (no two triangles on one texel),
+// inside [0,1]^2, and not collapse any triangle.
+//
+// The generated atlas is a box projection (written here; no CGAL), in four steps:
+//   1. each face takes the closest of the 6 ±axis directions to its normal, so the angle
+//      θ between the normal and its axis has cos θ ≥ 1/√3;
+//   2. charts grow breadth-first over edge-adjacent faces of one axis; a face whose
+//      projection would overlap the chart's (separating-axis test, shared edges ignored)
+//      is left for a later chart, so no chart folds over itself;
+//   3. each chart is projected orthographically onto its axis plane and turned (one of
+//      32 angles) to its smallest bounding box: projection and rotation keep every length
+//      along the intersection of the face and the plane and shorten the steepest one by
+//      cos θ, so UV length per mm lies in [s·cos θ, s] ⊂ [s/√3, s];
+//   4. all charts share ONE scale s (UV units per scene unit), the largest for which a
+//      shelf packing (next-fit decreasing height: Coffman, Garey, Johnson & Tarjan 1980,
+//      "Performance bounds for level-oriented two-dimensional packing algorithms") fits
+//      [0,1]^2 with `padding_texels` of empty texels around every chart at `resolution`
+//      (room for the seam dilation of d'Eon & Luebke 2007).
+// Before step 2, vertices are welded by position (to 1e-6 of the diagonal) and a face
+// whose neighbours mostly took another axis within 54.7° of its normal takes it too.
+#pragma once
+
+#include "renderer/scene/Mesh.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sss::scene {
+
+struct Scene;
+
+struct UvCheckOptions {
+  // A triangle is degenerate in UV when its UV area is below this fraction of what the
+  // mesh's mean density (total UV area / total 3D area) gives its 3D area, or when its UV
+  // area is below 1e-12 (a collapsed triangle). Triangles with (near) zero 3D area
+  // (below 1e-12 of the squared bounding-box diagonal) cover no surface and are skipped.
+  double min_relative_area = 1e-3;
+  // Two triangles overlap when they still overlap by more than this (UV units) along
+  // every one of their 6 edge normals (separating-axis test). Triangles sharing an edge
+  // or a vertex touch with depth 0, so they never count; 1e-5 is 0.02 texel at 2048^2.
+  double overlap_tolerance = 1e-5;
+  // A vertex is outside [0,1]^2 when a coordinate is below -eps or above 1 + eps.
+  double outside_tolerance = 1e-6;
+};
+
+struct UvCheck {
+  bool usable = false;
+  std::string reason;              // "" when usable; else readable, e.g. "12 triangles overlap in UV"
+  std::size_t outside = 0;         // triangles with a vertex outside [0,1]^2 (or non-finite)
+  std::size_t degenerate = 0;      // triangles collapsed in UV (see UvCheckOptions)
+  std::size_t overlapping = 0;     // triangles overlapping another one
+  bool overlap_count_is_lower_bound = false;  // the pair-test budget ran out (pathological UVs)
+};
+
+// Is mesh.uv0 usable for texture-space diffusion? (uv_atlas is not looked at.)
+UvCheck check_uvs(const Mesh& mesh, const UvCheckOptions& options = {});
+// The same checks on any UV set with one entry per position.
+UvCheck check_uvs(const Mesh& mesh, const std::vector<glm::vec2>& uv,
+                  const UvCheckOptions& options = {});
+
+struct AtlasOptions {
+  std::uint32_t resolution = 1024;    // texels per side the padding is measured at
+  std::uint32_t padding_texels = 4;   // empty texels around each chart (>= 2 between charts)
+};
+
+struct AtlasChart {
+  int axis = 0;                       // 0..5: +x, -x, +y, -y, +z, -z
+  std::size_t triangles = 0;
+  double area = 0.0;                  // 3D area, scene units^2
+  glm::vec2 uv_min{0.0f}, uv_max{0.0f};  // the chart's box in the atlas (without padding)
+};
+
+struct AtlasStats {
+  std::size_t charts = 0;
+  double uv_per_unit = 0.0;           // s: UV units per scene unit, the same for every chart
+  double utilization = 0.0;           // UV area covered by triangles / area of [0,1]^2
+  double max_stretch = 0.0;           // max over triangles of (mm per UV) / (mm per UV at s): in [1, √3]
+  std::size_t split_vertices = 0;     // vertices added by chart seams
+  double seconds = 0.0;               // wall time of generate_atlas
+};
+
+struct UvAtlas {
+  std::vector<std::uint32_t> source_vertex;  // new vertex -> vertex of the input mesh
+  std::vector<std::uint32_t> indices;        // the triangles (same order) on the new vertices
+  std::vector<glm::vec2> uv;                 // one per new vertex, in [0,1]^2
+  std::vector<std::uint32_t> triangle_chart; // one per triangle
+  std::vector<AtlasChart> charts;
+  AtlasStats stats;
+};
+
+// Builds an atlas for `mesh` (its uv0 is ignored). Pure: the mesh is not changed.
+UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options = {});
+
+// Builds an atlas and applies it: vertices on chart seams are duplicated (positions,
+// normals, uv0 and tangents copied), the indices renumbered (triangle order kept), and
+// the atlas written to mesh.uv_atlas (uv0 is kept: material textures still read it).
+AtlasStats generate_atlas(Mesh& mesh, const AtlasOptions& options = {});
+
+// The UVs the texture-space path reads: uv_atlas when generated, else uv0.
+const std::vector<glm::vec2>& sss_uvs(const Mesh& mesh);
+
+// For every mesh drawn with a subsurface material whose uv0 fails check_uvs and that has
+// no uv_atlas yet: generate_atlas() and a warning "mesh NAME: generated a UV atlas (REASON)".
+// Returns how many atlases were generated. Not called on load (see README: "UV atlas").
+std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options = {});
+
+}  // namespace sss::scene

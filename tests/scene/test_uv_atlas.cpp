@@ -1,0 +1,226 @@
+// check_uvs and the generated box-projection atlas (UvAtlas.h): the bunny (no UVs), a UV
+// sphere and a box (whose faces all share [0,1]^2) get atlases that pass check_uvs, keep
+// every triangle's vertices, and stretch every edge by a factor in [s/√3, s].
+#include "renderer/scene/BuiltinScenes.h"
+#include "renderer/scene/Shapes.h"
+#include "renderer/scene/UvAtlas.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <variant>
+
+namespace sss::scene {
+namespace {
+
+Mesh bunny_mesh() {
+  auto loaded = bunny_scene();
+  if (auto* e = std::get_if<LoadError>(&loaded)) ADD_FAILURE() << e->what();
+  return std::get<Scene>(loaded).meshes.at(0);
+}
+
+double tri_area(const Mesh& m, std::size_t t) {
+  const glm::dvec3 a(m.positions[m.indices[3 * t]]), b(m.positions[m.indices[3 * t + 1]]),
+      c(m.positions[m.indices[3 * t + 2]]);
+  return 0.5 * glm::length(glm::cross(b - a, c - a));
+}
+
+// Everything the atlas promises, checked on `after` = generate_atlas(`before`).
+void expect_valid_atlas(const Mesh& before, const Mesh& after, const AtlasStats& stats,
+                        double utilization_floor) {
+  ASSERT_EQ(check_mesh(after), std::nullopt);
+  ASSERT_EQ(after.uv_atlas.size(), after.positions.size());
+  const UvCheck check = check_uvs(after, after.uv_atlas);
+  EXPECT_TRUE(check.usable) << check.reason;
+  EXPECT_EQ(check.overlapping, 0u);
+  EXPECT_EQ(check.degenerate, 0u);
+  EXPECT_EQ(check.outside, 0u);
+  EXPECT_EQ(after.uv0.size(), before.uv0.empty() ? 0u : after.positions.size());
+  EXPECT_EQ(after.tangents.size(), before.tangents.empty() ? 0u : after.positions.size());
+
+  // Every triangle keeps its corners' attributes, in order.
+  ASSERT_EQ(after.indices.size(), before.indices.size());
+  for (std::size_t i = 0; i < before.indices.size(); ++i) {
+    const std::uint32_t o = before.indices[i], v = after.indices[i];
+    ASSERT_EQ(after.positions[v], before.positions[o]) << "corner " << i;
+    ASSERT_EQ(after.normals[v], before.normals[o]) << "corner " << i;
+    if (!before.uv0.empty()) {
+      ASSERT_EQ(after.uv0[v], before.uv0[o]);
+    }
+    if (!before.tangents.empty()) {
+      ASSERT_EQ(after.tangents[v], before.tangents[o]);
+    }
+  }
+
+  // Stretch: every edge's UV length per scene unit is in [s cos θ, s] ⊂ [s/√3, s].
+  const double s = stats.uv_per_unit;
+  ASSERT_GT(s, 0.0);
+  const double diag = glm::length(glm::dvec3(before.bounds.max - before.bounds.min));
+  double lo = INFINITY, hi = 0.0;
+  for (std::size_t t = 0; t < after.triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = after.indices[3 * t + e], b = after.indices[3 * t + (e + 1) % 3];
+      const double d3 = glm::length(glm::dvec3(after.positions[a]) - glm::dvec3(after.positions[b]));
+      if (d3 < 1e-4 * diag) continue;  // float UVs cannot resolve the ratio on tiny edges
+      const double r = glm::length(glm::dvec2(after.uv_atlas[a]) - glm::dvec2(after.uv_atlas[b])) / d3;
+      lo = std::min(lo, r / s), hi = std::max(hi, r / s);
+    }
+  EXPECT_LE(hi, 1.0 + 1e-3);
+  EXPECT_GE(lo, 1.0 / std::sqrt(3.0) - 1e-3);
+  EXPECT_GE(stats.max_stretch, 1.0 - 1e-9);
+  EXPECT_LE(stats.max_stretch, std::sqrt(3.0) * (1.0 + 1e-3));
+  EXPECT_GE(stats.utilization, utilization_floor);
+  EXPECT_LE(stats.utilization, 1.0);
+  EXPECT_EQ(stats.split_vertices, after.positions.size() - before.positions.size());
+
+  // No triangle lost: the charts partition the triangles and their 3D areas add up.
+  const UvAtlas atlas = build_atlas(before);
+  ASSERT_EQ(atlas.triangle_chart.size(), before.triangle_count());
+  double total = 0.0, by_chart = 0.0;
+  std::size_t tris = 0;
+  for (std::size_t t = 0; t < before.triangle_count(); ++t) {
+    total += tri_area(before, t);
+    ASSERT_LT(atlas.triangle_chart[t], atlas.charts.size());
+  }
+  for (const AtlasChart& c : atlas.charts) by_chart += c.area, tris += c.triangles;
+  EXPECT_EQ(tris, before.triangle_count());
+  EXPECT_NEAR(by_chart, total, 1e-9 * total);
+  EXPECT_EQ(atlas.charts.size(), stats.charts);
+  EXPECT_EQ(atlas.uv, after.uv_atlas);  // deterministic
+
+  // Padding: chart boxes (with their padding) are disjoint and inside [0,1]^2.
+  const float pad = 4.0f / 1024.0f;
+  for (std::size_t i = 0; i < atlas.charts.size(); ++i) {
+    const AtlasChart& a = atlas.charts[i];
+    EXPECT_GE(a.uv_min.x, pad * 0.999f);
+    EXPECT_GE(a.uv_min.y, pad * 0.999f);
+    EXPECT_LE(a.uv_max.x, 1.0f - pad * 0.999f);
+    EXPECT_LE(a.uv_max.y, 1.0f - pad * 0.999f);
+  }
+  if (atlas.charts.size() <= 2000)
+    for (std::size_t i = 0; i < atlas.charts.size(); ++i)
+      for (std::size_t j = i + 1; j < atlas.charts.size(); ++j) {
+        const AtlasChart& a = atlas.charts[i];
+        const AtlasChart& b = atlas.charts[j];
+        const bool apart = a.uv_max.x + 2 * pad <= b.uv_min.x * 1.0001f + 1e-6f ||
+                           b.uv_max.x + 2 * pad <= a.uv_min.x * 1.0001f + 1e-6f ||
+                           a.uv_max.y + 2 * pad <= b.uv_min.y * 1.0001f + 1e-6f ||
+                           b.uv_max.y + 2 * pad <= a.uv_min.y * 1.0001f + 1e-6f;
+        ASSERT_TRUE(apart) << "charts " << i << " and " << j << " closer than 2 paddings";
+      }
+}
+
+TEST(UvAtlas, BunnyHasNoUvsAndGetsAnAtlas) {
+  const Mesh bunny = bunny_mesh();
+  ASSERT_TRUE(bunny.uv0.empty());
+  const UvCheck check = check_uvs(bunny);
+  EXPECT_FALSE(check.usable);
+  EXPECT_EQ(check.reason, "no UVs");
+
+  Mesh m = bunny;
+  const auto t0 = std::chrono::steady_clock::now();
+  const AtlasStats stats = generate_atlas(m);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << "[ bunny    ] " << bunny.triangle_count() << " triangles, " << bunny.vertex_count()
+            << " -> " << m.vertex_count() << " vertices, " << stats.charts << " charts, utilization "
+            << stats.utilization << ", max stretch " << stats.max_stretch << ", s = "
+            << stats.uv_per_unit << " UV/unit (" << 1.0 / stats.uv_per_unit * 1000.0 / 1024.0
+            << " mm per texel at 1024^2), " << seconds * 1e3 << " ms\n";
+  RecordProperty("charts", int(stats.charts));
+  RecordProperty("utilization_percent", int(100 * stats.utilization));
+  RecordProperty("milliseconds", int(seconds * 1e3));
+  EXPECT_LT(seconds, 1.0);  // typically far less; loose for a loaded 2-core CI box
+  expect_valid_atlas(bunny, m, stats, 0.35);
+}
+
+TEST(UvAtlas, SphereAndBox) {
+  const Mesh sphere = make_uv_sphere(0.015f, 64, 32);
+  const UvCheck sphere_check = check_uvs(sphere);
+  EXPECT_TRUE(sphere_check.usable) << sphere_check.reason;  // the built-in sphere's own UVs
+  Mesh ms = sphere;
+  const AtlasStats ss = generate_atlas(ms);
+  std::cout << "[ sphere   ] " << ss.charts << " charts, utilization " << ss.utilization
+            << ", max stretch " << ss.max_stretch << "\n";
+  expect_valid_atlas(sphere, ms, ss, 0.40);
+
+  // The box's faces all map to [0,1]^2: all 12 triangles overlap another.
+  const Mesh box = make_box({-1, -2, -3}, {1, 2, 3});
+  const UvCheck box_check = check_uvs(box);
+  EXPECT_FALSE(box_check.usable);
+  EXPECT_EQ(box_check.reason, "12 triangles overlap in UV");
+  Mesh mb = box;
+  const AtlasStats bs = generate_atlas(mb);
+  EXPECT_EQ(bs.charts, 6u);
+  EXPECT_NEAR(bs.max_stretch, 1.0, 1e-5);  // every face is parallel to its plane
+  expect_valid_atlas(box, mb, bs, 0.50);
+}
+
+Mesh quad(std::vector<glm::vec2> uv) {
+  Mesh m;
+  m.name = "quad";
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  m.normals.assign(4, {0, 0, 1});
+  m.indices = {0, 1, 2, 0, 2, 3};
+  m.uv0 = std::move(uv);
+  compute_bounds(m);
+  return m;
+}
+
+TEST(UvCheck, HandMadeCases) {
+  // A quad mapped to the unit square: the shared diagonal is not an overlap.
+  EXPECT_TRUE(check_uvs(quad({{0, 0}, {1, 0}, {1, 1}, {0, 1}})).usable);
+  // Mirrored (both triangles clockwise) is fine too.
+  EXPECT_TRUE(check_uvs(quad({{1, 0}, {0, 0}, {0, 1}, {1, 1}})).usable);
+
+  // Vertex 3 folded across the diagonal: the two triangles overlap.
+  const UvCheck folded = check_uvs(quad({{0, 0}, {1, 0}, {1, 1}, {0.9f, 0.1f}}));
+  EXPECT_FALSE(folded.usable);
+  EXPECT_EQ(folded.reason, "2 triangles overlap in UV");
+  EXPECT_EQ(folded.overlapping, 2u);
+
+  // Collinear UVs for the second triangle: degenerate, not an overlap.
+  const UvCheck flat = check_uvs(quad({{0, 0}, {1, 0}, {1, 1}, {0.5f, 0.5f}}));
+  EXPECT_EQ(flat.reason, "1 triangle is degenerate in UV");
+  EXPECT_EQ(flat.degenerate, 1u);
+  EXPECT_EQ(flat.overlapping, 0u);
+
+  // A triangle a million times smaller in UV than its share of the 3D area.
+  const UvCheck tiny = check_uvs(quad({{0, 0}, {1, 0}, {1, 1}, {0.999999f, 0.999999f + 1e-6f}}));
+  EXPECT_EQ(tiny.reason, "1 triangle is degenerate in UV");
+
+  const UvCheck outside = check_uvs(quad({{0, 0}, {1.5f, 0}, {1.5f, 1}, {0, 1}}));
+  EXPECT_EQ(outside.reason, "2 triangles lie outside [0,1]^2");
+
+  Mesh none = quad({});
+  EXPECT_EQ(check_uvs(none).reason, "no UVs");
+  const UvCheck atlas = check_uvs(none, std::vector<glm::vec2>(3));
+  EXPECT_FALSE(atlas.usable);
+  EXPECT_EQ(atlas.reason, "UV count (3) differs from positions (4)");
+}
+
+TEST(UvAtlas, EnsureSssAtlasesWarnsAndSkipsUsableUvs) {
+  auto loaded = bunny_scene();
+  ASSERT_TRUE(std::holds_alternative<Scene>(loaded));
+  Scene bunny = std::get<Scene>(std::move(loaded));
+  const std::size_t warnings = bunny.warnings.size();
+  EXPECT_EQ(ensure_sss_atlases(bunny), 1u);
+  ASSERT_EQ(bunny.warnings.size(), warnings + 1);
+  EXPECT_EQ(bunny.warnings.back().rfind("mesh " + bunny.meshes[0].name +
+                                            ": generated a UV atlas (no UVs; ", 0),
+            0u)
+      << bunny.warnings.back();
+  EXPECT_FALSE(bunny.meshes[0].uv_atlas.empty());
+  EXPECT_EQ(&sss_uvs(bunny.meshes[0]), &bunny.meshes[0].uv_atlas);
+  EXPECT_EQ(ensure_sss_atlases(bunny), 0u);  // already has one
+
+  Scene sphere = sphere_scene();  // its UV sphere's uv0 is usable
+  EXPECT_EQ(ensure_sss_atlases(sphere), 0u);
+  EXPECT_TRUE(sphere.meshes[0].uv_atlas.empty());
+  EXPECT_EQ(&sss_uvs(sphere.meshes[0]), &sphere.meshes[0].uv0);
+}
+
+}  // namespace
+}  // namespace sss::scene
