@@ -393,16 +393,30 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
                    [&](std::uint32_t a, std::uint32_t b) { return box_size[a].y > box_size[b].y; });
   const double pad = double(options.padding_texels) / double(std::max(options.resolution, 1u));
   std::vector<glm::dvec2> origin(C);
+  struct Shelf {
+    double y, height, x;
+  };
+  std::vector<Shelf> shelves;
   auto pack = [&](double s) {  // true when everything fits; origins of the padded boxes
-    double x = 0.0, y = 0.0, shelf = 0.0;
+    shelves.clear();
+    double top = 0.0;
     for (std::uint32_t c : order) {
       const double w = s * box_size[c].x + 2.0 * pad, h = s * box_size[c].y + 2.0 * pad;
       if (w > 1.0) return false;
-      if (x + w > 1.0) y += shelf, x = 0.0, shelf = 0.0;
-      if (shelf == 0.0) shelf = h;  // sorted: the first box of a shelf is its tallest
-      if (y + h > 1.0) return false;
-      origin[c] = glm::dvec2(x, y);
-      x += w;
+      Shelf* shelf = nullptr;  // first fit: sorted by height, every shelf is tall enough
+      for (Shelf& sh : shelves)
+        if (sh.x + w <= 1.0) {
+          shelf = &sh;
+          break;
+        }
+      if (!shelf) {
+        if (top + h > 1.0) return false;
+        shelves.push_back({top, h, 0.0});
+        top += h;
+        shelf = &shelves.back();
+      }
+      origin[c] = glm::dvec2(shelf->x, shelf->y);
+      shelf->x += w;
     }
     return true;
   };

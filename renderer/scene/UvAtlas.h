@@ -15,7 +15,7 @@
 //      along the intersection of the face and the plane and shorten the steepest one by
 //      cos θ, so UV length per mm lies in [s·cos θ, s] ⊂ [s/√3, s];
 //   4. all charts share ONE scale s (UV units per scene unit), the largest for which a
-//      shelf packing (next-fit decreasing height: Coffman, Garey, Johnson & Tarjan 1980,
+//      shelf packing (first-fit decreasing height: Coffman, Garey, Johnson & Tarjan 1980,
 //      "Performance bounds for level-oriented two-dimensional packing algorithms") fits
 //      [0,1]^2 with `padding_texels` of empty texels around every chart at `resolution`
 //      (room for the seam dilation of d'Eon & Luebke 2007).
