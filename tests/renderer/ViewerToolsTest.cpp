@@ -120,10 +120,13 @@ TEST(ViewerTools, CompareGivesTheNumbersOfSssCompare) {
   const auto report = nlohmann::json::parse(c.out.substr(c.out.find('{')));
   const double cli_rmse = report["metrics"]["relative_rmse"].get<double>();
   EXPECT_NEAR(viewer_rmse, cli_rmse, 1e-6) << w.out << c.out;
-  // And the frame is close to the reference: the golden suite's sphere limit is 2%
-  // relative RMSE in linear radiance; display codes (filmic curve, slope < 1 over most
-  // of the range) stay below that.
-  EXPECT_LT(viewer_rmse, 0.02) << w.out;
+  // And the frame is close to the reference. This compares display codes over every
+  // pixel with geometry, silhouettes included (the golden suite's 2% sphere limit is in
+  // linear radiance without them): measured 1.46% before real-time transmission and
+  // 1.95% with it (the GPU adds transmitted light on a band past the terminator that the
+  // reference's far-side points give less of); 3% leaves room for another driver's
+  // rounding without letting a broken reference or frame through (those give > 10%).
+  EXPECT_LT(viewer_rmse, 0.03) << w.out;
   std::filesystem::remove(shot);
   std::filesystem::remove(ref);
 }
