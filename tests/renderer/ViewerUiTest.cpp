@@ -227,7 +227,9 @@ TEST_F(ViewerUiTest, RefitLatencyOldSyncPathAgainstTheWorker) {
                 std::string(profiles::model_name(m)).c_str(), exact_kernel_total, sync_ms,
                 call_ms, ed.latency().fit_ms, ed.latency().upload_ms,
                 ed.latency().edit_to_frame_ms);
-    EXPECT_LT(call_ms, 20.0);  // the render thread never waits for the fit
+    // No assertion on call_ms (timings are measured, not asserted, on shared machines):
+    // that the call never waits for the fit is proven by FitWorker.NewestEditWins...,
+    // whose compute function blocks until released.
   }
 }
 
