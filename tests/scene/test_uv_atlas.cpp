@@ -132,7 +132,8 @@ TEST(UvAtlas, BunnyHasNoUvsAndGetsAnAtlas) {
   RecordProperty("charts", int(stats.charts));
   RecordProperty("utilization_percent", int(100 * stats.utilization));
   RecordProperty("milliseconds", int(seconds * 1e3));
-  EXPECT_LT(seconds, 1.0);  // typically far less; loose for a loaded 2-core CI box
+  // The time is reported (RecordProperty, the line above), not asserted: timings are
+  // measured, not tested, on shared machines.
   expect_valid_atlas(bunny, m, stats, 0.35);
 }
 
