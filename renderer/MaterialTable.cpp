@@ -20,9 +20,8 @@ MaterialData build_material_data(const scene::Scene& scene, int separable_taps) 
   return build_material_data(scene.materials, separable_taps);
 }
 
-TransmittanceFit fit_transmittance(const profiles::RgbProfile& rgb,
+TransmittanceFit fit_transmittance(const profiles::RgbProfile& rgb, const profiles::FitTarget& target,
                                    const std::vector<double>& variances_mm2) {
-  const profiles::FitTarget target = profiles::make_fit_target(rgb);
   const auto rows = static_cast<Eigen::Index>(target.r_mm.size());
   const auto n = static_cast<Eigen::Index>(variances_mm2.size());
   TransmittanceFit out;
@@ -30,14 +29,18 @@ TransmittanceFit fit_transmittance(const profiles::RgbProfile& rgb,
   const Rgb total = rgb.total_transmittance();
   Eigen::MatrixXd A(rows + 1, n);
   Eigen::VectorXd b(rows + 1);
+  // Rows weighted by √dr·r: the least squares of r(T − T̃) in dr, the fit's own norm. The
+  // Gaussian rows are the same for every channel; only the energy row and b change.
+  for (Eigen::Index j = 0; j < rows; ++j) {
+    const double s = std::sqrt(target.dr[j]) * target.r_mm[j];
+    for (Eigen::Index i = 0; i < n; ++i)
+      A(j + 1, i) = s * profiles::gaussian_2d(variances_mm2[i], target.r_mm[j]);
+  }
   for (int c = 0; c < 3; ++c) {
-    // Rows weighted by √dr·r: the least squares of r(T − T̃) in dr, the fit's own norm.
     double norm2 = 0.0;
     for (Eigen::Index j = 0; j < rows; ++j) {
       const double s = std::sqrt(target.dr[j]) * target.r_mm[j];
-      for (Eigen::Index i = 0; i < n; ++i)
-        A(j + 1, i) = s * profiles::gaussian_2d(variances_mm2[i], target.r_mm[j]);
-      b(j + 1) = s * rgb.transmittance(target.r_mm[j])[c];
+      b(j + 1) = s * rgb.channel(c).transmittance(target.r_mm[j]);
       norm2 += b(j + 1) * b(j + 1);
     }
     if (!(total[c] > 0.0) || !(norm2 > 0.0)) continue;  // nothing transmitted
@@ -93,10 +96,11 @@ MaterialData build(const std::vector<scene::Material>& materials, int separable_
         const profiles::RgbProfile rgb(m.sss.model, m.sss.effective_medium());
         profiles::FitOptions options;
         options.gaussians = m.sss.gaussians;
-        p = {profiles::fit_gaussians(profiles::make_fit_target(rgb), options),
+        const profiles::FitTarget target = profiles::make_fit_target(rgb);
+        p = {profiles::fit_gaussians(target, options),
              profiles::make_separable_kernel(rgb, separable_taps), std::nullopt};
         if (m.sss.effective_medium().is_slab())
-          p.transmittance = fit_transmittance(rgb, p.fit.variances_mm2);
+          p.transmittance = fit_transmittance(rgb, target, p.fit.variances_mm2);
       }
       if (p.transmittance) {
         const Rgb t = p.transmittance->total;

@@ -29,8 +29,9 @@ struct TransmittanceFit {
   Rgb total{};               // Σ_i weights[i] == the profile's total transmittance
   Rgb relative_error{};      // ‖r(T − T̃)‖₂ / ‖r T‖₂ on the fit's samples
 };
-// The fitted transmittance of `rgb` for fixed `variances_mm2` (ascending, > 0).
-TransmittanceFit fit_transmittance(const profiles::RgbProfile& rgb,
+// The fitted transmittance of `rgb` for fixed `variances_mm2` (ascending, > 0), on the
+// samples of `target` (make_fit_target(rgb), the reflectance fit's own).
+TransmittanceFit fit_transmittance(const profiles::RgbProfile& rgb, const profiles::FitTarget& target,
                                    const std::vector<double>& variances_mm2);
 
 struct MaterialProfile {

@@ -36,8 +36,8 @@ namespace sss::app {
 struct LiveState {
   const scene::Scene* scene = nullptr;  // meshes, textures, instances as loaded
   std::string source;                   // the path, or builtin:NAME
-  std::vector<scene::Material> materials;
-  std::vector<scene::Light> lights;
+  const std::vector<scene::Material>& materials;  // the panels' (not copied per frame)
+  const std::vector<scene::Light>& lights;
   // The window's framebuffer: the size of the reference (the renderer may draw a scaled
   // frame while the view moves).
   std::uint32_t width = 0, height = 0;

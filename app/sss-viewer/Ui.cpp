@@ -1,5 +1,7 @@
 #include "Ui.h"
 
+#include "FrameOutput.h"
+
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"
 #include "renderer/image/Image.h"
@@ -432,10 +434,7 @@ void ViewerUi::draw_screenshot(const renderer::Renderer& r) {
   if (png || exr) {
     const std::string path = std::string(shot_name_) + (png ? ".png" : ".exr");
     try {
-      if (png)
-        image::write_png(path, r.read_display());
-      else
-        image::write_exr(path, r.read_hdr());
+      write_frame(r, path);
       shot_message_ = "saved " + path;
     } catch (const std::exception& e) {
       shot_message_ = e.what();

@@ -2,6 +2,7 @@
 
 #include "ExitCodes.h"
 #include "CliSupport.h"
+#include "FrameOutput.h"
 #include "OrbitCamera.h"
 #include "Tools.h"
 #include "Ui.h"
@@ -558,14 +559,8 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   const renderer::Renderer& r = *session->renderer;
   const ViewerUi& ui = *session->ui;
 
-  if (screenshot) {
-    if (lower_extension(a.screenshot) == ".exr")
-      image::write_exr(a.screenshot, r.read_hdr());
-    else
-      image::write_png(a.screenshot, r.read_display());
-  }
+  if (screenshot) write_frame(r, a.screenshot);
   if (a.stats) {
-    const renderer::FrameStats& s = r.stats();
     std::printf("window %dx%d (rendered %ux%u), sss %s, mode %s, present %s, %d frame(s)\n",
                 fb_w, fb_h, r.options().width, r.options().height, std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
                 std::string(renderer::sss_kind_name(r.options().kind)).c_str(),
@@ -573,10 +568,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
                 : sc.present_mode() == VK_PRESENT_MODE_MAILBOX_KHR ? "mailbox"
                                                                     : "immediate",
                 frames);
-    std::printf("%-16s %10s\n", "pass", "gpu ms");
-    for (const vk::PassTime& p : s.passes) std::printf("%-16s %10.3f\n", p.name.c_str(), p.ms);
-    std::printf("%-16s %10.3f\n", "gpu total", s.gpu_ms);
-    std::printf("%-16s %10.3f\n", "cpu frame", s.cpu_ms);
+    print_pass_times(r.stats());
     if (timed_frames > 0) {
       std::printf("%-16s %10.3f\n", "window frame", timed_ms / timed_frames);
       std::printf("%-16s %10.1f\n", "fps", 1000.0 * timed_frames / timed_ms);

@@ -4,6 +4,7 @@
 //   sss-viewer [SCENE] --headless --out FILE.png|FILE.exr [options]
 // The command-line contract is DESIGN.md §4; errors exit 2 (usage, input) or 1 (runtime).
 #include "CliSupport.h"
+#include "FrameOutput.h"
 #include "ViewerArgs.h"
 #include "Ui.h"
 #include "Window.h"
@@ -51,10 +52,7 @@ void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
   std::printf("frame %ux%u, sss %s, mode %s, %d frame(s)\n", r.options().width,
               r.options().height, std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
               std::string(renderer::sss_kind_name(r.options().kind)).c_str(), frames);
-  std::printf("%-16s %10s\n", "pass", "gpu ms");
-  for (const vk::PassTime& p : s.passes) std::printf("%-16s %10.3f\n", p.name.c_str(), p.ms);
-  std::printf("%-16s %10.3f\n", "gpu total", s.gpu_ms);
-  std::printf("%-16s %10.3f\n", "cpu frame", s.cpu_ms);
+  print_pass_times(s);
   std::printf("%-16s %10.3f\n", "cpu mean", cpu_total_ms / frames);
 }
 
@@ -168,10 +166,7 @@ int main(int argc, char** argv) {
       r.render_frame();
       cpu_total += r.stats().cpu_ms;
     }
-    if (ext == ".exr")
-      image::write_exr(a.out, r.read_hdr());
-    else
-      image::write_png(a.out, r.read_display());
+    write_frame(r, a.out);
     if (a.stats) print_stats(r, a.frames, cpu_total);
   } catch (const std::invalid_argument& e) {
     return usage(e.what());

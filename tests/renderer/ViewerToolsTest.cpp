@@ -78,6 +78,7 @@ TEST(ViewerTools, AFileThatDoesNotLoadLeavesTheScene) {
   if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
   const std::string bad = std::string(SSS_SOURCE_DIR) + "/tests/data/bad/not_json.gltf";
   const std::string shot = temp_path("bad.png"), expected = temp_path("bad_headless.png");
+  ASSERT_EQ(headless("builtin:sphere", expected), "");
   for (const std::string& path : {bad, std::string("/nonexistent/scene.glb")}) {
     std::filesystem::remove(shot);
     const CliRun w = run_windowed("builtin:sphere --width 192 --height 108 --frames 5 --test-open " +
@@ -86,7 +87,6 @@ TEST(ViewerTools, AFileThatDoesNotLoadLeavesTheScene) {
     EXPECT_FALSE(has_validation_message(w.out)) << w.out;
     EXPECT_NE(w.out.find(path), std::string::npos) << w.out;  // the message names the file
     EXPECT_EQ(w.out.find("opened"), std::string::npos) << w.out;
-    ASSERT_EQ(headless("builtin:sphere", expected), "");
     EXPECT_LE(max_code_difference(shot, expected), 1.0f) << path;
   }
   std::filesystem::remove(shot);
@@ -159,12 +159,7 @@ namespace {
 
 class ViewerExport : public renderer::testing::RenderTest {};
 
-std::string slurp_file(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
+using sss::testing::slurp;
 
 // The Export buttons' actions on the textured tile, edited: the copy loads back with the
 // edit; a second export never replaces the first without `replace`; the input is never
@@ -175,7 +170,7 @@ TEST_F(ViewerExport, MaterialsGoToANewGltfAndKernelsToJsonAndHeader) {
   std::filesystem::create_directories(dir);
   const std::string input = (dir / "tile.glb").string();
   std::filesystem::copy_file(std::string(SSS_SOURCE_DIR) + "/assets/textured_tile.glb", input);
-  const std::string before = slurp_file(input);
+  const std::string before = slurp(input);
 
   auto loaded = scene::load_scene(input);
   ASSERT_TRUE(std::holds_alternative<scene::Scene>(loaded));
@@ -198,7 +193,7 @@ TEST_F(ViewerExport, MaterialsGoToANewGltfAndKernelsToJsonAndHeader) {
   EXPECT_NE(export_materials(live, out, false).find("exists"), std::string::npos);
   EXPECT_EQ(export_materials(live, out, true), "saved " + out);
   EXPECT_NE(export_materials(live, input, true).find("overwrite"), std::string::npos);
-  EXPECT_EQ(slurp_file(input), before);  // the input is never written
+  EXPECT_EQ(slurp(input), before);  // the input is never written
 
   auto back = scene::load_scene(out);
   ASSERT_TRUE(std::holds_alternative<scene::Scene>(back));
@@ -211,13 +206,13 @@ TEST_F(ViewerExport, MaterialsGoToANewGltfAndKernelsToJsonAndHeader) {
   const std::string json_path = (dir / "k.json").string(), header = (dir / "k.h").string();
   EXPECT_EQ(export_kernel(r, live, sss, json_path, false), "saved " + json_path);
   EXPECT_EQ(export_kernel(r, live, sss, header, false), "saved " + header);
-  const auto doc = nlohmann::json::parse(slurp_file(json_path));
+  const auto doc = nlohmann::json::parse(slurp(json_path));
   const auto& fit = r.materials().profiles[sss]->fit;
   ASSERT_EQ(doc["variances_mm2"].size(), fit.variances_mm2.size());
   for (std::size_t i = 0; i < fit.variances_mm2.size(); ++i)
     EXPECT_EQ(doc["variances_mm2"][i].get<double>(), fit.variances_mm2[i]);
   EXPECT_EQ(doc["model"], "pbd");
-  EXPECT_NE(slurp_file(header).find("k_variances_mm2"), std::string::npos);
+  EXPECT_NE(slurp(header).find("k_variances_mm2"), std::string::npos);
   // A material without SSS has no kernel: a message, no file.
   for (std::size_t i = 0; i < scene.materials.size(); ++i)
     if (!edited[i].sss.enabled) {
@@ -237,7 +232,7 @@ TEST_F(ViewerExport, BuiltinSceneExportsTheSssBlocks) {
   const std::string path = (dir / "sphere-sss.json").string();
   std::filesystem::remove(path);
   EXPECT_EQ(export_materials(live, path, false), "saved " + path);
-  const auto doc = nlohmann::json::parse(slurp_file(path));
+  const auto doc = nlohmann::json::parse(slurp(path));
   ASSERT_EQ(doc["materials"].size(), scene.materials.size());
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     if (!scene.materials[i].sss.enabled) continue;

@@ -1,0 +1,32 @@
+// What the headless path, the window's --screenshot / --stats and the Screenshot panel
+// share: writing the frame to a file, and the per-pass table of --stats.
+#pragma once
+
+#include "CliSupport.h"
+
+#include "renderer/Renderer.h"
+#include "renderer/image/Image.h"
+
+#include <cstdio>
+#include <string>
+
+namespace sss::app {
+
+// FILE.exr: the linear HDR frame; any other name: the tonemapped display PNG. Written
+// atomically (image::write_*); throws image::WriteError naming the path.
+inline void write_frame(const renderer::Renderer& r, const std::string& path) {
+  if (lower_extension(path) == ".exr")
+    image::write_exr(path, r.read_hdr());
+  else
+    image::write_png(path, r.read_display());
+}
+
+// "pass  gpu ms" rows, then the GPU total and the renderer's CPU frame time.
+inline void print_pass_times(const renderer::FrameStats& s) {
+  std::printf("%-16s %10s\n", "pass", "gpu ms");
+  for (const vk::PassTime& p : s.passes) std::printf("%-16s %10.3f\n", p.name.c_str(), p.ms);
+  std::printf("%-16s %10.3f\n", "gpu total", s.gpu_ms);
+  std::printf("%-16s %10.3f\n", "cpu frame", s.cpu_ms);
+}
+
+}  // namespace sss::app
