@@ -27,11 +27,7 @@ void main() {
   if (any(greaterThanEqual(p, ivec2(frame.rect.zw)))) return;
   vec4 albedo_id = texelFetch(albedo_tex, p, 0);
   int id = material_id(albedo_id);
-  if (id < 0) {
-    imageStore(hdr_img, p, vec4(0.0));
-    imageStore(display_img, p, vec4(0.0));
-    return;
-  }
+  if (id < 0) return;  // background: hdr and display were cleared to 0 (Renderer::record)
   vec4 reflectance = materials[id].reflectance;  // not the whole GpuMaterial
   int mode = int(frame.options.y);
   if (reflectance.w > 0.5 && mode == 1) return;  // sss_separable.comp wrote it

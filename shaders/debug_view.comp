@@ -54,10 +54,7 @@ void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
   int id = material_id(texelFetch(albedo_tex, p, 0));
-  if (id < 0) {
-    imageStore(display_img, p, vec4(0.0));
-    return;
-  }
+  if (id < 0) return;  // background: display was cleared to 0 (Renderer::record)
   int view = int(debug.view.x);
   bool scatters = materials[id].reflectance.w > 0.5;
   vec4 irradiance = texelFetch(irradiance_tex, p, 0);

@@ -27,7 +27,7 @@ inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** arg
                                              const std::string& tool) {
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
+  } catch (const CLI::Success& e) {  // --help, --help-all, --version: printed, exit 0
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     return usage_error(tool, e.what());

@@ -63,17 +63,7 @@ int main(int argc, char** argv) {
   auto* validate = app.add_subcommand("validate", "Every model against Monte Carlo");
   add_common(*validate, va, false);
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    return usage_error("sss-fit", e.what());
-  }
+  if (const auto stop = parse_command_line(app, argc, argv, "sss-fit")) return *stop;
 
   try {
     if (presets->parsed()) return run_presets(presets_json);

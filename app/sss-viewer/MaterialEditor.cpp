@@ -16,12 +16,6 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-int preset_index(std::string_view name) {
-  const auto all = profiles::presets();
-  for (std::size_t k = 0; k < all.size(); ++k)
-    if (all[k].name == name) return static_cast<int>(k);
-  return -1;
-}
 
 // The checks make_sss_material would make on the UI thread's side of an artist source,
 // so that a typo shows at once; the model inversion (which may still refuse a colour)
@@ -41,6 +35,17 @@ std::optional<FieldError> check_artist(const profiles::ArtistParameters& p) {
 }
 
 }  // namespace
+
+int MaterialEditor::preset_index(std::string_view name) {
+  const profiles::Preset* p = profiles::find_preset(name);
+  return p == nullptr ? -1 : static_cast<int>(p - profiles::presets().data());
+}
+
+int MaterialEditor::model_index(profiles::Model model) {
+  const auto& m = models();
+  const auto it = std::find(m.begin(), m.end(), model);
+  return it == m.end() ? -1 : static_cast<int>(it - m.begin());
+}
 
 const std::vector<profiles::Model>& MaterialEditor::models() {
   static const std::vector<profiles::Model> offered = [] {
@@ -64,8 +69,7 @@ MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
     MaterialEdit e;
     e.index = i;
     e.name = applied_[i].name.empty() ? "material " + std::to_string(i) : applied_[i].name;
-    for (std::size_t m = 0; m < models().size(); ++m)
-      if (models()[m] == s.model) e.model = static_cast<int>(m);
+    e.model = std::max(model_index(s.model), 0);
     e.gaussians = s.gaussians;
     e.scale = static_cast<float>(s.scale);
     e.albedo = s.albedo_mode == scene::AlbedoMode::PrePost ? 1 : 0;

@@ -62,6 +62,9 @@ class MaterialEditor {
   // The models offered: all of profiles::kAllModels except mc (2^20 photons per channel
   // take seconds per edit).
   static const std::vector<profiles::Model>& models();
+  // Indexes into profiles::presets() and models(); -1 when absent.
+  static int preset_index(std::string_view name);
+  static int model_index(profiles::Model model);
 
   std::vector<MaterialEdit>& edits() { return edits_; }
   const std::vector<MaterialEdit>& edits() const { return edits_; }

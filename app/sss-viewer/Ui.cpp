@@ -106,7 +106,6 @@ void draw_profile_plot(const ProfilePlot& p, bool with_error) {
   LogAxes top;
   top.p0 = ImVec2(origin.x + margin, origin.y);
   top.p1 = ImVec2(origin.x + width - 4, origin.y + top_h);
-  top.x = log_range(p.r_mm, 12);
   top.x.lo = int(std::floor(std::log10(p.r_mm.front())));
   top.x.hi = int(std::ceil(std::log10(p.r_mm.back())));
   top.y = log_range(all, 5);
@@ -160,15 +159,11 @@ void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
   if (!script_.empty() && !editor_.busy()) {  // as if the combo had been clicked
     const auto eq = script_.find('=');
     const std::string key = script_.substr(0, eq), value = script_.substr(eq + 1);
-    if (key == "preset") {
-      const auto all = profiles::presets();
-      for (std::size_t k = 0; k < all.size(); ++k)
-        if (all[k].name == value) editor_.select_preset(0, int(k));
-    } else {
-      const auto& offered = MaterialEditor::models();
-      for (std::size_t m = 0; m < offered.size(); ++m)
-        if (profiles::model_name(offered[m]) == value) editor_.select_model(0, int(m));
-    }
+    // valid_script_edit accepted it: the preset or offered model exists.
+    if (key == "preset")
+      editor_.select_preset(0, MaterialEditor::preset_index(value));
+    else
+      editor_.select_model(0, MaterialEditor::model_index(*profiles::parse_model(value)));
     script_.clear();
   }
   const ImVec2 display = ImGui::GetIO().DisplaySize;

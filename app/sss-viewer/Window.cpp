@@ -219,8 +219,8 @@ std::unique_ptr<Session> make_session(const vk::Context& ctx, scene::Scene scene
   return s;
 }
 
-std::string window_title(const Session& s) {
-  return "sss-viewer - " + (s.scene.name.empty() ? s.source : s.scene.name);
+std::string window_title(const scene::Scene& scene, const std::string& source) {
+  return "sss-viewer - " + (scene.name.empty() ? source : scene.name);
 }
 
 // Loads `path` as the viewer's command line would (a missing camera or light is added)
@@ -248,8 +248,7 @@ std::unique_ptr<Session> open_scene(const vk::Context& ctx, const std::string& p
   }
 }
 
-int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options,
-        bool validation) {
+int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options) {
   Glfw glfw;
   if (!glfw.ok) return no_display();
   if (glfwVulkanSupported() != GLFW_TRUE) {
@@ -258,7 +257,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   }
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
-  const std::string title = "sss-viewer - " + (scene.name.empty() ? a.scene : scene.name);
+  const std::string title = window_title(scene, a.scene);
   WindowHandle win;
   win.window = glfwCreateWindow(a.width, a.height, title.c_str(), nullptr, nullptr);
   if (win.window == nullptr) return no_display();
@@ -266,8 +265,8 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
 
   vk::ContextOptions co;
   co.device_name = a.device;
-  co.enable_validation = validation;
-  co.sync_validation = validation;
+  co.enable_validation = a.validation;
+  co.sync_validation = a.validation;
   co.application_name = "sss-viewer";
   uint32_t ext_count = 0;
   const char** exts = glfwGetRequiredInstanceExtensions(&ext_count);
@@ -378,7 +377,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
         next->ui->set_interactive_scale(session->ui->interactive_scale());
         tools.reset();
         session = std::move(next);  // the old renderer goes here, its frame finished
-        glfwSetWindowTitle(window, window_title(*session).c_str());
+        glfwSetWindowTitle(window, window_title(session->scene, session->source).c_str());
       }
       std::cerr << "sss-viewer: " << message << '\n';
       tools.set_message(message);
@@ -583,10 +582,9 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
 
 }  // namespace
 
-int run_window(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options,
-               bool validation) {
+int run_window(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options) {
   if (!has_display()) return no_display();
-  return run(a, scene, options, validation);
+  return run(a, scene, options);
 }
 
 }  // namespace sss::app

@@ -16,7 +16,6 @@ inline constexpr const char* kNoDisplayMessage =
 // Runs until the window closes, or for a.frames frames when a.screenshot is set (then
 // saves it). Returns the exit code (DESIGN.md §4): 1 when there is no display or the
 // device fails.
-int run_window(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options,
-               bool validation);
+int run_window(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options);
 
 }  // namespace sss::app

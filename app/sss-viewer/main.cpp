@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
   for (const std::string& w : scene.warnings) std::cerr << "sss-viewer: warning: " << w << '\n';
 
   try {
-    if (!a.headless) return run_window(a, scene, options, a.validation);
+    if (!a.headless) return run_window(a, scene, options);
     vk::ContextOptions context_options;
     context_options.device_name = a.device;
     context_options.enable_validation = context_options.sync_validation = a.validation;

@@ -36,11 +36,11 @@ VkPresentModeKHR choose_present_mode(VkPhysicalDevice gpu, VkSurfaceKHR surface,
 }  // namespace
 
 Swapchain::Swapchain(const Context& context, VkExtent2D framebuffer_size, bool vsync)
-    : context_(context), vsync_(vsync) {
+    : context_(context) {
   const VkSurfaceFormatKHR f = choose_format(context.physical_device(), context.surface());
   format_ = f.format;
   color_space_ = f.colorSpace;
-  present_mode_ = choose_present_mode(context.physical_device(), context.surface(), vsync_);
+  present_mode_ = choose_present_mode(context.physical_device(), context.surface(), vsync);
   recreate(framebuffer_size);
 }
 

@@ -52,7 +52,6 @@ class Swapchain {
   void destroy();
 
   const Context& context_;
-  bool vsync_;
   VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
   VkFormat format_ = VK_FORMAT_UNDEFINED;
   VkColorSpaceKHR color_space_ = VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
