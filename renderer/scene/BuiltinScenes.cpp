@@ -2,6 +2,7 @@
 #include "renderer/scene/BuiltinScenes.h"
 
 #include "renderer/scene/GltfLoader.h"
+#include "renderer/scene/UvAtlas.h"
 
 #include <array>
 #include <functional>
@@ -56,8 +57,14 @@ std::variant<Scene, LoadError> builtin_scene(std::string_view name) {
 }
 
 std::variant<Scene, LoadError> load_scene(std::string_view scene) {
-  if (scene.substr(0, kBuiltinPrefix.size()) == kBuiltinPrefix) return builtin_scene(scene);
-  return load_gltf(std::string(scene));
+  std::variant<Scene, LoadError> loaded = scene.substr(0, kBuiltinPrefix.size()) == kBuiltinPrefix
+                                              ? builtin_scene(scene)
+                                              : load_gltf(std::string(scene));
+  // Texture-space SSS (--sss texture) needs usable UVs on every subsurface mesh: the ones
+  // without get a generated atlas now (UvAtlas.h; the screen path and the CPU reference
+  // draw the same triangles, only split at chart seams).
+  if (auto* s = std::get_if<Scene>(&loaded)) ensure_sss_atlases(*s);
+  return loaded;
 }
 
 // The bunny faces -x (its head), its ears rise toward -z; it stands on y = 0, 150 mm
