@@ -1,0 +1,133 @@
+// Direct lighting of one surface point, shared by the screen path (lighting.comp, per
+// pixel) and the texture path (texture_irradiance.frag, per atlas texel): diffuse
+// irradiance E (before albedo, with the light transmitted through thin parts) and GGX
+// specular radiance. Not shared with C++.
+#ifndef SSS_SHADERS_SHADING_GLSL
+#define SSS_SHADERS_SHADING_GLSL
+
+// Needs: frame (FrameUniforms), light_block (LightBlock), materials (GpuMaterial[]),
+// shadow_tex (sampler2DArrayShadow), shadow_depth_tex (sampler2DArray, nearest: thickness),
+// common.glsl, thickness.glsl.
+
+// Transmission (DESIGN.md §5 step 5; Jimenez, Whelan, Sundstedt & Gutierrez 2010,
+// "Real-Time Realistic Skin Translucency", IEEE CG&A 30(4)): light entering the far
+// side at the shadow map's first surface crosses the thickness d (mm) and leaves at P.
+// A point source at depth d below the surface gives R(sqrt(r² + d²)) at lateral distance
+// r on it; for the fit R(r) = Σ w_i G(v_i, r) that is Σ w_i exp(-d²/2v_i) G(v_i, r), the
+// same Gaussians with weights scaled per channel, whose total is
+// T(d) = Σ w_i exp(-d²/2v_i). Slabs (transmit.w > 0: the slab thickness) use the
+// multipole's own total transmittance instead (transmit.rgb, the fit of its T(r) with the
+// same variances). The far side's irradiance is E_back = E_light max(-N·L, 0) (the far
+// side faces the light where P faces away from it; Jimenez 2010 uses a wrapped
+// 0.3 + (-N·L), we keep the unwrapped one so a slab lit at normal incidence gets exactly
+// E_light). The result is added to E divided by the total reflectance Σ w_i: the SSS
+// passes blur it with the reflectance profile (Σ w_i G_i, which moves no energy) and the
+// composite multiplies by Σ w_i, so the exitant diffuse is T(d) E_back x albedo / pi,
+// spread by the reflectance profile's shape rather than the transmitted one (for a
+// thickness comparable to the widest Gaussian the transmitted profile is wider).
+vec3 transmittance_total(int id, float d_mm) {
+  vec4 t = materials[id].transmit;
+  if (t.w > 0.0) return t.rgb;
+  vec3 sum = vec3(0.0);
+  int count = int(materials[id].surface.w);
+  for (int g = 0; g < count; ++g) {
+    float v = materials[id].variances[g / 4][g % 4];
+    sum += materials[id].gauss_weights[g].rgb * exp(-d_mm * d_mm / (2.0 * v));
+  }
+  return sum;
+}
+
+float shadow_visibility(int index, GpuLight light, vec3 p, vec3 n) {
+  vec4 c = light.shadow_matrix * vec4(p + n * light.shadow.z, 1.0);
+  vec3 s = c.xyz / c.w;
+  vec2 uv = s.xy * 0.5 + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || s.z > 1.0) return 1.0;
+  // 3x3 PCF: the mean of 9 bilinear comparison taps one texel apart. Along an axis those
+  // weigh the 4 texels i-1 .. i+2 around the point (i = floor(u - 0.5), f its fraction, in
+  // texels) by (1 - f, 1, 1, f) / 3, which 2 bilinear taps give exactly: one on texels
+  // i-1, i at fraction 1 / (2 - f) with weight (2 - f) / 3, one on i+1, i+2 at fraction
+  // f / (1 + f) with weight (1 + f) / 3. So 4 taps instead of 9, the same filter.
+  vec2 size = vec2(textureSize(shadow_tex, 0).xy);
+  vec2 t = uv * size - 0.5;
+  vec2 i = floor(t);
+  vec2 f = t - i;
+  vec2 w0 = 2.0 - f, w1 = 1.0 + f;
+  vec2 p0 = (i - 1.0 + 1.0 / w0 + 0.5) / size;  // texel centres are at k + 0.5
+  vec2 p1 = (i + 1.0 + f / w1 + 0.5) / size;
+  float ref = s.z - light.shadow.w;
+  float layer = float(index);
+  float sum = w0.x * w0.y * texture(shadow_tex, vec4(p0.x, p0.y, layer, ref)) +
+              w1.x * w0.y * texture(shadow_tex, vec4(p1.x, p0.y, layer, ref)) +
+              w0.x * w1.y * texture(shadow_tex, vec4(p0.x, p1.y, layer, ref)) +
+              w1.x * w1.y * texture(shadow_tex, vec4(p1.x, p1.y, layer, ref));
+  return sum / 9.0;
+}
+
+struct SurfacePoint {
+  int id;       // material
+  vec3 P;       // world position
+  vec3 N;       // unit normal
+  vec3 V;       // unit direction to the eye (specular only)
+  vec3 albedo;  // base colour (F0 of metals)
+};
+
+// E: irradiance at P (Σ over lights of E_light N·L x shadow), plus for subsurface
+// materials the transmitted E_back / Σ w_i (see above); S: specular radiance, computed
+// only when `specular` is true (the texture path needs E alone).
+void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
+  vec4 surface = materials[s.id].surface;  // not the whole GpuMaterial: lavapipe loads it all
+  float NdotV = max(dot(s.N, s.V), 1e-4);
+  float alpha = max(surface.z * surface.z, 1e-3);
+  float a2 = alpha * alpha;
+  vec3 F0 = mix(vec3(surface.x), s.albedo, surface.y);
+  bool has_specular = specular && max(F0.r, max(F0.g, F0.b)) > 0.0;
+  E = vec3(0.0);
+  S = vec3(0.0);
+  vec3 E_back = vec3(0.0);  // x the total transmittance of the thickness, per light
+  bool transmits = frame.options.w > 0.5 && materials[s.id].reflectance.w > 0.5;
+  int count = int(frame.options.x);
+  for (int i = 0; i < count; ++i) {
+    GpuLight light = light_block.lights[i];
+    int type = int(light.color.w);
+    if (light.shadow.x > 0.5 && dot(light.mask.xyz, s.P) + light.mask.w >= 0.0) continue;
+    vec3 L;
+    vec3 radiance = light.color.rgb;  // irradiance at normal incidence
+    if (type == SSS_LIGHT_DIRECTIONAL) {
+      L = -light.direction.xyz;
+    } else {
+      vec3 d = light.position.xyz - s.P;
+      float d2 = max(dot(d, d), 1e-8);
+      L = d * inversesqrt(d2);
+      radiance /= d2;
+      if (type == SSS_LIGHT_SPOT)
+        radiance *= smoothstep(light.direction.w, light.position.w, dot(-L, light.direction.xyz));
+    }
+    float NdotL = dot(s.N, L);
+    if (NdotL <= 0.0) {
+      if (transmits && NdotL < 0.0) {
+        float d = shadow_thickness(shadow_depth_tex, i, light, s.P);  // -1: no shadow map
+        if (d > 0.0) E_back += radiance * -NdotL * transmittance_total(s.id, d * frame.scale.x);
+      }
+      continue;
+    }
+    float visibility = light.shadow.y > 0.5 ? shadow_visibility(i, light, s.P, s.N) : 1.0;
+    vec3 incident = radiance * NdotL * visibility;
+    E += incident;
+    if (has_specular) {
+      vec3 H = normalize(L + s.V);
+      float NdotH = max(dot(s.N, H), 0.0);
+      float VdotH = max(dot(s.V, H), 0.0);
+      float dd = NdotH * NdotH * (a2 - 1.0) + 1.0;
+      float D = a2 / (kPi * dd * dd);
+      float vis = 0.5 / (NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2) +
+                         NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2));
+      vec3 F = F0 + (1.0 - F0) * pow(1.0 - VdotH, 5.0);
+      S += D * vis * F * incident;
+    }
+  }
+  if (transmits) E += E_back / max(materials[s.id].reflectance.rgb, vec3(1e-6));
+  // Pre/post albedo: sqrt(albedo) enters before scattering, the other half after it.
+  if (materials[s.id].kernel.z > 0.5) E *= sqrt(s.albedo);
+}
+
+#endif
