@@ -521,6 +521,50 @@ const std::vector<glm::vec2>& sss_uvs(const Mesh& mesh) {
   return mesh.uv_atlas.empty() ? mesh.uv0 : mesh.uv_atlas;
 }
 
+UvIslands uv_islands(const std::vector<glm::vec2>& uv, const std::vector<std::uint32_t>& indices) {
+  const std::size_t n = uv.size();
+  std::vector<std::uint32_t> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
+  const auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];  // path halving
+    return v;
+  };
+  const auto join = [&](std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+    if (indices[t] >= n || indices[t + 1] >= n || indices[t + 2] >= n) continue;
+    join(indices[t], indices[t + 1]);
+    join(indices[t], indices[t + 2]);
+  }
+  std::unordered_map<std::uint64_t, std::uint32_t> at_uv;  // quantized UV -> first vertex
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(uv[i].x) || !std::isfinite(uv[i].y)) continue;
+    const auto q = [](float c) {
+      return static_cast<std::uint64_t>(static_cast<std::uint32_t>(
+          static_cast<std::int64_t>(std::llround(double(c) * 1048576.0))));
+    };
+    const std::uint64_t key = q(uv[i].x) << 32 | q(uv[i].y);
+    const auto [it, fresh] = at_uv.emplace(key, static_cast<std::uint32_t>(i));
+    if (!fresh) join(it->second, static_cast<std::uint32_t>(i));
+  }
+  UvIslands out;
+  out.vertex_island.assign(n, 0);
+  std::vector<bool> used(n, false);
+  for (std::uint32_t v : indices)
+    if (v < n) used[v] = true;
+  std::vector<std::uint32_t> id_of_root(n, std::numeric_limits<std::uint32_t>::max());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    std::uint32_t& id = id_of_root[find(static_cast<std::uint32_t>(i))];
+    if (id == std::numeric_limits<std::uint32_t>::max()) id = out.count++;
+    out.vertex_island[i] = id;
+  }
+  return out;
+}
+
 std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options) {
   std::size_t generated = 0;
   for (Mesh& mesh : scene.meshes) {

@@ -104,6 +104,16 @@ AtlasStats generate_atlas(Mesh& mesh, const AtlasOptions& options = {});
 // The UVs the texture-space path reads: uv_atlas when generated, else uv0.
 const std::vector<glm::vec2>& sss_uvs(const Mesh& mesh);
 
+// UV islands: the connected pieces of a UV layout, as a dense id per vertex (0..count-1 in
+// order of first appearance). Two vertices are on one island when a triangle joins them
+// or when their UVs are equal (to 2^-20: split normals share a UV point); vertices no
+// triangle uses get id 0 and count for no island. The texture path keeps its blur on one island.
+struct UvIslands {
+  std::vector<std::uint32_t> vertex_island;
+  std::uint32_t count = 0;
+};
+UvIslands uv_islands(const std::vector<glm::vec2>& uv, const std::vector<std::uint32_t>& indices);
+
 // For every mesh drawn with a subsurface material whose uv0 fails check_uvs and that has
 // no uv_atlas yet: generate_atlas() and a warning "mesh NAME: generated a UV atlas (REASON)".
 // Returns how many atlases were generated. Not called on load (see README: "UV atlas").

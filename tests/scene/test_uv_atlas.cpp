@@ -159,6 +159,30 @@ TEST(UvAtlas, SphereAndBox) {
   expect_valid_atlas(box, mb, bs, 0.50);
 }
 
+// Islands: the UV sphere is one piece (its seam splits vertices, not the layout's
+// connectivity), the box's generated atlas is its 6 faces, and the bunny's atlas has one
+// island per chart (charts are separated by padding, so no UV point is shared). Split
+// vertices at one UV point join (a hard edge inside an island).
+TEST(UvIslands, SphereBoxBunnyAndSplitVertices) {
+  const Mesh sphere = make_uv_sphere(0.015f, 64, 32);
+  EXPECT_EQ(uv_islands(sphere.uv0, sphere.indices).count, 1u);
+  Mesh box = make_box({-1, -2, -3}, {1, 2, 3});
+  generate_atlas(box);
+  EXPECT_EQ(uv_islands(box.uv_atlas, box.indices).count, 6u);
+  Mesh bunny = bunny_mesh();
+  const AtlasStats stats = generate_atlas(bunny);
+  EXPECT_EQ(uv_islands(bunny.uv_atlas, bunny.indices).count, stats.charts);
+
+  // Two triangles with no shared index but one shared UV edge: one island; a third
+  // triangle elsewhere in UV: another; an unused vertex: none.
+  const std::vector<glm::vec2> uv = {{0, 0}, {1, 0}, {0, 1}, {1, 0}, {0, 1}, {1, 1},
+                                     {2, 2}, {3, 2}, {2, 3}, {9, 9}};
+  const UvIslands islands = uv_islands(uv, {0, 1, 2, 3, 5, 4, 6, 7, 8});
+  EXPECT_EQ(islands.count, 2u);
+  EXPECT_EQ(islands.vertex_island[0], islands.vertex_island[5]);
+  EXPECT_NE(islands.vertex_island[0], islands.vertex_island[6]);
+}
+
 Mesh quad(std::vector<glm::vec2> uv) {
   Mesh m;
   m.name = "quad";
