@@ -38,7 +38,7 @@ void DebugViewPass::write_descriptors() {
       .uniform_buffer(1, r_.lights)
       .storage_buffer(2, r_.materials)
       .combined_image(3, t.albedo, nearest)
-      .combined_image(4, t.depth, nearest)
+      .combined_image(4, t.depth, nearest, kDepthReadLayout)
       .combined_image(5, t.irradiance, nearest, general)
       .combined_image(6, t.specular, nearest, general)
       .combined_image(7, t.blur_a, nearest, general)

@@ -39,7 +39,8 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
   blur_temp = make(context, w, h, kLightingFormat, kComputeUsage, "sss temp");
   blur_a = make(context, w, h, kLightingFormat, kComputeUsage, "sss a");
   blur_b = make(context, w, h, kLightingFormat, kComputeUsage, "sss b");
-  accum = make(context, w, h, kLightingFormat, kComputeUsage, "sss accum");
+  accum = make(context, w, h, kLightingFormat, kComputeUsage | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+               "sss accum");
   sss_line = make(context, w, h, kKeyedFormat, kComputeUsage, "sss line");
   // Cleared each frame outside the screen passes' rect (Renderer::record).
   hdr = make(context, w, h, kHdrFormat, kComputeUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "hdr");

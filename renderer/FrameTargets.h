@@ -18,6 +18,9 @@ class Context;
 namespace sss::renderer {
 
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+// The G-buffer depth after the G-buffer pass: sampled by compute passes and tested (not
+// written) by the texture path's lookup draw.
+inline constexpr VkImageLayout kDepthReadLayout = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
 inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // xyz normal, w roughness
 inline constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;       // rgb albedo, a id
 inline constexpr VkFormat kUvStretchFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // mm per u, v; has UVs
@@ -41,7 +44,9 @@ struct FrameTargets {
   vk::Image uv_stretch;
   vk::Image irradiance, specular;           // lighting (irradiance: kKeyedFormat)
   vk::Image surface;  // lighting, for SSS: view depth in mm, material id (rgba32f)
-  vk::Image blur_temp, blur_a, blur_b, accum;  // SSS gaussians
+  // SSS gaussians; accum is also the texture path's lookup target (a colour attachment in
+  // GENERAL, TextureGatherPass).
+  vk::Image blur_temp, blur_a, blur_b, accum;
   vk::Image sss_line;  // SSS separable: the horizontal pass's result (kKeyedFormat)
   vk::Image hdr, display;                   // composite
 

@@ -31,14 +31,10 @@ vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout l
   builder.vertex_shader(sss_spv_gbuffer_vert)
       .fragment_shader(uv_stretch ? std::span<const uint32_t>(sss_spv_gbuffer_uv_stretch_frag)
                                   : std::span<const uint32_t>(sss_spv_gbuffer_frag))
-      .vertex_binding(0, sizeof(GpuVertex))
-      .vertex_attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, position))
-      .vertex_attribute(1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal))
-      .vertex_attribute(2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv))
-      .vertex_attribute(3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, tangent))
       .color(kNormalFormat)
       .color(kAlbedoFormat);
   if (uv_stretch) builder.color(kUvStretchFormat);
+  add_vertex_input(builder);
   return builder.depth(kDepthFormat, vk::DepthTest::Write)
       .cull(VK_CULL_MODE_NONE)
       .build(context, layout, uv_stretch ? "gbuffer uv stretch" : "gbuffer");
@@ -89,6 +85,11 @@ void GBufferPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
   const vk::Scope sampled{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+  const vk::Scope depth_read{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+                                 VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                                 VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT |
+                                 VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT};
   vk::pipeline_barrier(
       cmd, {vk::image_barrier(t.normal, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
@@ -96,8 +97,8 @@ void GBufferPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
             vk::image_barrier(t.uv_stretch, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
-            vk::image_barrier(t.depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth_write, sampled)});
+            vk::image_barrier(t.depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthReadLayout,
+                              depth_write, depth_read)});
 }
 
 }  // namespace sss::renderer

@@ -1,5 +1,6 @@
 // GBufferPass ("gbuffer"): depth (D32), normal + roughness (rgba16f) and albedo +
-// material id (rgba8) with dynamic rendering. Leaves the three SHADER_READ_ONLY_OPTIMAL.
+// material id (rgba8) with dynamic rendering. Leaves normal and albedo
+// SHADER_READ_ONLY_OPTIMAL, depth kDepthReadLayout.
 #pragma once
 
 #include "renderer/FrameResources.h"

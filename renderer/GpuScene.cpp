@@ -1,10 +1,13 @@
 #include "renderer/GpuScene.h"
 
 #include "renderer/CameraSetup.h"
+#include "renderer/scene/UvAtlas.h"
+#include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Sampler.h"
 #include "renderer/vk/Transfer.h"
 #include "shaders/shared/frame.h"
 
+#include <cstddef>
 #include <map>
 #include <span>
 #include <stdexcept>
@@ -33,6 +36,15 @@ vk::Image upload_rgba8(const vk::Context& context, std::uint32_t w, std::uint32_
 }
 
 }  // namespace
+
+void add_vertex_input(vk::GraphicsPipelineBuilder& builder) {
+  builder.vertex_binding(0, sizeof(GpuVertex))
+      .vertex_attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, position))
+      .vertex_attribute(1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal))
+      .vertex_attribute(2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv))
+      .vertex_attribute(3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, tangent))
+      .vertex_attribute(4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, atlas));
+}
 
 int GpuScene::add_texture(const vk::Context& context, const scene::Scene& scene,
                           std::uint32_t texture, bool srgb) {
@@ -74,12 +86,22 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
   for (const scene::Mesh& mesh : scene.meshes) {
     const bool has_uv = mesh.uv0.size() == mesh.positions.size();
     const bool has_tangents = mesh.tangents.size() == mesh.positions.size();
+    const bool scatters =
+        mesh.material < scene.materials.size() && scene.materials[mesh.material].sss.enabled;
+    const std::vector<glm::vec2>& atlas = scene::sss_uvs(mesh);
+    const bool sss_uvs = scatters && atlas.size() == mesh.positions.size() &&
+                         (!mesh.uv_atlas.empty() || scene::check_uvs(mesh).usable);
+    const scene::UvIslands islands =
+        sss_uvs ? scene::uv_islands(atlas, mesh.indices) : scene::UvIslands{};
     std::vector<GpuVertex> vertices(mesh.positions.size());
     for (std::size_t i = 0; i < vertices.size(); ++i) {
       const glm::vec3& p = mesh.positions[i];
       const glm::vec3& n = mesh.normals[i];
       GpuVertex& v = vertices[i];
-      v = {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 0.0f}};
+      v = {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 0.0f}, {}};
+      if (sss_uvs)
+        for (int c = 0; c < 4; ++c)
+          v.atlas[c] = c < 2 ? atlas[i][c] : c == 2 ? float(islands.vertex_island[i]) : 1.0f;
       if (has_uv) {
         v.uv[0] = mesh.uv0[i].x;
         v.uv[1] = mesh.uv0[i].y;
@@ -88,6 +110,8 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
         for (int c = 0; c < 4; ++c) v.tangent[c] = mesh.tangents[i][c];
     }
     MeshBuffers b;
+    b.sss_uvs = sss_uvs;
+    b.name = mesh.name;
     b.index_count = static_cast<std::uint32_t>(mesh.indices.size());
     b.material = mesh.material;
     if (mesh.material < scene.materials.size()) {
@@ -137,25 +161,34 @@ std::vector<VkDescriptorImageInfo> GpuScene::texture_descriptors() const {
   return out;
 }
 
+void GpuScene::push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout,
+                             const scene::Instance& instance, int light_index, int object) const {
+  const MeshBuffers& mesh = meshes_[instance.mesh];
+  if (mesh.index_count == 0) return;
+  const scene::Material& material = materials_[mesh.material];
+  shader::DrawPush push;
+  push.model = to_shader(instance.world);
+  push.material = {float(mesh.material), float(light_index), material.roughness, float(object)};
+  push.base_color = {material.base_color.r, material.base_color.g, material.base_color.b,
+                     material.base_color.a};
+  push.textures = {float(mesh.base_slot), float(mesh.normal_slot), material.normal_scale, 0.0f};
+  vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                     sizeof(push), &push);
+  const VkBuffer buffers[] = {mesh.vertices.handle()};
+  const VkDeviceSize offsets[] = {0};
+  vkCmdBindVertexBuffers(cmd, 0, 1, buffers, offsets);
+  vkCmdBindIndexBuffer(cmd, mesh.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+  vkCmdDrawIndexed(cmd, mesh.index_count, 1, 0, 0, 0);
+}
+
 void GpuScene::draw(VkCommandBuffer cmd, VkPipelineLayout layout, int light_index) const {
-  for (const scene::Instance& instance : instances_) {
-    const MeshBuffers& mesh = meshes_[instance.mesh];
-    if (mesh.index_count == 0) continue;
-    const scene::Material& material = materials_[mesh.material];
-    shader::DrawPush push;
-    push.model = to_shader(instance.world);
-    push.material = {float(mesh.material), float(light_index), material.roughness, 0.0f};
-    push.base_color = {material.base_color.r, material.base_color.g, material.base_color.b,
-                       material.base_color.a};
-    push.textures = {float(mesh.base_slot), float(mesh.normal_slot), material.normal_scale, 0.0f};
-    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                       sizeof(push), &push);
-    const VkBuffer buffers[] = {mesh.vertices.handle()};
-    const VkDeviceSize offsets[] = {0};
-    vkCmdBindVertexBuffers(cmd, 0, 1, buffers, offsets);
-    vkCmdBindIndexBuffer(cmd, mesh.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, mesh.index_count, 1, 0, 0, 0);
-  }
+  for (const scene::Instance& instance : instances_)
+    push_and_draw(cmd, layout, instance, light_index, -1);
+}
+
+void GpuScene::draw_instance(VkCommandBuffer cmd, VkPipelineLayout layout, std::size_t instance,
+                             int object) const {
+  push_and_draw(cmd, layout, instances_.at(instance), -1, object);
 }
 
 }  // namespace sss::renderer

@@ -18,6 +18,7 @@
 
 namespace sss::vk {
 class Context;
+class GraphicsPipelineBuilder;
 }
 
 namespace sss::renderer {
@@ -27,7 +28,14 @@ struct GpuVertex {
   float normal[3];
   float uv[2];
   float tangent[4];  // xyz, w handedness; zero when the mesh has none
+  // The texture path's atlas (scene::sss_uvs): u, v, the vertex's UV island
+  // (scene::uv_islands), and 1 when the mesh's SSS UVs are usable (else all zero).
+  float atlas[4];
 };
+
+// Every GpuVertex attribute (locations 0..4) from binding 0: what the pipelines drawing
+// the scene's meshes with all attributes declare (G-buffer, texture path).
+void add_vertex_input(vk::GraphicsPipelineBuilder& builder);
 
 class GpuScene {
  public:
@@ -37,6 +45,18 @@ class GpuScene {
   // `layout` (vertex and fragment stages). light_index is written into DrawPush for the
   // shadow pass (ignored elsewhere).
   void draw(VkCommandBuffer cmd, VkPipelineLayout layout, int light_index = -1) const;
+  // One instance (scene.instances order); DrawPush::material.w = `object` (the texture
+  // path's object index).
+  void draw_instance(VkCommandBuffer cmd, VkPipelineLayout layout, std::size_t instance,
+                     int object) const;
+
+  const std::vector<scene::Instance>& instances() const { return instances_; }
+  std::uint32_t mesh_material(std::uint32_t mesh) const { return meshes_[mesh].material; }
+  const std::string& mesh_name(std::uint32_t mesh) const { return meshes_[mesh].name; }
+  // Whether the mesh's SSS UVs (scene::sss_uvs) can hold an irradiance texture: a
+  // generated atlas, or a uv0 that passes scene::check_uvs. Checked at construction for
+  // meshes whose material scatters then; false for the others.
+  bool has_sss_uvs(std::uint32_t mesh) const { return meshes_[mesh].sss_uvs; }
 
   // SSS_MAX_TEXTURES descriptors (SHADER_READ_ONLY_OPTIMAL); unused slots hold a white
   // 1x1 texture.
@@ -57,7 +77,11 @@ class GpuScene {
     std::uint32_t material = 0;
     int base_slot = -1;    // texture slots usable by this mesh (it has uv0 / tangents)
     int normal_slot = -1;
+    bool sss_uvs = false;  // has_sss_uvs
+    std::string name;
   };
+  void push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const scene::Instance& instance,
+                     int light_index, int object) const;
   struct Slot {
     vk::Image image;
     vk::SamplerHandle sampler;

@@ -31,7 +31,7 @@ void LightingPass::write_descriptors() {
       .uniform_buffer(0, r_.frame_uniforms)
       .uniform_buffer(1, r_.lights)
       .storage_buffer(2, r_.materials)
-      .combined_image(3, t.depth, nearest)
+      .combined_image(3, t.depth, nearest, kDepthReadLayout)
       .combined_image(4, t.normal, nearest)
       .combined_image(5, t.albedo, nearest)
       .combined_image(6, t.shadow, r_.samplers.shadow.get())

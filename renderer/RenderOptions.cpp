@@ -1,8 +1,68 @@
 #include "renderer/RenderOptions.h"
 
+#include <charconv>
+#include <system_error>
+
 namespace sss::renderer {
 
-std::string_view sss_mode_name(SssMode mode) { return mode == SssMode::Off ? "off" : "screen"; }
+std::string_view sss_mode_name(SssMode mode) {
+  switch (mode) {
+    case SssMode::Off: return "off";
+    case SssMode::Screen: return "screen";
+    case SssMode::Texture: return "texture";
+  }
+  return "screen";
+}
+
+std::optional<SssMode> parse_sss_mode(std::string_view name) {
+  for (SssMode m : {SssMode::Off, SssMode::Screen, SssMode::Texture})
+    if (sss_mode_name(m) == name) return m;
+  return std::nullopt;
+}
+
+std::string_view texture_update_name(TextureUpdate update) {
+  return update == TextureUpdate::EveryFrame ? "every-frame" : "on-change";
+}
+
+std::optional<TextureUpdate> parse_texture_update(std::string_view name) {
+  for (TextureUpdate u : {TextureUpdate::EveryFrame, TextureUpdate::OnChange})
+    if (texture_update_name(u) == name) return u;
+  return std::nullopt;
+}
+
+std::variant<TextureObjectOptions, std::string> parse_texture_object(std::string_view text,
+                                                                     TextureUpdate fallback) {
+  const std::string given(text);
+  const std::size_t eq = text.rfind('=');
+  if (eq == std::string_view::npos || eq == 0)
+    return "expected NAME=SIZE[:every-frame|on-change], got '" + given + "'";
+  TextureObjectOptions o;
+  o.name = std::string(text.substr(0, eq));
+  o.update = fallback;
+  std::string_view rest = text.substr(eq + 1);
+  if (const std::size_t colon = rest.find(':'); colon != std::string_view::npos) {
+    const auto update = parse_texture_update(rest.substr(colon + 1));
+    if (!update)
+      return "'" + given + "': the update policy must be every-frame or on-change, got '" +
+             std::string(rest.substr(colon + 1)) + "'";
+    o.update = *update;
+    rest = rest.substr(0, colon);
+  }
+  std::uint32_t size = 0;
+  const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), size);
+  if (ec != std::errc() || end != rest.data() + rest.size() || size < kMinTextureSize ||
+      size > kMaxTextureSize)
+    return "'" + given + "': the size must be an integer in " + std::to_string(kMinTextureSize) +
+           ".." + std::to_string(kMaxTextureSize) + ", got '" + std::string(rest) + "'";
+  o.size = size;
+  return o;
+}
+
+TextureObjectOptions texture_options_for(const RenderOptions& options, std::string_view name) {
+  for (const TextureObjectOptions& o : options.texture_objects)
+    if (o.name == name) return o;
+  return {std::string(name), options.texture_size, options.texture_update};
+}
 
 std::string_view sss_kind_name(SssKind kind) {
   return kind == SssKind::Separable ? "separable" : "gaussians";

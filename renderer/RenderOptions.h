@@ -5,17 +5,22 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
+#include <variant>
+#include <vector>
 
 namespace sss::renderer {
 
-// --sss: off (no spatial spread: the total reflectance applied locally) or screen space.
-// Texture space is issue 6.
-enum class SssMode { Off, Screen };
+// --sss: off (no spatial spread: the total reflectance applied locally), screen space, or
+// texture space (irradiance in each subsurface object's UV atlas, blurred there:
+// renderer/README.md "Texture space").
+enum class SssMode { Off, Screen, Texture };
 // --mode: Jimenez's separable kernel, or each Gaussian of the fit as its own blur.
 enum class SssKind { Separable, Gaussians };
 
-std::string_view sss_mode_name(SssMode mode);  // "off" | "screen"
+std::string_view sss_mode_name(SssMode mode);  // "off" | "screen" | "texture"
+std::optional<SssMode> parse_sss_mode(std::string_view name);
 std::string_view sss_kind_name(SssKind kind);  // "separable" | "gaussians"
 std::optional<SssKind> parse_sss_kind(std::string_view name);
 
@@ -35,6 +40,23 @@ std::string_view debug_view_name(DebugView view);  // "none" | "irradiance" | ..
 std::optional<DebugView> parse_debug_view(std::string_view name);
 std::span<const DebugView> all_debug_views();  // None first, in enum order
 
+// When the texture path recomputes an object's irradiance atlas: every frame, or only
+// when something it depends on changed (lights, materials, the object's texture size,
+// transmission, the shadow map size; not the camera: diffuse irradiance does not depend
+// on the view, so the frame is the same either way).
+enum class TextureUpdate { EveryFrame, OnChange };
+std::string_view texture_update_name(TextureUpdate update);  // "every-frame" | "on-change"
+std::optional<TextureUpdate> parse_texture_update(std::string_view name);
+
+// The texture path's settings for one object (a scene instance, by its node name).
+struct TextureObjectOptions {
+  std::string name;
+  std::uint32_t size = 1024;  // irradiance texture size, kMinTextureSize..kMaxTextureSize
+  TextureUpdate update = TextureUpdate::OnChange;
+};
+inline constexpr std::uint32_t kMinTextureSize = 256;
+inline constexpr std::uint32_t kMaxTextureSize = 2048;
+
 struct RenderOptions {
   std::uint32_t width = 640;
   std::uint32_t height = 360;
@@ -47,6 +69,19 @@ struct RenderOptions {
   // --transmission: light through thin parts of SSS materials, from the shadow maps'
   // thickness (renderer/README.md "Transmission"). Off: reflection only.
   bool transmission = true;
+  // --sss texture: each object's irradiance texture size and update policy, unless
+  // texture_objects names it (by instance name; the first entry that matches wins).
+  std::uint32_t texture_size = 1024;
+  TextureUpdate texture_update = TextureUpdate::OnChange;
+  std::vector<TextureObjectOptions> texture_objects;
 };
+
+// --texture-object NAME=SIZE[:every-frame|on-change]: one object's settings (the update
+// policy defaults to `fallback`); a readable error for anything else.
+std::variant<TextureObjectOptions, std::string> parse_texture_object(std::string_view text,
+                                                                     TextureUpdate fallback);
+
+// The texture settings of the instance called `name`.
+TextureObjectOptions texture_options_for(const RenderOptions& options, std::string_view name);
 
 }  // namespace sss::renderer

@@ -8,12 +8,16 @@
 #include "renderer/ShadowPass.h"
 #include "renderer/SssGaussiansPass.h"
 #include "renderer/SssSeparablePass.h"
+#include "renderer/SssTexturePass.h"
+#include "renderer/TextureGatherPass.h"
 #include "renderer/vk/Barrier.h"
 #include "renderer/vk/Check.h"
 #include "renderer/vk/Commands.h"
 #include "renderer/vk/Context.h"
 #include "renderer/vk/Sampler.h"
 #include "renderer/vk/Transfer.h"
+
+#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -36,6 +40,15 @@ void check_options(const RenderOptions& o) {
   check_size(o.width, o.height);
   if (o.shadow_map_size == 0 || o.shadow_map_size > 16384)
     throw std::invalid_argument("shadow map size must be 1..16384");
+  const auto check_texture = [](std::uint32_t size, const std::string& what) {
+    if (size < kMinTextureSize || size > kMaxTextureSize)
+      throw std::invalid_argument(what + " must be " + std::to_string(kMinTextureSize) + ".." +
+                                  std::to_string(kMaxTextureSize) + ", got " +
+                                  std::to_string(size));
+  };
+  check_texture(o.texture_size, "texture size");
+  for (const TextureObjectOptions& t : o.texture_objects)
+    check_texture(t.size, "texture size of object '" + t.name + "'");
 }
 
 const scene::Scene& checked(const scene::Scene& scene, const RenderOptions& o) {
@@ -66,6 +79,7 @@ Samplers make_samplers(const vk::Context& context) {
 
 int sss_mode_index(const RenderOptions& o) {
   if (o.sss == SssMode::Off) return 0;
+  if (o.sss == SssMode::Texture) return 3;
   return o.kind == SssKind::Separable ? 1 : 2;
 }
 
@@ -122,8 +136,15 @@ void Renderer::write_lights(LightSetup lights) {
   lights_ = std::move(lights);
   light_buffer_.write(&lights_.block, sizeof(lights_.block));
   shadow_->set_shadowed(lights_.shadowed);
+  if (texture_) texture_->invalidate();
+  collect_warnings();
+}
+
+void Renderer::collect_warnings() {
   warnings_ = lights_.warnings;
   warnings_.insert(warnings_.end(), scene_.warnings().begin(), scene_.warnings().end());
+  if (texture_)
+    warnings_.insert(warnings_.end(), texture_->warnings().begin(), texture_->warnings().end());
 }
 
 void Renderer::recreate_targets(std::uint32_t width, std::uint32_t height,
@@ -140,6 +161,7 @@ void Renderer::recreate_targets(std::uint32_t width, std::uint32_t height,
   if (gaussians_) gaussians_->write_descriptors();
   composite_->write_descriptors();
   if (debug_) debug_->write_descriptors();
+  if (texture_) texture_->write_descriptors();  // the shadow maps
 }
 
 void Renderer::update_sss_pass() {
@@ -155,6 +177,17 @@ void Renderer::update_sss_pass() {
     gaussians_ = std::make_unique<SssGaussiansPass>(resources_, gaussians);
   else
     gaussians_->set_gaussians(gaussians);
+  if (options_.sss != SssMode::Texture) {
+    gather_.reset();
+    texture_.reset();
+  } else if (!texture_) {
+    texture_ = std::make_unique<SssTexturePass>(resources_, options_);
+    gather_ = std::make_unique<TextureGatherPass>(resources_);
+  } else {
+    texture_->configure(options_);
+  }
+  if (gather_) gather_->set_objects(*texture_);
+  collect_warnings();
   update_debug_view();
 }
 
@@ -202,6 +235,7 @@ void Renderer::set_materials(const std::vector<scene::Material>& materials, Mate
   scene_.set_materials(materials);  // checks the count and the textures first
   materials_.replace(context_, std::move(data));
   update_sss_pass();
+  if (texture_) texture_->invalidate();
 }
 
 void Renderer::set_options(const RenderOptions& options) {
@@ -216,10 +250,12 @@ void Renderer::set_options(const RenderOptions& options) {
                      static_cast<std::uint32_t>(targets_.shadow_layers.size()),
                      options.shadow_map_size);
   if (data) materials_.replace(context_, std::move(*data));
+  const bool transmission_changed = options.transmission != options_.transmission;
   options_ = options;
   if (shadow_changed)
     write_lights(make_light_setup(scene_lights_, bounds_, options_.shadow_map_size));
   update_sss_pass();
+  if (texture_ && (transmission_changed || shadow_changed)) texture_->invalidate();
   write_frame_uniforms();
 }
 
@@ -274,7 +310,9 @@ void Renderer::record(VkCommandBuffer cmd) {
   vk::pipeline_barrier(cmd, {}, {}, {&cleared, 1});
 
   shadow_->record(cmd, timer_);
+  if (texture_) texture_->record(cmd, timer_, materials_.data());
   gbuffer_->record(cmd, timer_);
+  if (gather_) gather_->record(cmd, timer_);
   lighting_->record(cmd, timer_);
   if (separable_) separable_->record(cmd, timer_);
   if (gaussians_) gaussians_->record(cmd, timer_);
@@ -306,6 +344,24 @@ image::Image Renderer::read(const vk::Image& image, bool eight_bit) const {
       out.rgba[i] = float(std::to_integer<unsigned>(bytes[i])) / 255.0f;
   } else {
     std::memcpy(out.rgba.data(), bytes.data(), out.rgba.size() * sizeof(float));
+  }
+  return out;
+}
+
+image::Image Renderer::read_atlas(std::size_t object, Atlas which) const {
+  if (!rendered_) throw std::logic_error("Renderer: no frame rendered yet");
+  if (!texture_ || object >= texture_->objects().size())
+    throw std::out_of_range("Renderer::read_atlas: no texture-space object " +
+                            std::to_string(object));
+  const vk::Image& image = which == Atlas::Scattered    ? texture_->scattered(object)
+                           : which == Atlas::Irradiance ? texture_->irradiance(object)
+                                                        : texture_->stretch(object);
+  const std::vector<std::byte> bytes = vk::download_image(context_, image, VK_IMAGE_LAYOUT_GENERAL);
+  image::Image out(static_cast<int>(image.width()), static_cast<int>(image.height()));
+  for (std::size_t i = 0; i < out.rgba.size(); ++i) {
+    std::uint16_t h;
+    std::memcpy(&h, bytes.data() + 2 * i, sizeof h);
+    out.rgba[i] = glm::unpackHalf1x16(h);
   }
   return out;
 }

@@ -2,6 +2,9 @@
 // buffers and one object per pass, and orders them:
 //
 //   shadow -> gbuffer -> lighting -> [sss separable | sss gaussians] -> composite
+//   shadow -> sss texture -> gbuffer -> sss texture gather -> lighting -> composite
+//     (--sss texture: the objects' atlases are updated before the G-buffer, and the
+//     lookup draw fills `accum`, which the composite reads)
 //
 // Headless and windowed use are the same Renderer (the window only presents `display`).
 // render_frame() records one command buffer, submits it and waits for its fence, so
@@ -46,6 +49,8 @@ class SssSeparablePass;
 class SssGaussiansPass;
 class CompositePass;
 class DebugViewPass;
+class SssTexturePass;
+class TextureGatherPass;
 
 struct FrameStats {
   std::vector<vk::PassTime> passes;  // GPU ms per pass, in frame order
@@ -100,6 +105,14 @@ class Renderer {
   image::Image read_display() const;
 
   const MaterialData& materials() const { return materials_.data(); }
+  // The texture path (--sss texture), or null in the other modes: its objects and their
+  // update counts.
+  const SssTexturePass* texture_pass() const { return texture_.get(); }
+  // One texture-space object's atlas after the last frame (rgba, linear; alpha the UV
+  // island + 1, 0 on empty texels): its scattered irradiance Σ w_i (E * G_i), its dilated
+  // irradiance E, or its stretch map (mm per texel along u, v).
+  enum class Atlas { Scattered, Irradiance, Stretch };
+  image::Image read_atlas(std::size_t object, Atlas which) const;
   const std::vector<std::string>& warnings() const { return warnings_; }
   const RenderOptions& options() const { return options_; }
   const scene::Camera& camera() const { return camera_; }
@@ -117,6 +130,8 @@ class Renderer {
   void update_sss_pass();
   // debug_ and what the view needs from the other passes, for options_.debug_view.
   void update_debug_view();
+  // warnings_: the lights', the scene's and the texture path's.
+  void collect_warnings();
 
   const vk::Context& context_;
   RenderOptions options_;
@@ -141,6 +156,8 @@ class Renderer {
   std::unique_ptr<SssGaussiansPass> gaussians_;
   std::unique_ptr<CompositePass> composite_;
   std::unique_ptr<DebugViewPass> debug_;  // only while options_.debug_view != None
+  std::unique_ptr<SssTexturePass> texture_;     // only in SssMode::Texture
+  std::unique_ptr<TextureGatherPass> gather_;   // with texture_
   vk::CommandPoolHandle pool_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   vk::FenceHandle fence_;

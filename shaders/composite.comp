@@ -34,10 +34,7 @@ void main() {
   vec3 E = texelFetch(irradiance_tex, p, 0).rgb;
   vec3 diffuse;
   if (reflectance.w > 0.5) {
-    if (mode == 2)
-      diffuse = texelFetch(accumulated_tex, p, 0).rgb;
-    else
-      diffuse = reflectance.rgb * E;  // no spread: the total reflectance, locally
+    diffuse = scattered_diffuse(reflectance.rgb * E, texelFetch(accumulated_tex, p, 0));
   } else {
     diffuse = E;  // Lambert
   }

@@ -69,8 +69,8 @@ void main() {
     vec3 diffuse = E;  // Lambert
     if (scatters) {
       if (mode == 1) diffuse = texelFetch(scattered_tex, p, 0).rgb;
-      else if (mode == 2) diffuse = texelFetch(accumulated_tex, p, 0).rgb;
-      else diffuse = materials[id].reflectance.rgb * E;
+      else diffuse = scattered_diffuse(materials[id].reflectance.rgb * E,
+                                       texelFetch(accumulated_tex, p, 0));
     }
     c = display_encode(diffuse / kPi);
   } else if (view == 4) {  // kernel radius in pixels

@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace sss::app {
 
@@ -28,6 +29,9 @@ struct ViewerArgs {
   float exposure = 1.0f;
   std::string debug_view = "none";  // --debug-view: renderer::parse_debug_view names
   std::string transmission = "on";  // --transmission on | off
+  int texture_size = 1024;              // --texture-size (--sss texture)
+  std::string texture_update = "on-change";  // --texture-update every-frame | on-change
+  std::vector<std::string> texture_objects;  // --texture-object NAME=SIZE[:POLICY], repeatable
   bool stats = false;
   std::string device;
   std::string vsync = "on";  // window: on (FIFO) | off (MAILBOX / IMMEDIATE)

@@ -78,6 +78,14 @@ int main(int argc, char** argv) {
   app.add_option("--transmission", a.transmission,
                  "on | off: light through thin parts of SSS materials, thickness from the "
                  "shadow maps (default on)");
+  app.add_option("--texture-size", a.texture_size,
+                 "--sss texture: each object's irradiance texture size, 256..2048 (default 1024)");
+  app.add_option("--texture-update", a.texture_update,
+                 "--sss texture: every-frame | on-change (default; recompute an object's "
+                 "irradiance only when lights, materials or its size change)");
+  app.add_option("--texture-object", a.texture_objects,
+                 "--sss texture: NAME=SIZE[:every-frame|on-change] for one object (the scene "
+                 "node's name); repeatable");
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
   app.add_option("--vsync", a.vsync, "Window: on (FIFO, default) | off (MAILBOX or IMMEDIATE)");
@@ -120,12 +128,21 @@ int main(int argc, char** argv) {
     return usage("--test-edit: expected preset=NAME or model=NAME, got '" + a.test_edit + "'");
   if (a.vsync != "on" && a.vsync != "off")
     return usage("--vsync: expected on or off, got '" + a.vsync + "'");
-  if (a.sss == "texture") return usage("texture-space SSS is not available yet (issue 6)");
   renderer::RenderOptions options;
-  if (a.sss == "off") {
-    options.sss = renderer::SssMode::Off;
-  } else if (a.sss != "screen") {
-    return usage("--sss: expected off, screen or texture, got '" + a.sss + "'");
+  const auto sss_mode = renderer::parse_sss_mode(a.sss);
+  if (!sss_mode) return usage("--sss: expected off, screen or texture, got '" + a.sss + "'");
+  options.sss = *sss_mode;
+  if (a.texture_size < int(renderer::kMinTextureSize) || a.texture_size > int(renderer::kMaxTextureSize))
+    return usage("--texture-size: expected 256..2048, got " + std::to_string(a.texture_size));
+  options.texture_size = static_cast<std::uint32_t>(a.texture_size);
+  const auto update = renderer::parse_texture_update(a.texture_update);
+  if (!update)
+    return usage("--texture-update: expected every-frame or on-change, got '" + a.texture_update + "'");
+  options.texture_update = *update;
+  for (const std::string& t : a.texture_objects) {
+    auto object = renderer::parse_texture_object(t, options.texture_update);
+    if (auto* error = std::get_if<std::string>(&object)) return usage("--texture-object: " + *error);
+    options.texture_objects.push_back(std::get<renderer::TextureObjectOptions>(std::move(object)));
   }
   const auto kind = renderer::parse_sss_kind(a.mode);
   if (!kind) return usage("--mode: expected separable or gaussians, got '" + a.mode + "'");

@@ -16,6 +16,16 @@ vec3 srgb_encode(vec3 c) {
 // The display image's value for linear radiance L: exposure, filmic, sRGB encoding.
 vec3 display_encode(vec3 L) { return srgb_encode(filmic(L * frame.scale.w)); }
 
+// The diffuse light R * E of a subsurface pixel (before albedo) in the modes whose result
+// is in the accum target: gaussians (2) always, texture (3) where its lookup wrote
+// (alpha 1; an object left out of texture space has no spread); `local` (R * E at the
+// pixel, no spread) otherwise.
+vec3 scattered_diffuse(vec3 local, vec4 accumulated) {
+  int mode = int(frame.options.y);
+  if (mode == 2 || (mode == 3 && accumulated.a > 0.5)) return accumulated.rgb;
+  return local;
+}
+
 // L = albedo (1 - metallic) diffuse / pi + specular, where diffuse is R * E (scattered or
 // local) or E (Lambert); pre/post albedo takes the second sqrt(albedo) here.
 vec3 composite_radiance(int id, vec3 albedo, vec3 diffuse, vec3 specular) {

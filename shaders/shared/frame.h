@@ -21,8 +21,14 @@
 #define SSS_LIGHT_DIRECTIONAL 0
 #define SSS_LIGHT_POINT 1
 #define SSS_LIGHT_SPOT 2
-// Material textures (base colour, normal maps) bound in one frame; more are ignored.
-#define SSS_MAX_TEXTURES 32
+// Material textures (base colour, normal maps) bound in one frame; more are ignored. The
+// texture path's irradiance raster binds them beside the shadow maps (twice: compare and
+// depth), and lavapipe allows 32 samplers per stage.
+#define SSS_MAX_TEXTURES 30
+// Objects the texture path gives an irradiance atlas in one frame (more are drawn without
+// spread, with a warning); texels a seam dilation fills around each UV island.
+#define SSS_MAX_TEXTURE_OBJECTS 16
+#define SSS_TEXTURE_DILATE_TEXELS 4
 // G-buffer material id: albedo.a = (material index + 1) / 255; 0 is background.
 #define SSS_MAX_MATERIALS 254
 
@@ -45,7 +51,7 @@ struct FrameUniforms {
   vec4 forward;        // xyz camera view direction (world, unit)
   vec4 viewport;       // width, height, 1/width, 1/height
   vec4 scale;          // x mm per scene unit, y P[0][0], z |P[1][1]|, w exposure
-  vec4 options;        // x light count, y sss mode (0 off, 1 separable, 2 gaussians),
+  vec4 options;        // x light count, y sss mode (0 off, 1 separable, 2 gaussians, 3 texture),
                        // z surface key stride in mm (sss.glsl), w 1 = transmission
                        // through thin parts (lighting.comp; RenderOptions::transmission)
   vec4 rect;           // x0, y0, x1, y1 (pixels, x1 y1 exclusive): the screen passes
@@ -86,13 +92,18 @@ struct GpuMaterial {
 // Push constants.
 struct DrawPush {  // G-buffer and shadow draws (view_proj comes from the uniforms)
   mat4 model;
-  vec4 material;    // x material index, y light index (shadow draws), z roughness
+  vec4 material;    // x material index, y light index (shadow draws), z roughness, w the
+                    // texture path's object index (its irradiance atlas; -1 elsewhere)
   vec4 base_color;  // linear RGBA factor
   vec4 textures;    // x base colour slot, y normal map slot (-1: none), z normal scale
 };
 
 struct BlurPush {  // screen-space SSS passes
   vec4 direction;  // xy pixel direction (1,0) or (0,1); z Gaussian index; w 1 = first
+};
+
+struct TexturePush {  // texture-space SSS blur (sss_texture.comp)
+  vec4 direction;  // xy texel direction (1,0) = u or (0,1) = v; z Gaussian index; w material
 };
 
 struct DebugPush {  // debug view pass (debug_view.comp)
@@ -110,6 +121,7 @@ inline constexpr uint kMaxTextures = SSS_MAX_TEXTURES;
 inline constexpr uint kMaxLights = SSS_MAX_LIGHTS;
 inline constexpr uint kMaxTaps = SSS_MAX_TAPS;
 inline constexpr uint kMaxMaterials = SSS_MAX_MATERIALS;
+inline constexpr uint kMaxTextureObjects = SSS_MAX_TEXTURE_OBJECTS;
 }  // namespace sss::shader
 #endif
 

@@ -20,7 +20,11 @@ float shadow_thickness(sampler2DArray shadow_depth, int layer, GpuLight light, v
   vec2 uv = s.xy * 0.5 + 0.5;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || s.z > 1.0 || s.z < 0.0)
     return -1.0;
-  float d = textureLod(shadow_depth, vec3(uv, float(layer)), 0.0).r;
+  // texelFetch of the nearest texel (what a nearest-filter textureLod reads): lavapipe
+  // (Mesa 22.3) never finishes a fragment shader that calls textureLod on this array.
+  ivec2 size = textureSize(shadow_depth, 0).xy;
+  ivec2 texel = clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1);
+  float d = texelFetch(shadow_depth, ivec3(texel, layer), 0).r;
   if (d >= s.z) return 0.0;
   // The nearest surface's point on P's shadow-map ray (exact for orthographic and
   // perspective shadow matrices).

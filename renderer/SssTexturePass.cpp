@@ -1,0 +1,301 @@
+#include "renderer/SssTexturePass.h"
+
+#include "renderer/MaterialTable.h"
+#include "renderer/vk/Barrier.h"
+#include "renderer/vk/GraphicsPipeline.h"
+#include "renderer/vk/Pipeline.h"
+#include "renderer/vk/Rendering.h"
+#include "shaders/shared/frame.h"
+#include "shaders/sss_texture.comp.h"
+#include "shaders/texture_dilate.comp.h"
+#include "shaders/texture_irradiance.frag.h"
+#include "shaders/texture_irradiance.vert.h"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <stdexcept>
+#include <utility>
+
+namespace sss::renderer {
+
+namespace {
+
+constexpr VkFormat kAtlasFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+vk::DescriptorSetLayoutBuilder raster_bindings() {
+  const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
+  vk::DescriptorSetLayoutBuilder b;
+  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | fs)
+      .add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs, shader::kMaxTextures)
+      .add(2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, fs)
+      .add(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs)
+      .add(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs)
+      .add(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs);
+  return b;
+}
+
+vk::DescriptorSetLayoutBuilder dilate_bindings() {
+  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+  vk::DescriptorSetLayoutBuilder b;
+  b.add(0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
+      .add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
+      .add(2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
+      .add(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
+  return b;
+}
+
+vk::DescriptorSetLayoutBuilder blur_bindings() {
+  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+  vk::DescriptorSetLayoutBuilder b;
+  b.add(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)
+      .add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
+      .add(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
+      .add(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
+      .add(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
+  return b;
+}
+
+vk::PipelineHandle raster_pipeline(const vk::Context& context, VkPipelineLayout layout) {
+  vk::GraphicsPipelineBuilder builder;
+  builder.vertex_shader(sss_spv_texture_irradiance_vert)
+      .fragment_shader(sss_spv_texture_irradiance_frag)
+      .color(kAtlasFormat)
+      .color(kAtlasFormat)
+      .cull(VK_CULL_MODE_NONE);
+  add_vertex_input(builder);
+  return builder.build(context, layout, "texture irradiance");
+}
+
+// Whatever touched the atlases before (the previous frame's lookups, their creation).
+constexpr vk::Scope kBefore{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                            VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT};
+
+}  // namespace
+
+// One object's atlas textures, all rgba16f in GENERAL. a and b hold the raster's raw
+// irradiance and stretch, then serve as the blur's ping-pong pair.
+struct SssTexturePass::Textures {
+  std::uint32_t size = 0;
+  vk::Image a, b, irradiance, stretch, temp, scattered;
+  bool initialized = false;  // moved out of UNDEFINED
+  bool dirty = true;
+  VkDescriptorSet dilate = VK_NULL_HANDLE;
+  VkDescriptorSet h_irradiance = VK_NULL_HANDLE, h_a = VK_NULL_HANDLE, h_b = VK_NULL_HANDLE;
+  VkDescriptorSet v_a = VK_NULL_HANDLE, v_b = VK_NULL_HANDLE;
+
+  Textures(const vk::Context& context, std::uint32_t n, const std::string& name) : size(n) {
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                    VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    const auto make = [&](const char* what, VkImageUsageFlags extra) {
+      return vk::Image(context, {n, n, kAtlasFormat, usage | extra, name + " atlas " + what});
+    };
+    a = make("a", VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+    b = make("b", VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+    irradiance = make("irradiance", 0);
+    stretch = make("stretch", 0);
+    temp = make("temp", 0);
+    scattered = make("scattered", 0);
+  }
+  std::array<const vk::Image*, 6> all() const { return {&a, &b, &irradiance, &stretch, &temp, &scattered}; }
+};
+
+SssTexturePass::SssTexturePass(const FrameResources& resources, const RenderOptions& options)
+    : r_(resources),
+      raster_set_layout_(raster_bindings().build(r_.context, "texture irradiance")),
+      raster_layout_(vk::create_pipeline_layout(
+          r_.context, raster_set_layout_.get(), sizeof(shader::DrawPush),
+          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, "texture irradiance")),
+      raster_pipeline_(raster_pipeline(r_.context, raster_layout_.get())),
+      raster_pool_(r_.context, raster_bindings(), 1, "texture irradiance"),
+      dilate_(r_.context, dilate_bindings(), sss_spv_texture_dilate_comp, 0,
+              shader::kMaxTextureObjects, "texture dilate"),
+      blur_(r_.context, blur_bindings(), sss_spv_sss_texture_comp, sizeof(shader::TexturePush),
+            5 * shader::kMaxTextureObjects, kName) {
+  raster_set_ = raster_pool_.allocate(raster_set_layout_.get());
+  write_descriptors();
+  configure(options);
+}
+
+SssTexturePass::~SssTexturePass() = default;
+
+void SssTexturePass::write_descriptors() {
+  vk::DescriptorWriter writer(raster_set_);
+  writer.uniform_buffer(0, r_.frame_uniforms);
+  const std::vector<VkDescriptorImageInfo> textures = r_.scene.texture_descriptors();
+  for (uint32_t i = 0; i < textures.size(); ++i)
+    writer.image(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures[i], i);
+  writer.uniform_buffer(2, r_.lights)
+      .storage_buffer(3, r_.materials)
+      .combined_image(4, r_.targets.shadow, r_.samplers.shadow.get())
+      .combined_image(5, r_.targets.shadow, r_.samplers.nearest.get())
+      .update(r_.context);
+}
+
+void SssTexturePass::configure(const RenderOptions& options) {
+  std::vector<Object> objects;
+  warnings_.clear();
+  const std::vector<scene::Instance>& instances = r_.scene.instances();
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const std::uint32_t mesh = instances[i].mesh;
+    const std::uint32_t material = r_.scene.mesh_material(mesh);
+    if (material >= r_.scene.materials().size() || !r_.scene.materials()[material].sss.enabled)
+      continue;
+    const std::string& name = instances[i].node;
+    if (!r_.scene.has_sss_uvs(mesh)) {
+      warnings_.push_back("object " + name + " (mesh " + r_.scene.mesh_name(mesh) +
+                          ") has no usable UVs for texture-space SSS: drawn without spread");
+      continue;
+    }
+    if (objects.size() == shader::kMaxTextureObjects) {
+      warnings_.push_back("object " + name + ": more than " +
+                          std::to_string(shader::kMaxTextureObjects) +
+                          " objects in texture space; drawn without spread");
+      continue;
+    }
+    TextureObjectOptions o = texture_options_for(options, name);
+    o.size = std::clamp(o.size, kMinTextureSize, kMaxTextureSize);
+    objects.push_back({i, material, o, 0});
+  }
+
+  // Keep the textures of an object that stays at the same size; the GPU is idle between
+  // frames (Renderer calls this between render_frame calls), so sets can be rewritten.
+  std::vector<Textures> textures;
+  textures.reserve(objects.size());
+  for (Object& o : objects) {
+    auto same = std::find_if(objects_.begin(), objects_.end(), [&](const Object& old) {
+      return old.instance == o.instance && old.options.size == o.options.size;
+    });
+    if (same != objects_.end()) {
+      const std::size_t k = static_cast<std::size_t>(same - objects_.begin());
+      o.updates = same->updates;
+      textures.push_back(std::move(textures_[k]));
+      objects_[k].options.size = 0;  // taken
+    } else {
+      textures.emplace_back(r_.context, o.options.size, o.options.name);
+    }
+  }
+  objects_ = std::move(objects);
+  textures_ = std::move(textures);
+
+  dilate_.pool.reset();
+  blur_.pool.reset();
+  const VkSampler nearest = r_.samplers.nearest.get();
+  const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL;
+  for (Textures& t : textures_) {
+    t.dilate = dilate_.allocate();
+    vk::DescriptorWriter(t.dilate)
+        .combined_image(0, t.a, nearest, general)
+        .combined_image(1, t.b, nearest, general)
+        .storage_image(2, t.irradiance)
+        .storage_image(3, t.stretch)
+        .update(r_.context);
+    const auto write = [&](VkDescriptorSet& set, const vk::Image& in, const vk::Image& out) {
+      set = blur_.allocate();
+      vk::DescriptorWriter(set)
+          .storage_buffer(0, r_.materials)
+          .combined_image(1, t.stretch, nearest, general)
+          .combined_image(2, in, nearest, general)
+          .storage_image(3, out)
+          .storage_image(4, t.scattered)
+          .update(r_.context);
+    };
+    write(t.h_irradiance, t.irradiance, t.temp);
+    write(t.h_a, t.a, t.temp);
+    write(t.h_b, t.b, t.temp);
+    write(t.v_a, t.temp, t.a);
+    write(t.v_b, t.temp, t.b);
+  }
+}
+
+void SssTexturePass::invalidate() {
+  for (Textures& t : textures_) t.dirty = true;
+}
+
+int SssTexturePass::object_of_instance(std::size_t instance) const {
+  for (std::size_t i = 0; i < objects_.size(); ++i)
+    if (objects_[i].instance == instance) return static_cast<int>(i);
+  return -1;
+}
+
+const vk::Image& SssTexturePass::scattered(std::size_t object) const {
+  return textures_.at(object).scattered;
+}
+const vk::Image& SssTexturePass::irradiance(std::size_t object) const {
+  return textures_.at(object).irradiance;
+}
+const vk::Image& SssTexturePass::stretch(std::size_t object) const {
+  return textures_.at(object).stretch;
+}
+
+void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& object, int count) {
+  const vk::Scope general_access{
+      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT |
+          VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+  std::vector<VkImageMemoryBarrier2> barriers;
+  for (const vk::Image* image : t.all())
+    barriers.push_back(vk::image_barrier(*image,
+                                         t.initialized ? VK_IMAGE_LAYOUT_GENERAL
+                                                       : VK_IMAGE_LAYOUT_UNDEFINED,
+                                         VK_IMAGE_LAYOUT_GENERAL, kBefore, general_access));
+  vk::pipeline_barrier(cmd, barriers);
+  t.initialized = true;
+
+  // 1. Raster: E + island into a, stretch into b.
+  std::array<vk::ColorTarget, 2> colors = {vk::ColorTarget(t.a.view()), vk::ColorTarget(t.b.view())};
+  for (vk::ColorTarget& c : colors) c.layout = VK_IMAGE_LAYOUT_GENERAL;
+  vk::begin_rendering(cmd, {t.size, t.size}, colors);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, raster_pipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, raster_layout_.get(), 0, 1,
+                          &raster_set_, 0, nullptr);
+  r_.scene.draw_instance(cmd, raster_layout_.get(), object.instance, -1);
+  vk::end_rendering(cmd);
+  const VkMemoryBarrier2 rastered = vk::memory_barrier(
+      {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT},
+      {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT});
+  vk::pipeline_barrier(cmd, {}, {}, {&rastered, 1});
+
+  // 2. Dilation: a, b -> irradiance, stretch.
+  dilate_.bind(cmd, t.dilate);
+  ComputeProgram::dispatch(cmd, t.size, t.size);
+  compute_barrier(cmd);
+
+  // 3. The Gaussians, incrementally: u into temp, v into a / b alternately (+ scattered).
+  for (int g = 0; g < count; ++g) {
+    const bool into_a = g % 2 == 0;
+    const VkDescriptorSet horizontal = g == 0 ? t.h_irradiance : (into_a ? t.h_b : t.h_a);
+    const VkDescriptorSet vertical = into_a ? t.v_a : t.v_b;
+    for (int pass = 0; pass < 2; ++pass) {
+      shader::TexturePush push;
+      push.direction = {pass == 0 ? 1.0f : 0.0f, pass == 0 ? 0.0f : 1.0f, float(g),
+                        float(object.material)};
+      blur_.bind(cmd, pass == 0 ? horizontal : vertical);
+      vkCmdPushConstants(cmd, blur_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
+                         &push);
+      ComputeProgram::dispatch(cmd, t.size, t.size);
+      compute_barrier(cmd);
+    }
+  }
+}
+
+void SssTexturePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer,
+                            const MaterialData& materials) {
+  auto scope = timer.scope(cmd, kName);
+  for (std::size_t i = 0; i < objects_.size(); ++i) {
+    Textures& t = textures_[i];
+    if (!t.dirty && objects_[i].options.update == TextureUpdate::OnChange) continue;
+    const std::uint32_t m = objects_[i].material;
+    update(cmd, t, objects_[i], m < materials.gpu.size() ? int(materials.gpu[m].surface.w) : 0);
+    t.dirty = false;
+    ++objects_[i].updates;
+  }
+  // The lookups (TextureGatherPass, fragment shader) after this frame's updates, and after
+  // earlier frames' for objects not updated now.
+  const VkMemoryBarrier2 done = vk::memory_barrier(
+      {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT},
+      {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT});
+  vk::pipeline_barrier(cmd, {}, {}, {&done, 1});
+}
+
+}  // namespace sss::renderer

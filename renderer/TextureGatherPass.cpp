@@ -1,0 +1,96 @@
+#include "renderer/TextureGatherPass.h"
+
+#include "renderer/SssTexturePass.h"
+#include "renderer/vk/Barrier.h"
+#include "renderer/vk/GraphicsPipeline.h"
+#include "renderer/vk/Pipeline.h"
+#include "renderer/vk/Rendering.h"
+#include "shaders/gbuffer.vert.h"
+#include "shaders/shared/frame.h"
+#include "shaders/texture_gather.frag.h"
+
+#include <cstddef>
+
+namespace sss::renderer {
+
+namespace {
+vk::DescriptorSetLayoutBuilder bindings() {
+  vk::DescriptorSetLayoutBuilder b;
+  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT)
+      .add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT,
+           shader::kMaxTextureObjects);
+  return b;
+}
+vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout layout) {
+  vk::GraphicsPipelineBuilder builder;
+  builder.vertex_shader(sss_spv_gbuffer_vert)
+      .fragment_shader(sss_spv_texture_gather_frag)
+      .color(kLightingFormat)
+      .depth(kDepthFormat, vk::DepthTest::ReadOnly, VK_COMPARE_OP_LESS_OR_EQUAL)
+      .cull(VK_CULL_MODE_NONE);
+  add_vertex_input(builder);
+  return builder.build(context, layout, TextureGatherPass::kName);
+}
+}  // namespace
+
+TextureGatherPass::TextureGatherPass(const FrameResources& resources)
+    : r_(resources),
+      set_layout_(bindings().build(r_.context, kName)),
+      layout_(vk::create_pipeline_layout(r_.context, set_layout_.get(), sizeof(shader::DrawPush),
+                                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                         kName)),
+      pipeline_(build_pipeline(r_.context, layout_.get())),
+      pool_(r_.context, bindings(), 1, kName) {
+  set_ = pool_.allocate(set_layout_.get());
+  vk::DescriptorWriter(set_).uniform_buffer(0, r_.frame_uniforms).update(r_.context);
+}
+
+void TextureGatherPass::set_objects(const SssTexturePass& texture) {
+  draws_.clear();
+  vk::DescriptorWriter writer(set_);
+  const VkSampler linear = r_.samplers.linear.get();
+  const auto& objects = texture.objects();
+  for (std::uint32_t i = 0; i < shader::kMaxTextureObjects; ++i) {
+    // Unused slots repeat object 0 (never read: no draw pushes their index).
+    if (objects.empty()) break;
+    const std::size_t o = i < objects.size() ? i : 0;
+    writer.image(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                 texture.scattered(o).descriptor(VK_IMAGE_LAYOUT_GENERAL, linear), i);
+  }
+  for (std::size_t i = 0; i < objects.size(); ++i) draws_.emplace_back(objects[i].instance, int(i));
+  writer.update(r_.context);
+}
+
+void TextureGatherPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
+  auto scope = timer.scope(cmd, kName);
+  const FrameTargets& t = r_.targets;
+  // accum: from the frame's first barrier (compute scope) to a colour attachment in GENERAL.
+  const vk::Scope attachment{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                             VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+  vk::pipeline_barrier(cmd, {vk::image_barrier(t.accum, VK_IMAGE_LAYOUT_GENERAL,
+                                               VK_IMAGE_LAYOUT_GENERAL,
+                                               {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+                                                    VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                                                VK_ACCESS_2_NONE},
+                                               attachment)});
+  vk::ColorTarget color(t.accum.view());
+  color.layout = VK_IMAGE_LAYOUT_GENERAL;
+  vk::DepthTarget depth(t.depth.view());
+  depth.load = VK_ATTACHMENT_LOAD_OP_LOAD;
+  depth.store = VK_ATTACHMENT_STORE_OP_NONE;
+  depth.layout = kDepthReadLayout;
+  vk::begin_rendering(cmd, t.depth.extent(), {&color, 1}, &depth);
+  if (!draws_.empty()) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_, 0,
+                            nullptr);
+    for (const auto& [instance, object] : draws_)
+      r_.scene.draw_instance(cmd, layout_.get(), instance, object);
+  }
+  vk::end_rendering(cmd);
+  const VkMemoryBarrier2 written = vk::memory_barrier(
+      attachment, {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT});
+  vk::pipeline_barrier(cmd, {}, {}, {&written, 1});
+}
+
+}  // namespace sss::renderer
