@@ -8,6 +8,7 @@
 #include "shaders/shared/frame.h"
 #include "shaders/sss_texture.comp.h"
 #include "shaders/texture_dilate.comp.h"
+#include "shaders/texture_lighting.comp.h"
 #include "shaders/texture_irradiance.frag.h"
 #include "shaders/texture_irradiance.vert.h"
 
@@ -27,11 +28,18 @@ vk::DescriptorSetLayoutBuilder raster_bindings() {
   const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
   vk::DescriptorSetLayoutBuilder b;
   b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | fs)
-      .add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs, shader::kMaxTextures)
-      .add(2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, fs)
-      .add(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs)
-      .add(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs)
-      .add(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs);
+      .add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs, shader::kMaxTextures);
+  return b;
+}
+
+vk::DescriptorSetLayoutBuilder lighting_bindings() {
+  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+  vk::DescriptorSetLayoutBuilder b;
+  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
+      .add(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
+      .add(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
+  for (uint32_t i = 3; i <= 7; ++i) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
+  b.add(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
   return b;
 }
 
@@ -60,8 +68,10 @@ vk::PipelineHandle raster_pipeline(const vk::Context& context, VkPipelineLayout 
   vk::GraphicsPipelineBuilder builder;
   builder.vertex_shader(sss_spv_texture_irradiance_vert)
       .fragment_shader(sss_spv_texture_irradiance_frag)
-      .color(kAtlasFormat)
-      .color(kAtlasFormat)
+      .color(VK_FORMAT_R32G32B32A32_SFLOAT)  // position
+      .color(kAtlasFormat)                   // normal
+      .color(kAtlasFormat)                   // albedo
+      .color(kAtlasFormat)                   // stretch
       .cull(VK_CULL_MODE_NONE);
   add_vertex_input(builder);
   return builder.build(context, layout, "texture irradiance");
@@ -73,23 +83,28 @@ constexpr vk::Scope kBefore{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
 
 }  // namespace
 
-// One object's atlas textures, all rgba16f in GENERAL. a and b hold the raster's raw
-// irradiance and stretch, then serve as the blur's ping-pong pair.
+// One object's atlas textures, in GENERAL, rgba16f but for the position. The raster
+// writes position, normal, a (albedo) and b (raw stretch); the lighting writes temp (raw
+// E); the dilation writes irradiance and stretch; then a and b are the blur's ping-pong
+// pair and temp its intermediate.
 struct SssTexturePass::Textures {
   std::uint32_t size = 0;
-  vk::Image a, b, irradiance, stretch, temp, scattered;
+  vk::Image position, normal, a, b, irradiance, stretch, temp, scattered;
   bool initialized = false;  // moved out of UNDEFINED
   bool dirty = true;
-  VkDescriptorSet dilate = VK_NULL_HANDLE;
+  VkDescriptorSet lighting = VK_NULL_HANDLE, dilate = VK_NULL_HANDLE;
   VkDescriptorSet h_irradiance = VK_NULL_HANDLE, h_a = VK_NULL_HANDLE, h_b = VK_NULL_HANDLE;
   VkDescriptorSet v_a = VK_NULL_HANDLE, v_b = VK_NULL_HANDLE;
 
   Textures(const vk::Context& context, std::uint32_t n, const std::string& name) : size(n) {
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                     VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    const auto make = [&](const char* what, VkImageUsageFlags extra) {
-      return vk::Image(context, {n, n, kAtlasFormat, usage | extra, name + " atlas " + what});
+    const auto make = [&](const char* what, VkImageUsageFlags extra,
+                          VkFormat format = kAtlasFormat) {
+      return vk::Image(context, {n, n, format, usage | extra, name + " atlas " + what});
     };
+    position = make("position", VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_FORMAT_R32G32B32A32_SFLOAT);
+    normal = make("normal", VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
     a = make("a", VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
     b = make("b", VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
     irradiance = make("irradiance", 0);
@@ -97,7 +112,9 @@ struct SssTexturePass::Textures {
     temp = make("temp", 0);
     scattered = make("scattered", 0);
   }
-  std::array<const vk::Image*, 6> all() const { return {&a, &b, &irradiance, &stretch, &temp, &scattered}; }
+  std::array<const vk::Image*, 8> all() const {
+    return {&position, &normal, &a, &b, &irradiance, &stretch, &temp, &scattered};
+  }
 };
 
 SssTexturePass::SssTexturePass(const FrameResources& resources, const RenderOptions& options)
@@ -108,6 +125,8 @@ SssTexturePass::SssTexturePass(const FrameResources& resources, const RenderOpti
           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, "texture irradiance")),
       raster_pipeline_(raster_pipeline(r_.context, raster_layout_.get())),
       raster_pool_(r_.context, raster_bindings(), 1, "texture irradiance"),
+      lighting_(r_.context, lighting_bindings(), sss_spv_texture_lighting_comp,
+                sizeof(shader::TexturePush), shader::kMaxTextureObjects, "texture lighting"),
       dilate_(r_.context, dilate_bindings(), sss_spv_texture_dilate_comp, 0,
               shader::kMaxTextureObjects, "texture dilate"),
       blur_(r_.context, blur_bindings(), sss_spv_sss_texture_comp, sizeof(shader::TexturePush),
@@ -125,10 +144,23 @@ void SssTexturePass::write_descriptors() {
   const std::vector<VkDescriptorImageInfo> textures = r_.scene.texture_descriptors();
   for (uint32_t i = 0; i < textures.size(); ++i)
     writer.image(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures[i], i);
-  writer.uniform_buffer(2, r_.lights)
-      .storage_buffer(3, r_.materials)
-      .combined_image(4, r_.targets.shadow, r_.samplers.shadow.get())
-      .combined_image(5, r_.targets.shadow, r_.samplers.nearest.get())
+  writer.update(r_.context);
+  for (Textures& t : textures_) write_lighting(t);
+}
+
+void SssTexturePass::write_lighting(Textures& t) {
+  const VkSampler nearest = r_.samplers.nearest.get();
+  const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL;
+  vk::DescriptorWriter(t.lighting)
+      .uniform_buffer(0, r_.frame_uniforms)
+      .uniform_buffer(1, r_.lights)
+      .storage_buffer(2, r_.materials)
+      .combined_image(3, t.position, nearest, general)
+      .combined_image(4, t.normal, nearest, general)
+      .combined_image(5, t.a, nearest, general)
+      .combined_image(6, r_.targets.shadow, r_.samplers.shadow.get())
+      .combined_image(7, r_.targets.shadow, nearest)
+      .storage_image(8, t.temp)
       .update(r_.context);
 }
 
@@ -178,14 +210,17 @@ void SssTexturePass::configure(const RenderOptions& options) {
   objects_ = std::move(objects);
   textures_ = std::move(textures);
 
+  lighting_.pool.reset();
   dilate_.pool.reset();
   blur_.pool.reset();
   const VkSampler nearest = r_.samplers.nearest.get();
   const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL;
   for (Textures& t : textures_) {
+    t.lighting = lighting_.allocate();
+    write_lighting(t);
     t.dilate = dilate_.allocate();
     vk::DescriptorWriter(t.dilate)
-        .combined_image(0, t.a, nearest, general)
+        .combined_image(0, t.temp, nearest, general)
         .combined_image(1, t.b, nearest, general)
         .storage_image(2, t.irradiance)
         .storage_image(3, t.stretch)
@@ -242,8 +277,10 @@ void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& obje
   vk::pipeline_barrier(cmd, barriers);
   t.initialized = true;
 
-  // 1. Raster: E + island into a, stretch into b.
-  std::array<vk::ColorTarget, 2> colors = {vk::ColorTarget(t.a.view()), vk::ColorTarget(t.b.view())};
+  // 1. Raster: the atlas G-buffer (position + island, normal, albedo) and the stretch.
+  std::array<vk::ColorTarget, 4> colors = {vk::ColorTarget(t.position.view()),
+                                           vk::ColorTarget(t.normal.view()),
+                                           vk::ColorTarget(t.a.view()), vk::ColorTarget(t.b.view())};
   for (vk::ColorTarget& c : colors) c.layout = VK_IMAGE_LAYOUT_GENERAL;
   vk::begin_rendering(cmd, {t.size, t.size}, colors);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, raster_pipeline_.get());
@@ -256,12 +293,20 @@ void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& obje
       {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT});
   vk::pipeline_barrier(cmd, {}, {}, {&rastered, 1});
 
-  // 2. Dilation: a, b -> irradiance, stretch.
+  // 2. Lighting: E + island into temp.
+  const shader::TexturePush material{{0.0f, 0.0f, 0.0f, float(object.material)}};
+  lighting_.bind(cmd, t.lighting);
+  vkCmdPushConstants(cmd, lighting_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                     sizeof(material), &material);
+  ComputeProgram::dispatch(cmd, t.size, t.size);
+  compute_barrier(cmd);
+
+  // 3. Dilation: temp (E), b (stretch) -> irradiance, stretch.
   dilate_.bind(cmd, t.dilate);
   ComputeProgram::dispatch(cmd, t.size, t.size);
   compute_barrier(cmd);
 
-  // 3. The Gaussians, incrementally: u into temp, v into a / b alternately (+ scattered).
+  // 4. The Gaussians, incrementally: u into temp, v into a / b alternately (+ scattered).
   for (int g = 0; g < count; ++g) {
     const bool into_a = g % 2 == 0;
     const VkDescriptorSet horizontal = g == 0 ? t.h_irradiance : (into_a ? t.h_b : t.h_a);

@@ -2,12 +2,14 @@
 // ch. 14; DESIGN.md §5). Every instance whose material scatters and whose mesh has usable
 // SSS UVs (GpuScene::has_sss_uvs) is an object with its own atlas textures, at its
 // TextureObjectOptions::size. Updating an object:
-//   1. raster: its triangles drawn at their atlas UVs (texture_irradiance.*): irradiance E
-//      with the frame's lights, shadow maps and transmission (shared/shading.glsl), the
-//      UV island per texel, and the stretch map (mm per texel along u and v);
-//   2. dilation (texture_dilate.comp): empty texels near an island take its border's
+//   1. raster: its triangles drawn at their atlas UVs (texture_irradiance.*): an atlas
+//      G-buffer (world position, UV island, normal, base colour) and the stretch map (mm
+//      per texel along u and v);
+//   2. lighting (texture_lighting.comp): irradiance E per texel with the frame's lights,
+//      shadow maps and transmission (shared/shading.glsl, as the screen path);
+//   3. dilation (texture_dilate.comp): empty texels near an island take its border's
 //      values, so nothing black is blurred or looked up along seams;
-//   3. blur (sss_texture.comp): the fit's Gaussians incrementally (v_i - v_{i-1}), each
+//   4. blur (sss_texture.comp): the fit's Gaussians incrementally (v_i - v_{i-1}), each
 //      separable in u then v, scaled per texel by the stretch map, accumulating
 //      Σ w_i (E * G_i) into the object's `scattered` texture.
 // TextureGatherPass looks `scattered` up at each pixel. An object updates in the frame
@@ -50,7 +52,7 @@ class SssTexturePass {
   void configure(const RenderOptions& options);
   // Lights, materials, transmission or shadow maps changed: every object updates next frame.
   void invalidate();
-  // Points the raster's set at the current shadow maps (after FrameTargets were recreated).
+  // Points the lighting sets at the current shadow maps (after FrameTargets were recreated).
   void write_descriptors();
   // Updates the objects that need it; `materials` gives each one's Gaussian count.
   void record(VkCommandBuffer cmd, vk::GpuTimer& timer, const MaterialData& materials);
@@ -70,6 +72,7 @@ class SssTexturePass {
  private:
   struct Textures;
   void update(VkCommandBuffer cmd, Textures& t, const Object& object, int gaussians);
+  void write_lighting(Textures& t);  // t's lighting set: the frame's buffers and shadow maps
 
   const FrameResources& r_;
   vk::DescriptorSetLayoutHandle raster_set_layout_;
@@ -77,6 +80,7 @@ class SssTexturePass {
   vk::PipelineHandle raster_pipeline_;
   vk::DescriptorPool raster_pool_;
   VkDescriptorSet raster_set_ = VK_NULL_HANDLE;
+  ComputeProgram lighting_;
   ComputeProgram dilate_;
   ComputeProgram blur_;
   std::vector<Object> objects_;

@@ -9,7 +9,7 @@
 
 layout(local_size_x = SSS_WORKGROUP_2D_X, local_size_y = SSS_WORKGROUP_2D_Y) in;
 
-layout(set = 0, binding = 0) uniform sampler2D raw_irradiance_tex;  // rgb E, a island + 1
+layout(set = 0, binding = 0) uniform sampler2D raw_irradiance_tex;  // rgb E, a island + 1 (0 empty)
 layout(set = 0, binding = 1) uniform sampler2D raw_stretch_tex;
 layout(set = 0, binding = 2, rgba16f) uniform writeonly image2D irradiance_img;
 layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D stretch_img;

@@ -32,6 +32,7 @@ struct ViewerArgs {
   int texture_size = 1024;              // --texture-size (--sss texture)
   std::string texture_update = "on-change";  // --texture-update every-frame | on-change
   std::vector<std::string> texture_objects;  // --texture-object NAME=SIZE[:POLICY], repeatable
+  std::string atlas_out;  // --atlas-out PREFIX: headless --sss texture writes the atlases
   bool stats = false;
   std::string device;
   std::string vsync = "on";  // window: on (FIFO) | off (MAILBOX / IMMEDIATE)

@@ -10,6 +10,7 @@
 #include "Window.h"
 
 #include "renderer/Renderer.h"
+#include "renderer/SssTexturePass.h"
 #include "renderer/image/AtomicFile.h"
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/vk/Context.h"
@@ -45,6 +46,21 @@ std::string debug_view_help() {
          "thickness: mm through the object along light 0, viridis 0 .. the scene's bounding "
          "diameter; uv-stretch: red = mm per unit u, green = mm per unit v, 0 .. pi x the "
          "bounding diameter, grey without UVs";
+}
+
+void write_atlases(const renderer::Renderer& r, const std::string& prefix) {
+  using Atlas = renderer::Renderer::Atlas;
+  if (r.texture_pass() == nullptr) throw std::invalid_argument("--atlas-out needs --sss texture");
+  const auto& objects = r.texture_pass()->objects();
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    for (const auto& [which, name] : {std::pair{Atlas::Irradiance, "irradiance"},
+                                      std::pair{Atlas::Scattered, "scattered"},
+                                      std::pair{Atlas::Stretch, "stretch"}}) {
+      const std::string path = prefix + "-" + objects[i].options.name + "-" + name + ".exr";
+      image::write_exr(path, r.read_atlas(i, which));
+      std::printf("wrote %s\n", path.c_str());
+    }
+  }
 }
 
 void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
@@ -86,6 +102,10 @@ int main(int argc, char** argv) {
   app.add_option("--texture-object", a.texture_objects,
                  "--sss texture: NAME=SIZE[:every-frame|on-change] for one object (the scene "
                  "node's name); repeatable");
+  app.add_option("--atlas-out", a.atlas_out,
+                 "Headless --sss texture: also write each object's atlases as linear EXR, "
+                 "PREFIX-NAME-irradiance.exr (E), -scattered.exr (sum of w_i E*G_i) and "
+                 "-stretch.exr (mm per texel along u, v); alpha is the UV island + 1");
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
   app.add_option("--vsync", a.vsync, "Window: on (FIFO, default) | off (MAILBOX or IMMEDIATE)");
@@ -184,6 +204,7 @@ int main(int argc, char** argv) {
       cpu_total += r.stats().cpu_ms;
     }
     write_frame(r, a.out);
+    if (!a.atlas_out.empty()) write_atlases(r, a.atlas_out);
     if (a.stats) print_stats(r, a.frames, cpu_total);
   } catch (const std::invalid_argument& e) {
     return usage(e.what());
