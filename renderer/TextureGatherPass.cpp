@@ -14,6 +14,9 @@
 namespace sss::renderer {
 
 namespace {
+constexpr float kLookupBiasUnits = 16.0f;
+constexpr float kLookupBiasSlope = 2.0f;
+
 vk::DescriptorSetLayoutBuilder bindings() {
   vk::DescriptorSetLayoutBuilder b;
   b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT)
@@ -27,6 +30,7 @@ vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout l
       .fragment_shader(sss_spv_texture_gather_frag)
       .color(kLightingFormat)
       .depth(kDepthFormat, vk::DepthTest::ReadOnly, VK_COMPARE_OP_LESS_OR_EQUAL)
+      .dynamic_depth_bias()
       .cull(VK_CULL_MODE_NONE);
   add_vertex_input(builder);
   return builder.build(context, layout, TextureGatherPass::kName);
@@ -84,6 +88,11 @@ void TextureGatherPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_, 0,
                             nullptr);
+    // The lookup's depth is not bit-identical to the G-buffer's (lavapipe compiles the
+    // same vertex shader per pipeline; `invariant` draws a Mesa warning), so it is pulled
+    // toward the camera by a few depth units and more at grazing slopes: the visible
+    // surface passes, what lies behind it (farther than the bias) does not.
+    vkCmdSetDepthBias(cmd, -kLookupBiasUnits, 0.0f, -kLookupBiasSlope);
     for (const auto& [instance, object] : draws_)
       r_.scene.draw_instance(cmd, layout_.get(), instance, object);
   }

@@ -1,7 +1,8 @@
 // TextureGatherPass ("sss texture gather"): the texture path's final lookup. Draws each
 // texture-space object again with gbuffer.vert and a LESS_OR_EQUAL test (no write) on the
-// G-buffer's depth, which only the G-buffer's own fragments pass (the same vertex shader
-// on the same vertices; nothing lies in front of the stored depth), reading the object's scattered irradiance
+// G-buffer's depth, pulled toward the camera by a small depth bias: the G-buffer's own
+// fragments pass (the same vertex shader on the same vertices, up to rounding; nothing
+// lies in front of the stored depth), reading the object's scattered irradiance
 // (SssTexturePass) at the fragment's atlas UV into the frame's `accum` target (cleared to
 // 0 first; alpha 1 where written). The composite then reads accum as in gaussians mode.
 #pragma once

@@ -4,6 +4,7 @@
 
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"
+#include "renderer/SssTexturePass.h"
 #include "renderer/image/Image.h"
 
 #include <imgui.h>
@@ -186,19 +187,20 @@ void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
 void ViewerUi::draw_sss(renderer::Renderer& r) {
   if (!ImGui::CollapsingHeader("SSS", ImGuiTreeNodeFlags_DefaultOpen)) return;
   renderer::RenderOptions o = r.options();
-  int mode = o.sss == renderer::SssMode::Off ? 0 : (o.kind == renderer::SssKind::Separable ? 1 : 2);
-  const char* modes[] = {"off", "separable", "gaussians"};
+  int mode = o.sss == renderer::SssMode::Off       ? 0
+             : o.sss == renderer::SssMode::Texture ? 3
+             : (o.kind == renderer::SssKind::Separable ? 1 : 2);
+  const char* modes[] = {"off", "screen: separable", "screen: gaussians", "texture space"};
   bool changed = false;
   if (ImGui::BeginCombo("mode", modes[mode])) {
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 4; ++k)
       if (ImGui::Selectable(modes[k], k == mode)) {
         changed |= k != mode;
         mode = k;
       }
-    // Texture-space diffusion (d'Eon & Luebke) is issue 6: listed, not selectable yet.
-    ImGui::Selectable("texture (not yet)", false, ImGuiSelectableFlags_Disabled);
     ImGui::EndCombo();
   }
+  if (mode == 3) changed |= draw_texture_objects(r, o);
   changed |= ImGui::SliderFloat("exposure", &o.exposure, 0.05f, 8.0f, "%.2f",
                                 ImGuiSliderFlags_Logarithmic);
   const std::string view_label(renderer::debug_view_name(o.debug_view));
@@ -239,14 +241,55 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
     ImGui::PopStyleColor();
   }
   if (!changed) return;
-  o.sss = mode == 0 ? renderer::SssMode::Off : renderer::SssMode::Screen;
-  if (mode != 0) o.kind = mode == 1 ? renderer::SssKind::Separable : renderer::SssKind::Gaussians;
+  o.sss = mode == 0 ? renderer::SssMode::Off
+          : mode == 3 ? renderer::SssMode::Texture
+                      : renderer::SssMode::Screen;
+  if (mode == 1 || mode == 2)
+    o.kind = mode == 1 ? renderer::SssKind::Separable : renderer::SssKind::Gaussians;
   try {
     r.set_options(o);
     error_.clear();
   } catch (const std::invalid_argument& e) {
     error_ = e.what();
   }
+}
+
+bool ViewerUi::draw_texture_objects(const renderer::Renderer& r, renderer::RenderOptions& o) {
+  const renderer::SssTexturePass* texture = r.texture_pass();
+  if (texture == nullptr) return false;
+  bool changed = false;
+  static constexpr std::uint32_t kSizes[] = {256, 512, 1024, 2048};
+  static const char* kSizeNames[] = {"256", "512", "1024", "2048"};
+  static const char* kUpdates[] = {"every frame", "on change"};
+  ImGui::TextDisabled("per object: irradiance texture, recompute");
+  for (const renderer::SssTexturePass::Object& obj : texture->objects()) {
+    renderer::TextureObjectOptions t = obj.options;
+    ImGui::PushID(t.name.c_str());
+    int size = 0;
+    while (size < 3 && kSizes[size] < t.size) ++size;
+    int update = t.update == renderer::TextureUpdate::EveryFrame ? 0 : 1;
+    ImGui::TextUnformatted(t.name.c_str());
+    ImGui::SameLine();
+    ImGui::TextDisabled("(%llu updates)", static_cast<unsigned long long>(obj.updates));
+    ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);
+    bool edited = ImGui::Combo("##size", &size, kSizeNames, 4);
+    ImGui::SameLine();
+    edited |= ImGui::Combo("##update", &update, kUpdates, 2);
+    ImGui::PopItemWidth();
+    ImGui::PopID();
+    if (!edited) continue;
+    t.size = kSizes[size];
+    t.update = update == 0 ? renderer::TextureUpdate::EveryFrame : renderer::TextureUpdate::OnChange;
+    auto it = std::find_if(o.texture_objects.begin(), o.texture_objects.end(),
+                           [&](const renderer::TextureObjectOptions& x) { return x.name == t.name; });
+    if (it == o.texture_objects.end())
+      o.texture_objects.push_back(t);
+    else
+      *it = t;
+    changed = true;
+  }
+  for (const std::string& w : texture->warnings()) ImGui::TextColored(kErrorColor, "%s", w.c_str());
+  return changed;
 }
 
 void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {

@@ -55,6 +55,8 @@ class ViewerUi {
 
  private:
   void draw_sss(renderer::Renderer& r);
+  // Texture mode: each object's texture size and update policy; true when o changed.
+  bool draw_texture_objects(const renderer::Renderer& r, renderer::RenderOptions& o);
   void draw_materials(renderer::Renderer& r);
   void draw_material(MaterialEdit& e, std::size_t i);
   void draw_light(renderer::Renderer& r);
