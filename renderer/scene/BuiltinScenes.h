@@ -8,8 +8,8 @@
 //   builtin:slab       transmission (issue 6): a 30 x 30 x 2 mm skin2 slab (multipole,
 //                      thickness 2 mm) lit from behind at normal incidence (E = 3), no
 //                      fill, seen from the front slightly obliquely (SlabScene.cpp)
-//   builtin:bunny      the default: the Stanford bunny (assets/bunny.glb, 150 mm, skin1)
-//                      back-lit from the side so the ears glow, plus a fill light
+//   builtin:bunny      the default: the Stanford bunny (assets/bunny.glb, 150 mm, skin1 at
+//                      scale 0.25), back-lit from behind so the ears glow, plus a fill light
 #pragma once
 
 #include "renderer/scene/LoadError.h"

@@ -158,7 +158,9 @@ TEST(BuiltinScenes, Bunny) {
   const Material& mat = s.materials[m.material];
   ASSERT_TRUE(mat.sss.enabled);
   EXPECT_EQ(std::get<PresetSource>(mat.sss.source).name, "skin1");
-  // The key light comes from behind the bunny (+x side, it faces -x) and from above.
+  // At scale 0.25, so that light comes through the scan's 9-17 mm thick ears (bunny_scene()).
+  EXPECT_EQ(mat.sss.scale, 0.25);
+  // The key light comes from behind the bunny (+x side, it faces -x), a little from above.
   ASSERT_GE(s.lights.size(), 1u);
   EXPECT_LT(s.lights[0].direction().x, -0.5f);
   EXPECT_LT(s.lights[0].direction().y, 0.0f);
