@@ -5,12 +5,20 @@
 // the pipelines' variants): on a shared machine the minimum is the figure to compare
 // (contention only adds time), the median says how noisy the run was.
 //   bench_frame [SCENE] [--width W] [--height H] [--frames N] [--warmup N]
-//               [--sss off|screen] [--mode separable|gaussians] [--taps N] [--transmission on|off] [--look-away]
+//               [--sss off|screen|texture] [--mode separable|gaussians] [--taps N]
+//               [--transmission on|off] [--look-away] [--texture-size N]
+//               [--texture-update every-frame|on-change] [--objects N] [--out FILE.png]
+// --objects N: N copies of the scene's instances side by side along x (one bounding
+// diameter apart), the camera moved back along its view to frame them all (issue 6: the
+// texture path's cost against the screen path for one and for three SSS objects).
 // It depends on the renderer library only (not on the viewer), so that it builds while
 // the viewer is being worked on. bench/pass_times.sh runs it.
 #include "renderer/Renderer.h"
+#include "renderer/image/Image.h"
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/vk/Context.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <ctime>
@@ -27,8 +35,9 @@ namespace {
 int usage(const char* message) {
   std::fprintf(stderr,
                "bench_frame: %s\nusage: bench_frame [SCENE] [--width W] [--height H] "
-               "[--frames N] [--warmup N] [--sss off|screen] [--mode separable|gaussians] "
-               "[--taps N]\n",
+               "[--frames N] [--warmup N] [--sss off|screen|texture] [--mode separable|gaussians] "
+               "[--taps N] [--transmission on|off] [--look-away] [--texture-size N] "
+               "[--texture-update every-frame|on-change] [--objects N]\n",
                message);
   return 2;
 }
@@ -57,6 +66,8 @@ int main(int argc, char** argv) {
   int frames = 20;
   int warmup = 3;
   bool look_away = false;  // turn the camera around: an all-background frame (masking cost)
+  int objects = 1;
+  std::string out;  // --out FILE.png: the last frame, to see what was measured
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
@@ -78,9 +89,19 @@ int main(int argc, char** argv) {
     } else if (arg == "--taps") {
       options.separable_taps = std::atoi(value().c_str());
     } else if (arg == "--sss") {
-      const std::string v = value();
-      if (v != "off" && v != "screen") return usage("--sss: expected off or screen");
-      options.sss = v == "off" ? renderer::SssMode::Off : renderer::SssMode::Screen;
+      const auto mode = renderer::parse_sss_mode(value());
+      if (!mode) return usage("--sss: expected off, screen or texture");
+      options.sss = *mode;
+    } else if (arg == "--texture-size") {
+      options.texture_size = static_cast<std::uint32_t>(std::atoi(value().c_str()));
+    } else if (arg == "--texture-update") {
+      const auto update = renderer::parse_texture_update(value());
+      if (!update) return usage("--texture-update: expected every-frame or on-change");
+      options.texture_update = *update;
+    } else if (arg == "--out") {
+      out = value();
+    } else if (arg == "--objects") {
+      objects = std::max(1, std::atoi(value().c_str()));
     } else if (arg == "--transmission") {
       const std::string v = value();
       if (v != "on" && v != "off") return usage("--transmission: expected on or off");
@@ -99,6 +120,25 @@ int main(int argc, char** argv) {
   scene::Scene scene = std::move(std::get<scene::Scene>(loaded));
   scene::add_camera_if_missing(scene);
   scene::add_light_if_missing(scene);
+  if (objects > 1) {
+    const scene::Bounds one = scene.bounds();
+    const float step = 2.0f * one.radius();
+    const std::size_t n = scene.instances.size();
+    for (int k = 1; k < objects; ++k)
+      for (std::size_t i = 0; i < n; ++i) {
+        scene::Instance copy = scene.instances[i];
+        copy.world = glm::translate(glm::mat4(1.0f), glm::vec3(step * float(k), 0.0f, 0.0f)) * copy.world;
+        copy.node += "#" + std::to_string(k + 1);
+        scene.instances.push_back(copy);
+      }
+    // Back along the view until the camera's field of view holds all copies.
+    scene::Camera& cam = scene.cameras.front();
+    const glm::vec3 forward = -glm::vec3(cam.world[2]);
+    const scene::Bounds all = scene.bounds();
+    const glm::vec3 shift = all.center() - one.center();
+    cam.world[3] += glm::vec4(shift - forward * (all.radius() - one.radius()) * 2.0f, 0.0f);
+    cam.zfar *= float(objects) * 2.0f;
+  }
   if (look_away) {
     glm::mat4& w = scene.cameras.front().world;
     w[2] = -w[2];  // view direction reversed (and x, to keep the basis right-handed)
@@ -122,12 +162,15 @@ int main(int argc, char** argv) {
       ms["gpu total"].push_back(r.stats().gpu_ms);
       ms["cpu frame"].push_back(r.stats().cpu_ms);
     }
+    if (!out.empty()) image::write_png(out, r.read_display());
     order.push_back("gpu total");
     order.push_back("cpu frame");
     order.push_back("process cpu");
-    std::printf("%s %ux%u, sss %s, mode %s, %d taps, %d frames after %d warm-up, %s\n",
-                scene_name.c_str(), options.width, options.height,
-                std::string(renderer::sss_mode_name(options.sss)).c_str(),
+    std::printf("%s x%d %ux%u, sss %s (texture %u, %s), mode %s, %d taps, %d frames after %d "
+                "warm-up, %s\n",
+                scene_name.c_str(), objects, options.width, options.height,
+                std::string(renderer::sss_mode_name(options.sss)).c_str(), options.texture_size,
+                std::string(renderer::texture_update_name(options.texture_update)).c_str(),
                 std::string(renderer::sss_kind_name(options.kind)).c_str(),
                 options.separable_taps, frames, warmup,
                 std::getenv("LP_NUM_THREADS") ? "LP_NUM_THREADS set" : "default threads");
