@@ -40,6 +40,9 @@ const GoldenCase kCases[] = {
     {"materials_separable", "builtin:materials", SssMode::Screen, SssKind::Separable, 240, 135},
     {"bunny_separable", "builtin:bunny", SssMode::Screen, SssKind::Separable, 160, 90},
     {"edge_gaussians", "builtin:edge", SssMode::Screen, SssKind::Gaussians, 128, 16},
+    // Texture space at 512^2 (the sphere's own UVs with their seam; the bunny's generated atlas).
+    {"sphere_texture", "builtin:sphere", SssMode::Texture, SssKind::Gaussians, 160, 90},
+    {"bunny_texture", "builtin:bunny", SssMode::Texture, SssKind::Gaussians, 160, 90},
 };
 
 void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
@@ -52,7 +55,9 @@ TEST_P(GoldenTest, DisplayImageMatchesTheGolden) {
   const GoldenCase& c = GetParam();
   auto loaded = scene::load_scene(c.scene);
   ASSERT_TRUE(std::holds_alternative<scene::Scene>(loaded)) << c.scene;
-  const Frame f = render(std::get<scene::Scene>(loaded), small_options(c.width, c.height, c.sss, c.kind));
+  RenderOptions options = small_options(c.width, c.height, c.sss, c.kind);
+  options.texture_size = 512;
+  const Frame f = render(std::get<scene::Scene>(loaded), options);
   const fs::path golden = kGoldenDir / (std::string(c.name) + ".png");
   if (std::getenv("SSS_BLESS") != nullptr) {
     image::write_png(golden.string(), f.display);
