@@ -101,7 +101,7 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
       v = {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 0.0f}, {}};
       if (sss_uvs)
         for (int c = 0; c < 4; ++c)
-          v.atlas[c] = c < 2 ? atlas[i][c] : c == 2 ? float(islands.vertex_island[i]) : 1.0f;
+          v.atlas[c] = c < 2 ? atlas[i][c] : c == 2 ? float(islands.vertex_island[i]) : 0.0f;
       if (has_uv) {
         v.uv[0] = mesh.uv0[i].x;
         v.uv[1] = mesh.uv0[i].y;
@@ -136,6 +136,26 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
                                        vk::MemoryUsage::DeviceLocal, mesh.name + " indices"});
       vk::upload_buffer(context, b.indices, std::span<const std::uint32_t>(mesh.indices));
     }
+    const scene::Mesh::AtlasGutter& g = mesh.uv_atlas_gutter;
+    if (sss_uvs && !mesh.uv_atlas.empty() && !g.vertices.empty()) {
+      std::vector<GpuVertex> gutter;
+      gutter.reserve(g.vertices.size());
+      for (std::size_t k = 0; k < g.vertices.size(); ++k) {
+        GpuVertex v = vertices.at(g.vertices[k]);
+        const float island = float(islands.vertex_island.at(g.host.at(k / 3)));
+        v.atlas[0] = g.uv[k].x;
+        v.atlas[1] = g.uv[k].y;
+        v.atlas[2] = island;
+        v.atlas[3] = g.depth[k];
+        gutter.push_back(v);
+      }
+      b.gutter = vk::Buffer(context, {gutter.size() * sizeof(GpuVertex),
+                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
+                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                      vk::MemoryUsage::DeviceLocal, mesh.name + " gutter"});
+      vk::upload_buffer(context, b.gutter, std::span<const GpuVertex>(gutter));
+      b.gutter_vertices = static_cast<std::uint32_t>(gutter.size());
+    }
     meshes_.push_back(std::move(b));
   }
 }
@@ -161,10 +181,9 @@ std::vector<VkDescriptorImageInfo> GpuScene::texture_descriptors() const {
   return out;
 }
 
-void GpuScene::push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout,
-                             const scene::Instance& instance, int light_index, int object) const {
+void GpuScene::push_constants(VkCommandBuffer cmd, VkPipelineLayout layout, const scene::Instance& instance,
+                    int light_index, int object) const {
   const MeshBuffers& mesh = meshes_[instance.mesh];
-  if (mesh.index_count == 0) return;
   const scene::Material& material = materials_[mesh.material];
   shader::DrawPush push;
   push.model = to_shader(instance.world);
@@ -174,6 +193,13 @@ void GpuScene::push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout,
   push.textures = {float(mesh.base_slot), float(mesh.normal_slot), material.normal_scale, 0.0f};
   vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                      sizeof(push), &push);
+}
+
+void GpuScene::push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout,
+                             const scene::Instance& instance, int light_index, int object) const {
+  const MeshBuffers& mesh = meshes_[instance.mesh];
+  if (mesh.index_count == 0) return;
+  push_constants(cmd, layout, instance, light_index, object);
   const VkBuffer buffers[] = {mesh.vertices.handle()};
   const VkDeviceSize offsets[] = {0};
   vkCmdBindVertexBuffers(cmd, 0, 1, buffers, offsets);
@@ -189,6 +215,18 @@ void GpuScene::draw(VkCommandBuffer cmd, VkPipelineLayout layout, int light_inde
 void GpuScene::draw_instance(VkCommandBuffer cmd, VkPipelineLayout layout, std::size_t instance,
                              int object) const {
   push_and_draw(cmd, layout, instances_.at(instance), -1, object);
+}
+
+void GpuScene::draw_gutter(VkCommandBuffer cmd, VkPipelineLayout layout, std::size_t instance,
+                           int object) const {
+  const scene::Instance& i = instances_.at(instance);
+  const MeshBuffers& mesh = meshes_[i.mesh];
+  if (mesh.gutter_vertices == 0) return;
+  push_constants(cmd, layout, i, -1, object);
+  const VkBuffer buffers[] = {mesh.gutter.handle()};
+  const VkDeviceSize offsets[] = {0};
+  vkCmdBindVertexBuffers(cmd, 0, 1, buffers, offsets);
+  vkCmdDraw(cmd, mesh.gutter_vertices, 1, 0, 0);
 }
 
 }  // namespace sss::renderer

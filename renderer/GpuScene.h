@@ -29,7 +29,9 @@ struct GpuVertex {
   float uv[2];
   float tangent[4];  // xyz, w handedness; zero when the mesh has none
   // The texture path's atlas (scene::sss_uvs): u, v, the vertex's UV island
-  // (scene::uv_islands), and 1 when the mesh's SSS UVs are usable (else all zero).
+  // (scene::uv_islands), and the atlas raster's depth: 0 for the mesh's own triangles,
+  // 0.25..0.75 for its seam gutter's (Mesh::uv_atlas_gutter), so that its own win. All
+  // zero when the mesh's SSS UVs are not usable.
   float atlas[4];
 };
 
@@ -49,6 +51,10 @@ class GpuScene {
   // path's object index).
   void draw_instance(VkCommandBuffer cmd, VkPipelineLayout layout, std::size_t instance,
                      int object) const;
+  // The instance's seam gutter triangles (non-indexed), for the texture path's atlas raster;
+  // nothing when its mesh has none.
+  void draw_gutter(VkCommandBuffer cmd, VkPipelineLayout layout, std::size_t instance,
+                   int object) const;
 
   const std::vector<scene::Instance>& instances() const { return instances_; }
   std::uint32_t mesh_material(std::uint32_t mesh) const { return meshes_[mesh].material; }
@@ -78,8 +84,12 @@ class GpuScene {
     int base_slot = -1;    // texture slots usable by this mesh (it has uv0 / tangents)
     int normal_slot = -1;
     bool sss_uvs = false;  // has_sss_uvs
+    vk::Buffer gutter;     // GpuVertex x 3 per gutter triangle
+    std::uint32_t gutter_vertices = 0;
     std::string name;
   };
+  void push_constants(VkCommandBuffer cmd, VkPipelineLayout layout, const scene::Instance& instance,
+                      int light_index, int object) const;
   void push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const scene::Instance& instance,
                      int light_index, int object) const;
   struct Slot {

@@ -72,6 +72,7 @@ vk::PipelineHandle raster_pipeline(const vk::Context& context, VkPipelineLayout 
       .color(kAtlasFormat)                   // normal
       .color(kAtlasFormat)                   // albedo
       .color(kAtlasFormat)                   // stretch
+      .depth(kDepthFormat, vk::DepthTest::Write)  // own triangles (z 0) win over the gutter
       .cull(VK_CULL_MODE_NONE);
   add_vertex_input(builder);
   return builder.build(context, layout, "texture irradiance");
@@ -209,6 +210,11 @@ void SssTexturePass::configure(const RenderOptions& options) {
   }
   objects_ = std::move(objects);
   textures_ = std::move(textures);
+  std::uint32_t largest = 0;
+  for (const Textures& t : textures_) largest = std::max(largest, t.size);
+  if (largest > 0 && depth_.width() != largest)
+    depth_ = vk::Image(r_.context, {largest, largest, kDepthFormat,
+                                    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "atlas depth"});
 
   lighting_.pool.reset();
   dilate_.pool.reset();
@@ -274,6 +280,12 @@ void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& obje
                                          t.initialized ? VK_IMAGE_LAYOUT_GENERAL
                                                        : VK_IMAGE_LAYOUT_UNDEFINED,
                                          VK_IMAGE_LAYOUT_GENERAL, kBefore, general_access));
+  barriers.push_back(vk::image_barrier(
+      depth_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+      {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT},
+      {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT}));
   vk::pipeline_barrier(cmd, barriers);
   t.initialized = true;
 
@@ -282,11 +294,13 @@ void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& obje
                                            vk::ColorTarget(t.normal.view()),
                                            vk::ColorTarget(t.a.view()), vk::ColorTarget(t.b.view())};
   for (vk::ColorTarget& c : colors) c.layout = VK_IMAGE_LAYOUT_GENERAL;
-  vk::begin_rendering(cmd, {t.size, t.size}, colors);
+  const vk::DepthTarget depth(depth_.view());
+  vk::begin_rendering(cmd, {t.size, t.size}, colors, &depth);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, raster_pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, raster_layout_.get(), 0, 1,
                           &raster_set_, 0, nullptr);
   r_.scene.draw_instance(cmd, raster_layout_.get(), object.instance, -1);
+  r_.scene.draw_gutter(cmd, raster_layout_.get(), object.instance, -1);
   vk::end_rendering(cmd);
   const VkMemoryBarrier2 rastered = vk::memory_barrier(
       {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT},

@@ -85,6 +85,7 @@ class SssTexturePass {
   ComputeProgram blur_;
   std::vector<Object> objects_;
   std::vector<Textures> textures_;  // one per object
+  vk::Image depth_;  // the atlas raster's depth (own triangles before the gutter), largest size
   std::vector<std::string> warnings_;
 };
 

@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Texture path, irradiance raster: each triangle of one object drawn at its atlas UVs
 // (texel (x, y) of an N x N target is UV ((x + 0.5) / N, (y + 0.5) / N)), carrying its
-// world position, normal, material UVs and UV island to texture_irradiance.frag.
+// world position, normal, material UVs and UV island to texture_irradiance.frag; the
+// mesh's seam gutter (Mesh::uv_atlas_gutter) is drawn with it, behind.
 #include "shared/frame.h"
 
 layout(push_constant) uniform Push { DrawPush draw; };
@@ -24,5 +25,7 @@ void main() {
   out_uv = in_uv;
   out_tangent = vec4(mat3(draw.model) * in_tangent.xyz, in_tangent.w);
   out_island = in_atlas.z;
-  gl_Position = vec4(in_atlas.xy * 2.0 - 1.0, 0.0, 1.0);
+  // z: 0 for the mesh's own triangles, 0.25..0.75 for its seam gutter (GpuVertex::atlas),
+  // so that with a LESS depth test its own texels are never overwritten by a gutter.
+  gl_Position = vec4(in_atlas.xy * 2.0 - 1.0, in_atlas.w, 1.0);
 }

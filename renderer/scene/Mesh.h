@@ -25,6 +25,15 @@ struct Mesh {
   // Empty, or one per position: a generated chart atlas for texture-space diffusion
   // (UvAtlas.h) when uv0 is not usable for it; material textures keep reading uv0.
   std::vector<glm::vec2> uv_atlas;
+  // With a generated atlas: its seam gutters (UvAtlas.h), triangles of neighbouring charts
+  // drawn again in a chart's own projection into the padding around it, so that the
+  // texture-space blur finds the surface's continuation past the chart's border.
+  struct AtlasGutter {
+    std::vector<std::uint32_t> vertices;  // 3 per triangle: mesh vertices (position, normal...)
+    std::vector<glm::vec2> uv;            // 3 per triangle: in the host chart's projection
+    std::vector<float> depth;             // 3 per triangle: raster depth, nearer gutter wins
+    std::vector<std::uint32_t> host;      // 1 per triangle: a mesh vertex of the host chart
+  } uv_atlas_gutter;
   std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
   std::uint32_t material = 0;       // index into Scene::materials
   Bounds bounds;                    // of positions, in the mesh's own space

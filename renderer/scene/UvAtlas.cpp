@@ -462,6 +462,61 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
     covered += std::abs(0.5 * cross2(b - a, d - a));
   }
 
+  // 6. Seam gutters. The chart's map, uv = (dot(to_u, p), dot(to_v, p)) + offset, is the
+  //    projection, rotation, scale and offset of step 5 written as one affine map.
+  {
+    const double reach = 3.0 * pad / std::max(s, 1e-30);  // 1.5 x the gap, scene units
+    std::vector<glm::dvec3> to_u(C), to_v(C);
+    std::vector<glm::dvec2> offset(C);
+    for (std::size_t c = 0; c < C; ++c) {
+      glm::dvec3 u, v;
+      axis_basis(atlas.charts[c].axis, u, v);
+      const double cs = std::cos(angle[c]), sn = std::sin(angle[c]);
+      to_u[c] = s * (cs * u - sn * v);
+      to_v[c] = s * (sn * u + cs * v);
+      offset[c] = -s * box_min[c] + origin[c] + pad;
+    }
+    std::vector<std::uint32_t> seen(n, kNone);
+    std::deque<std::pair<std::uint32_t, glm::dvec3>> frontier;  // triangle, border point
+    for (std::uint32_t c = 0; c < C; ++c) {
+      const int ax = atlas.charts[c].axis;
+      glm::dvec3 dir(0.0);
+      dir[ax / 2] = ax % 2 == 0 ? 1.0 : -1.0;
+      frontier.clear();
+      for (std::uint32_t t : chart_faces[c]) {
+        seen[t] = c;
+        const glm::dvec3 centre = (glm::dvec3(P[I[3 * t]]) + glm::dvec3(P[I[3 * t + 1]]) +
+                                   glm::dvec3(P[I[3 * t + 2]])) / 3.0;
+        for (std::uint32_t nb : neighbour[t])
+          if (nb != kNone && atlas.triangle_chart[nb] != c) frontier.emplace_back(nb, centre);
+      }
+      const std::uint32_t host = chart_faces[c].front();
+      while (!frontier.empty()) {
+        const auto [t, from] = frontier.front();
+        frontier.pop_front();
+        if (seen[t] == c) continue;
+        seen[t] = c;
+        const glm::dvec3 a(P[I[3 * t]]), b(P[I[3 * t + 1]]), d(P[I[3 * t + 2]]);
+        const glm::dvec3 nrm = glm::cross(b - a, d - a);
+        const double len = glm::length(nrm);
+        if (!(len > 0.0) || glm::dot(nrm, dir) < 0.2 * len) continue;  // would fold over
+        const glm::dvec3 centre = (a + b + d) / 3.0;
+        if (glm::length(centre - from) > reach) continue;
+        GutterTriangle g;
+        g.host_triangle = host;
+        for (int k = 0; k < 3; ++k) {
+          const glm::dvec3 p(P[I[3 * t + k]]);
+          g.source[k] = I[3 * t + k];
+          g.uv[k] = glm::vec2(glm::dot(to_u[c], p) + offset[c].x, glm::dot(to_v[c], p) + offset[c].y);
+          g.depth[k] = float(0.25 + 0.5 * std::min(1.0, glm::length(p - from) / reach));
+        }
+        atlas.gutter.push_back(g);
+        for (std::uint32_t nb : neighbour[t])
+          if (nb != kNone && seen[nb] != c && atlas.triangle_chart[nb] != c) frontier.emplace_back(nb, from);
+      }
+    }
+  }
+
   // Stretch: mm per UV over the triangle, relative to 1/s, from the singular values of
   // the 3D -> UV map (its largest is s, its smallest s·cos θ).
   double max_stretch = 1.0;
@@ -510,6 +565,26 @@ AtlasStats generate_atlas(Mesh& mesh, const AtlasOptions& options) {
   mesh.normals = gather(mesh.normals);
   mesh.uv0 = gather(mesh.uv0);
   mesh.tangents = gather(mesh.tangents);
+  // Gutter corners take the first new vertex of their input vertex (positions, normals and
+  // tangents are the same in every copy); the host is its triangle's first new vertex.
+  {
+    constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+    std::uint32_t sources = 0;
+    for (std::uint32_t v : atlas.source_vertex) sources = std::max(sources, v + 1);
+    std::vector<std::uint32_t> by_source(sources, kNone);
+    for (std::uint32_t v = 0; v < atlas.source_vertex.size(); ++v)
+      if (by_source[atlas.source_vertex[v]] == kNone) by_source[atlas.source_vertex[v]] = v;
+    Mesh::AtlasGutter& g = mesh.uv_atlas_gutter;
+    g = {};
+    for (const GutterTriangle& t : atlas.gutter) {
+      for (int k = 0; k < 3; ++k) {
+        g.vertices.push_back(by_source[t.source[k]]);
+        g.uv.push_back(t.uv[k]);
+        g.depth.push_back(t.depth[k]);
+      }
+      g.host.push_back(atlas.indices[3 * t.host_triangle]);
+    }
+  }
   mesh.indices = std::move(atlas.indices);
   mesh.uv_atlas = std::move(atlas.uv);
   atlas.stats.seconds =

@@ -19,12 +19,19 @@
 //      "Performance bounds for level-oriented two-dimensional packing algorithms") fits
 //      [0,1]^2 with `padding_texels` of empty texels around every chart at `resolution`
 //      (room for the seam dilation of d'Eon & Luebke 2007).
+//   5. seam gutters: for each chart, the triangles of other charts within reach of its
+//      border (edge-adjacent, breadth-first, centroid within 1.5 x the padding's width in
+//      scene units of the border triangle they grew from, facing within 78° of the chart's
+//      axis so that the projection does not fold) mapped by the chart's own projection;
+//      drawn behind the charts' own triangles, they fill the padding with the surface's
+//      real continuation instead of an extrapolation (Mesh::uv_atlas_gutter).
 // Before step 2, vertices are welded by position (to 1e-6 of the diagonal) and a face
 // whose neighbours mostly took another axis within 54.7° of its normal takes it too.
 #pragma once
 
 #include "renderer/scene/Mesh.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -84,12 +91,22 @@ struct AtlasStats {
   double seconds = 0.0;               // wall time of generate_atlas
 };
 
+// A seam gutter triangle: a triangle of another chart (within reach of the host chart's
+// border across the surface) mapped by the host chart's own projection.
+struct GutterTriangle {
+  std::array<std::uint32_t, 3> source{};  // vertices of the input mesh
+  std::array<glm::vec2, 3> uv{};
+  std::array<float, 3> depth{};           // 0.25 .. 0.75: 0.25 + 0.5 distance / reach
+  std::uint32_t host_triangle = 0;        // a triangle of the host chart
+};
+
 struct UvAtlas {
   std::vector<std::uint32_t> source_vertex;  // new vertex -> vertex of the input mesh
   std::vector<std::uint32_t> indices;        // the triangles (same order) on the new vertices
   std::vector<glm::vec2> uv;                 // one per new vertex, in [0,1]^2
   std::vector<std::uint32_t> triangle_chart; // one per triangle
   std::vector<AtlasChart> charts;
+  std::vector<GutterTriangle> gutter;
   AtlasStats stats;
 };
 
