@@ -93,6 +93,10 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
                          (!mesh.uv_atlas.empty() || scene::check_uvs(mesh).usable);
     const scene::UvIslands islands =
         sss_uvs ? scene::uv_islands(atlas, mesh.indices) : scene::UvIslands{};
+    if (islands.count > 2048)  // the atlases store island + 1 in half floats (exact to 2048)
+      warnings_.push_back("mesh '" + mesh.name + "' has " + std::to_string(islands.count) +
+                          " UV islands: texture-space SSS tells apart 2048, so islands 2048 "
+                          "apart may blur into each other where they are within a kernel");
     std::vector<GpuVertex> vertices(mesh.positions.size());
     for (std::size_t i = 0; i < vertices.size(); ++i) {
       const glm::vec3& p = mesh.positions[i];

@@ -30,6 +30,12 @@ std::optional<TextureUpdate> parse_texture_update(std::string_view name) {
   return std::nullopt;
 }
 
+std::string texture_size_error(long long size) {
+  if (size >= kMinTextureSize && size <= kMaxTextureSize) return {};
+  return "expected " + std::to_string(kMinTextureSize) + ".." + std::to_string(kMaxTextureSize) +
+         ", got " + std::to_string(size);
+}
+
 std::variant<TextureObjectOptions, std::string> parse_texture_object(std::string_view text,
                                                                      TextureUpdate fallback) {
   const std::string given(text);
@@ -50,10 +56,10 @@ std::variant<TextureObjectOptions, std::string> parse_texture_object(std::string
   }
   std::uint32_t size = 0;
   const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), size);
-  if (ec != std::errc() || end != rest.data() + rest.size() || size < kMinTextureSize ||
-      size > kMaxTextureSize)
-    return "'" + given + "': the size must be an integer in " + std::to_string(kMinTextureSize) +
-           ".." + std::to_string(kMaxTextureSize) + ", got '" + std::string(rest) + "'";
+  if (ec != std::errc() || end != rest.data() + rest.size())
+    return "'" + given + "': the size must be an integer, got '" + std::string(rest) + "'";
+  if (const std::string e = texture_size_error(size); !e.empty())
+    return "'" + given + "': the size " + e;
   o.size = size;
   return o;
 }

@@ -56,6 +56,9 @@ struct TextureObjectOptions {
 };
 inline constexpr std::uint32_t kMinTextureSize = 256;
 inline constexpr std::uint32_t kMaxTextureSize = 2048;
+// "" when `size` is a valid texture size, else what is wrong with it ("expected 256..2048,
+// got 100").
+std::string texture_size_error(long long size);
 
 struct RenderOptions {
   std::uint32_t width = 640;

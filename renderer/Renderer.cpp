@@ -41,10 +41,8 @@ void check_options(const RenderOptions& o) {
   if (o.shadow_map_size == 0 || o.shadow_map_size > 16384)
     throw std::invalid_argument("shadow map size must be 1..16384");
   const auto check_texture = [](std::uint32_t size, const std::string& what) {
-    if (size < kMinTextureSize || size > kMaxTextureSize)
-      throw std::invalid_argument(what + " must be " + std::to_string(kMinTextureSize) + ".." +
-                                  std::to_string(kMaxTextureSize) + ", got " +
-                                  std::to_string(size));
+    if (const std::string e = texture_size_error(size); !e.empty())
+      throw std::invalid_argument(what + ": " + e);
   };
   check_texture(o.texture_size, "texture size");
   for (const TextureObjectOptions& t : o.texture_objects)
@@ -335,38 +333,44 @@ void Renderer::render_frame() {
   rendered_ = true;
 }
 
-image::Image Renderer::read(const vk::Image& image, bool eight_bit) const {
+image::Image Renderer::read(const vk::Image& image) const {
   if (!rendered_) throw std::logic_error("Renderer: no frame rendered yet");
   const std::vector<std::byte> bytes = vk::download_image(context_, image, VK_IMAGE_LAYOUT_GENERAL);
   image::Image out(static_cast<int>(image.width()), static_cast<int>(image.height()));
-  if (eight_bit) {
-    for (std::size_t i = 0; i < out.rgba.size(); ++i)
-      out.rgba[i] = float(std::to_integer<unsigned>(bytes[i])) / 255.0f;
-  } else {
-    std::memcpy(out.rgba.data(), bytes.data(), out.rgba.size() * sizeof(float));
+  switch (image.format()) {
+    case VK_FORMAT_R8G8B8A8_UNORM:
+      for (std::size_t i = 0; i < out.rgba.size(); ++i)
+        out.rgba[i] = float(std::to_integer<unsigned>(bytes[i])) / 255.0f;
+      break;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      for (std::size_t i = 0; i < out.rgba.size(); ++i) {
+        std::uint16_t h;
+        std::memcpy(&h, bytes.data() + 2 * i, sizeof h);
+        out.rgba[i] = glm::unpackHalf1x16(h);
+      }
+      break;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      std::memcpy(out.rgba.data(), bytes.data(), out.rgba.size() * sizeof(float));
+      break;
+    default:
+      throw std::logic_error("Renderer::read: unexpected format of " + image.desc().name);
   }
   return out;
 }
 
 image::Image Renderer::read_atlas(std::size_t object, Atlas which) const {
-  if (!rendered_) throw std::logic_error("Renderer: no frame rendered yet");
   if (!texture_ || object >= texture_->objects().size())
     throw std::out_of_range("Renderer::read_atlas: no texture-space object " +
                             std::to_string(object));
-  const vk::Image& image = which == Atlas::Scattered    ? texture_->scattered(object)
-                           : which == Atlas::Irradiance ? texture_->irradiance(object)
-                                                        : texture_->stretch(object);
-  const std::vector<std::byte> bytes = vk::download_image(context_, image, VK_IMAGE_LAYOUT_GENERAL);
-  image::Image out(static_cast<int>(image.width()), static_cast<int>(image.height()));
-  for (std::size_t i = 0; i < out.rgba.size(); ++i) {
-    std::uint16_t h;
-    std::memcpy(&h, bytes.data() + 2 * i, sizeof h);
-    out.rgba[i] = glm::unpackHalf1x16(h);
-  }
-  return out;
+  if (!texture_->computed(object))
+    throw std::logic_error("Renderer::read_atlas: object " + texture_->objects()[object].options.name +
+                           " has not been computed since its textures were made");
+  return read(which == Atlas::Scattered    ? texture_->scattered(object)
+              : which == Atlas::Irradiance ? texture_->irradiance(object)
+                                           : texture_->stretch(object));
 }
 
-image::Image Renderer::read_hdr() const { return read(targets_.hdr, false); }
-image::Image Renderer::read_display() const { return read(targets_.display, true); }
+image::Image Renderer::read_hdr() const { return read(targets_.hdr); }
+image::Image Renderer::read_display() const { return read(targets_.display); }
 
 }  // namespace sss::renderer

@@ -119,7 +119,8 @@ class Renderer {
 
  private:
   void record(VkCommandBuffer cmd);
-  image::Image read(const vk::Image& image, bool eight_bit) const;
+  // rgba8 (codes / 255), rgba16f or rgba32f images read back as float RGBA.
+  image::Image read(const vk::Image& image) const;
   void write_frame_uniforms();
   void write_lights(LightSetup lights);
   // Waits for the device to be idle, replaces targets_ and points the passes' descriptor

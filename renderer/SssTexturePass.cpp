@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <cstddef>
 #include <stdexcept>
 #include <utility>
@@ -167,7 +168,7 @@ void SssTexturePass::write_lighting(Textures& t) {
 
 void SssTexturePass::configure(const RenderOptions& options) {
   std::vector<Object> objects;
-  warnings_.clear();
+  std::vector<std::string> warnings;
   const std::vector<scene::Instance>& instances = r_.scene.instances();
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const std::uint32_t mesh = instances[i].mesh;
@@ -176,45 +177,57 @@ void SssTexturePass::configure(const RenderOptions& options) {
       continue;
     const std::string& name = instances[i].node;
     if (!r_.scene.has_sss_uvs(mesh)) {
-      warnings_.push_back("object " + name + " (mesh " + r_.scene.mesh_name(mesh) +
-                          ") has no usable UVs for texture-space SSS: drawn without spread");
+      warnings.push_back("object " + name + " (mesh " + r_.scene.mesh_name(mesh) +
+                         ") has no usable UVs for texture-space SSS: drawn without spread");
       continue;
     }
     if (objects.size() == shader::kMaxTextureObjects) {
-      warnings_.push_back("object " + name + ": more than " +
-                          std::to_string(shader::kMaxTextureObjects) +
-                          " objects in texture space; drawn without spread");
+      warnings.push_back("object " + name + ": more than " +
+                         std::to_string(shader::kMaxTextureObjects) +
+                         " objects in texture space; drawn without spread");
       continue;
     }
-    TextureObjectOptions o = texture_options_for(options, name);
-    o.size = std::clamp(o.size, kMinTextureSize, kMaxTextureSize);
-    objects.push_back({i, material, o, 0});
+    objects.push_back({i, material, texture_options_for(options, name), 0});
   }
+  for (const TextureObjectOptions& t : options.texture_objects)
+    if (std::none_of(objects.begin(), objects.end(),
+                     [&](const Object& o) { return o.options.name == t.name; }))
+      warnings.push_back("texture object '" + t.name +
+                         "' names no subsurface instance with usable UVs: ignored");
 
   // Keep the textures of an object that stays at the same size; the GPU is idle between
   // frames (Renderer calls this between render_frame calls), so sets can be rewritten.
+  // Everything that can throw (the new images) is made before anything changes, so a
+  // failed allocation leaves the pass as it was.
+  std::vector<std::size_t> kept(objects.size(), objects_.size());  // index into objects_
+  std::vector<bool> taken(objects_.size(), false);
+  std::vector<std::optional<Textures>> fresh(objects.size());
+  std::uint32_t largest = 0;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    Object& o = objects[i];
+    largest = std::max(largest, o.options.size);
+    for (std::size_t k = 0; k < objects_.size(); ++k)
+      if (!taken[k] && objects_[k].instance == o.instance &&
+          objects_[k].options.size == o.options.size) {
+        kept[i] = k;
+        taken[k] = true;
+        o.updates = objects_[k].updates;
+        break;
+      }
+    if (kept[i] == objects_.size()) fresh[i].emplace(r_.context, o.options.size, o.options.name);
+  }
+  vk::Image depth;
+  if (largest > 0 && depth_.width() != largest)
+    depth = vk::Image(r_.context, {largest, largest, kDepthFormat,
+                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "atlas depth"});
   std::vector<Textures> textures;
   textures.reserve(objects.size());
-  for (Object& o : objects) {
-    auto same = std::find_if(objects_.begin(), objects_.end(), [&](const Object& old) {
-      return old.instance == o.instance && old.options.size == o.options.size;
-    });
-    if (same != objects_.end()) {
-      const std::size_t k = static_cast<std::size_t>(same - objects_.begin());
-      o.updates = same->updates;
-      textures.push_back(std::move(textures_[k]));
-      objects_[k].options.size = 0;  // taken
-    } else {
-      textures.emplace_back(r_.context, o.options.size, o.options.name);
-    }
-  }
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    textures.push_back(fresh[i] ? std::move(*fresh[i]) : std::move(textures_[kept[i]]));
   objects_ = std::move(objects);
   textures_ = std::move(textures);
-  std::uint32_t largest = 0;
-  for (const Textures& t : textures_) largest = std::max(largest, t.size);
-  if (largest > 0 && depth_.width() != largest)
-    depth_ = vk::Image(r_.context, {largest, largest, kDepthFormat,
-                                    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "atlas depth"});
+  warnings_ = std::move(warnings);
+  if (depth) depth_ = std::move(depth);
 
   lighting_.pool.reset();
   dilate_.pool.reset();
@@ -253,10 +266,8 @@ void SssTexturePass::invalidate() {
   for (Textures& t : textures_) t.dirty = true;
 }
 
-int SssTexturePass::object_of_instance(std::size_t instance) const {
-  for (std::size_t i = 0; i < objects_.size(); ++i)
-    if (objects_[i].instance == instance) return static_cast<int>(i);
-  return -1;
+bool SssTexturePass::computed(std::size_t object) const {
+  return object < textures_.size() && textures_[object].initialized;
 }
 
 const vk::Image& SssTexturePass::scattered(std::size_t object) const {

@@ -58,10 +58,11 @@ class SssTexturePass {
   void record(VkCommandBuffer cmd, vk::GpuTimer& timer, const MaterialData& materials);
 
   const std::vector<Object>& objects() const { return objects_; }
-  // The object drawn for scene instance `instance`, or -1.
-  int object_of_instance(std::size_t instance) const;
-  // Object i's scattered irradiance Σ w_i (E * G_i) (rgba16f, GENERAL, alpha the island + 1,
-  // 0 on empty texels), and its other textures for tests and debugging.
+  // Whether object i's textures hold a result (it was updated since they were made).
+  bool computed(std::size_t object) const;
+  // Object i's scattered irradiance Σ w_i (E * G_i) (rgba16f, GENERAL, alpha the island + 1
+  // on the island and on its seam gutter, -(island + 1) on dilated texels, 0 on empty
+  // ones), and its other textures for tests and debugging.
   const vk::Image& scattered(std::size_t object) const;
   const vk::Image& irradiance(std::size_t object) const;  // dilated E, alpha island + 1
   const vk::Image& stretch(std::size_t object) const;     // dilated mm per texel along u, v

@@ -20,11 +20,11 @@ layout(set = 0, binding = 6, rgba16f) uniform image2D accum_img;
 layout(push_constant) uniform Push { BlurPush blur; };
 
 #include "shared/sss.glsl"
+#include "shared/gaussian_blur.glsl"
 
 // x: distance from the camera plane in mm, y: material id (-1: background).
 vec2 surface_at(ivec2 q) { return texelFetch(surface_tex, q, 0).xy; }
 
-float variance(int id, int g) { return g < 0 ? 0.0 : materials[id].variances[g / 4][g % 4]; }
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy) + ivec2(frame.rect.xy);  // the geometry's rect
@@ -47,21 +47,18 @@ void main() {
   float z = here.x;
   float sigma_px = sqrt(max(variance(id, g) - variance(id, g - 1), 0.0)) * pixels_per_mm(dir, z);
   vec3 result = center;
-  if (sigma_px > 0.05) {
-    float reach = 4.0 * sigma_px;  // truncation: 6e-5 of the mass, 0.03% of the variance
-    int half_taps = min(int(ceil(reach)), SSS_GAUSSIAN_HALF_TAPS);
-    int stride = max(1, int(ceil(reach / float(SSS_GAUSSIAN_HALF_TAPS))));
-    float inv_two_var = 1.0 / (2.0 * sigma_px * sigma_px);
+  GaussianTaps taps = gaussian_taps(sigma_px);
+  if (taps.blurs) {
     vec3 sum = center;
     float weight_sum = 1.0;
-    for (int k = -half_taps; k <= half_taps; ++k) {
+    for (int k = -taps.half_taps; k <= taps.half_taps; ++k) {
       if (k == 0) continue;
-      float offset = float(k * stride);
+      float offset = float(k * taps.stride);
       ivec2 q = clamp(p + ivec2(dir * offset), lo, hi);
       vec2 there = surface_at(q);
       vec3 value = follow_surface(texelFetch(input_tex, q, 0).rgb, center, int(there.y), id,
                                   there.x, z, width_mm);
-      float weight = exp(-offset * offset * inv_two_var);
+      float weight = exp(-offset * offset * taps.inv_two_var);
       sum += weight * value;
       weight_sum += weight;
     }

@@ -8,8 +8,8 @@
 // lookup (texture_gather.frag) reads. The stretch map turns mm into texels at each texel:
 // sigma_texels = sqrt(v_g - v_{g-1}) / (mm per texel along the pass's axis).
 //
-// Seams: a tap past the island's border (another island, an empty texel, or off the
-// texture) has no surface value in this atlas; the surface goes on in another island.
+// Seams: a tap past the island's border and its seam gutter (another island, a dilated
+// or empty texel, or off the texture) has no surface value in this atlas; the surface goes on in another island.
 // Taking the centre's value there (the screen path's rule at a material boundary) makes
 // the kernel one-sided at a seam, which shifts a gradient g by about 0.4 g sigma on each
 // side in opposite directions: a visible step along the seam. Instead the tap takes the
@@ -40,7 +40,7 @@ vec3 island_value(ivec2 q, ivec2 mirror, vec4 center, ivec2 size) {
   return m.a > 0.5 ? max(2.0 * center.rgb - m.rgb, vec3(0.0)) : center.rgb;
 }
 
-float variance(int id, int g) { return g < 0 ? 0.0 : materials[id].variances[g / 4][g % 4]; }
+#include "shared/gaussian_blur.glsl"
 
 void main() {
   ivec2 size = textureSize(input_tex, 0);
@@ -56,18 +56,16 @@ void main() {
     float mm_per_texel = vertical ? texelFetch(stretch_tex, p, 0).y : texelFetch(stretch_tex, p, 0).x;
     float sigma = sqrt(max(variance(id, g) - variance(id, g - 1), 0.0)) / max(mm_per_texel, 1e-9);
     sigma = min(sigma, 0.25 * float(size.x));  // a pole's texels: next to no surface per texel
-    if (sigma > 0.05) {
-      float reach = 4.0 * sigma;  // truncation: 6e-5 of the mass, as the screen path
-      int half_taps = min(int(ceil(reach)), SSS_GAUSSIAN_HALF_TAPS);
-      int stride = max(1, int(ceil(reach / float(SSS_GAUSSIAN_HALF_TAPS))));
-      float inv_two_var = 1.0 / (2.0 * sigma * sigma);
+    GaussianTaps taps = gaussian_taps(sigma);
+    if (taps.blurs) {
       vec3 sum = center.rgb;
       float weight_sum = 1.0;
-      for (int k = -half_taps; k <= half_taps; ++k) {
+      for (int k = -taps.half_taps; k <= taps.half_taps; ++k) {
         if (k == 0) continue;
-        float offset = float(k * stride);
-        float weight = exp(-offset * offset * inv_two_var);
-        sum += weight * island_value(p + dir * (k * stride), p - dir * (k * stride), center, size);
+        float offset = float(k * taps.stride);
+        float weight = exp(-offset * offset * taps.inv_two_var);
+        ivec2 step = dir * (k * taps.stride);
+        sum += weight * island_value(p + step, p - step, center, size);
         weight_sum += weight;
       }
       result = sum / weight_sum;

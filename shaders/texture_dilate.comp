@@ -3,8 +3,10 @@
 // Texture path, seam dilation (d'Eon & Luebke 2007): texels no triangle covers take the
 // mean of the covered texels on the nearest ring (Chebyshev distance 1 ..
 // SSS_TEXTURE_DILATE_TEXELS) that lie on one island (the first one met), for irradiance
-// and stretch alike, so that the blur and the final bilinear lookup near an island's
-// border read the border's values instead of black. Covered texels are copied.
+// and stretch alike, so that the final bilinear lookup near an island's border reads the
+// border's values instead of black. Their island id is stored negated: the blur treats
+// them as off the island (its taps there take the point reflection) and leaves them as
+// they are. Covered texels (the island and its seam gutter) are copied.
 #include "shared/frame.h"
 
 layout(local_size_x = SSS_WORKGROUP_2D_X, local_size_y = SSS_WORKGROUP_2D_Y) in;
@@ -41,7 +43,7 @@ void main() {
       count += 1.0;
     }
     if (count > 0.0) {
-      imageStore(irradiance_img, p, vec4(sum_e / count, island));
+      imageStore(irradiance_img, p, vec4(sum_e / count, -island));  // marked: not surface
       imageStore(stretch_img, p, sum_s / count);
       return;
     }

@@ -262,9 +262,10 @@ bool ViewerUi::draw_texture_objects(const renderer::Renderer& r, renderer::Rende
   static const char* kSizeNames[] = {"256", "512", "1024", "2048"};
   static const char* kUpdates[] = {"every frame", "on change"};
   ImGui::TextDisabled("per object: irradiance texture, recompute");
-  for (const renderer::SssTexturePass::Object& obj : texture->objects()) {
+  for (std::size_t i = 0; i < texture->objects().size(); ++i) {
+    const renderer::SssTexturePass::Object& obj = texture->objects()[i];
     renderer::TextureObjectOptions t = obj.options;
-    ImGui::PushID(t.name.c_str());
+    ImGui::PushID(static_cast<int>(i));  // names repeat (a node's primitives)
     int size = 0;
     while (size < 3 && kSizes[size] < t.size) ++size;
     int update = t.update == renderer::TextureUpdate::EveryFrame ? 0 : 1;
@@ -272,13 +273,13 @@ bool ViewerUi::draw_texture_objects(const renderer::Renderer& r, renderer::Rende
     ImGui::SameLine();
     ImGui::TextDisabled("(%llu updates)", static_cast<unsigned long long>(obj.updates));
     ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);
-    bool edited = ImGui::Combo("##size", &size, kSizeNames, 4);
+    const bool size_edited = ImGui::Combo("##size", &size, kSizeNames, 4);
     ImGui::SameLine();
-    edited |= ImGui::Combo("##update", &update, kUpdates, 2);
+    const bool update_edited = ImGui::Combo("##update", &update, kUpdates, 2);
     ImGui::PopItemWidth();
     ImGui::PopID();
-    if (!edited) continue;
-    t.size = kSizes[size];
+    if (!size_edited && !update_edited) continue;
+    if (size_edited) t.size = kSizes[size];  // a size from the command line stays otherwise
     t.update = update == 0 ? renderer::TextureUpdate::EveryFrame : renderer::TextureUpdate::OnChange;
     auto it = std::find_if(o.texture_objects.begin(), o.texture_objects.end(),
                            [&](const renderer::TextureObjectOptions& x) { return x.name == t.name; });

@@ -50,13 +50,14 @@ std::string debug_view_help() {
 
 void write_atlases(const renderer::Renderer& r, const std::string& prefix) {
   using Atlas = renderer::Renderer::Atlas;
-  if (r.texture_pass() == nullptr) throw std::invalid_argument("--atlas-out needs --sss texture");
   const auto& objects = r.texture_pass()->objects();
   for (std::size_t i = 0; i < objects.size(); ++i) {
     for (const auto& [which, name] : {std::pair{Atlas::Irradiance, "irradiance"},
                                       std::pair{Atlas::Scattered, "scattered"},
                                       std::pair{Atlas::Stretch, "stretch"}}) {
-      const std::string path = prefix + "-" + objects[i].options.name + "-" + name + ".exr";
+      // The object's index keeps two objects of one name (a node's primitives) apart.
+      const std::string path = prefix + "-" + std::to_string(i) + "-" + objects[i].options.name +
+                               "-" + name + ".exr";
       image::write_exr(path, r.read_atlas(i, which));
       std::printf("wrote %s\n", path.c_str());
     }
@@ -104,7 +105,7 @@ int main(int argc, char** argv) {
                  "node's name); repeatable");
   app.add_option("--atlas-out", a.atlas_out,
                  "Headless --sss texture: also write each object's atlases as linear EXR, "
-                 "PREFIX-NAME-irradiance.exr (E), -scattered.exr (sum of w_i E*G_i) and "
+                 "PREFIX-I-NAME-irradiance.exr (E), -scattered.exr (sum of w_i E*G_i) and "
                  "-stretch.exr (mm per texel along u, v); alpha is the UV island + 1");
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
@@ -152,13 +153,15 @@ int main(int argc, char** argv) {
   const auto sss_mode = renderer::parse_sss_mode(a.sss);
   if (!sss_mode) return usage("--sss: expected off, screen or texture, got '" + a.sss + "'");
   options.sss = *sss_mode;
-  if (a.texture_size < int(renderer::kMinTextureSize) || a.texture_size > int(renderer::kMaxTextureSize))
-    return usage("--texture-size: expected 256..2048, got " + std::to_string(a.texture_size));
+  if (const std::string e = renderer::texture_size_error(a.texture_size); !e.empty())
+    return usage("--texture-size: " + e);
   options.texture_size = static_cast<std::uint32_t>(a.texture_size);
   const auto update = renderer::parse_texture_update(a.texture_update);
   if (!update)
     return usage("--texture-update: expected every-frame or on-change, got '" + a.texture_update + "'");
   options.texture_update = *update;
+  if (!a.atlas_out.empty() && (!a.headless || options.sss != renderer::SssMode::Texture))
+    return usage("--atlas-out needs --sss texture and --headless");
   for (const std::string& t : a.texture_objects) {
     auto object = renderer::parse_texture_object(t, options.texture_update);
     if (auto* error = std::get_if<std::string>(&object)) return usage("--texture-object: " + *error);

@@ -93,7 +93,11 @@ int main(int argc, char** argv) {
       if (!mode) return usage("--sss: expected off, screen or texture");
       options.sss = *mode;
     } else if (arg == "--texture-size") {
-      options.texture_size = static_cast<std::uint32_t>(std::atoi(value().c_str()));
+      const std::string v = value();
+      const long long size = std::atoll(v.c_str());
+      if (const std::string e = renderer::texture_size_error(size); !e.empty() || v.empty())
+        return usage(("--texture-size: " + e).c_str());
+      options.texture_size = static_cast<std::uint32_t>(size);
     } else if (arg == "--texture-update") {
       const auto update = renderer::parse_texture_update(value());
       if (!update) return usage("--texture-update: expected every-frame or on-change");
@@ -101,7 +105,8 @@ int main(int argc, char** argv) {
     } else if (arg == "--out") {
       out = value();
     } else if (arg == "--objects") {
-      objects = std::max(1, std::atoi(value().c_str()));
+      objects = std::atoi(value().c_str());
+      if (objects < 1 || objects > 64) return usage("--objects: expected 1..64");
     } else if (arg == "--transmission") {
       const std::string v = value();
       if (v != "on" && v != "off") return usage("--transmission: expected on or off");

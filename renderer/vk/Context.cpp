@@ -92,6 +92,10 @@ void Context::create_device(const ContextOptions& options) {
   features.features.samplerAnisotropy = supported.samplerAnisotropy;
   features.features.shaderStorageImageWriteWithoutFormat =
       supported.shaderStorageImageWriteWithoutFormat;
+  // Arrays of samplers indexed by a push constant (material textures, the texture path's
+  // atlases): dynamically uniform indexing.
+  features.features.shaderSampledImageArrayDynamicIndexing =
+      supported.shaderSampledImageArrayDynamicIndexing;
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo queue_info{};

@@ -21,9 +21,8 @@
 #define SSS_LIGHT_DIRECTIONAL 0
 #define SSS_LIGHT_POINT 1
 #define SSS_LIGHT_SPOT 2
-// Material textures (base colour, normal maps) bound in one frame; more are ignored. The
-// texture path's irradiance raster binds them beside the shadow maps (twice: compare and
-// depth), and lavapipe allows 32 samplers per stage.
+// Material textures (base colour, normal maps) bound in one frame; more are ignored.
+// lavapipe allows 32 samplers per stage; 30 leaves room for two more beside them.
 #define SSS_MAX_TEXTURES 30
 // Objects the texture path gives an irradiance atlas in one frame (more are drawn without
 // spread, with a warning); texels a seam dilation fills around each UV island.

@@ -1,5 +1,5 @@
 // Direct lighting of one surface point, shared by the screen path (lighting.comp, per
-// pixel) and the texture path (texture_irradiance.frag, per atlas texel): diffuse
+// pixel) and the texture path (texture_lighting.comp, per atlas texel): diffuse
 // irradiance E (before albedo, with the light transmitted through thin parts) and GGX
 // specular radiance. Not shared with C++.
 #ifndef SSS_SHADERS_SHADING_GLSL
