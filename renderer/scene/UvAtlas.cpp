@@ -499,7 +499,7 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
         const glm::dvec3 a(P[I[3 * t]]), b(P[I[3 * t + 1]]), d(P[I[3 * t + 2]]);
         const glm::dvec3 nrm = glm::cross(b - a, d - a);
         const double len = glm::length(nrm);
-        if (!(len > 0.0) || glm::dot(nrm, dir) < 0.2 * len) continue;  // would fold over
+        if (!(len > 0.0) || glm::dot(nrm, dir) < 0.05 * len) continue;  // would fold over
         const glm::dvec3 centre = (a + b + d) / 3.0;
         if (glm::length(centre - from) > reach) continue;
         GutterTriangle g;

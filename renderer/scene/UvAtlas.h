@@ -21,7 +21,7 @@
 //      (room for the seam dilation of d'Eon & Luebke 2007).
 //   5. seam gutters: for each chart, the triangles of other charts within reach of its
 //      border (edge-adjacent, breadth-first, centroid within 1.5 x the padding's width in
-//      scene units of the border triangle they grew from, facing within 78° of the chart's
+//      scene units of the border triangle they grew from, facing within 87° of the chart's
 //      axis so that the projection does not fold) mapped by the chart's own projection;
 //      drawn behind the charts' own triangles, they fill the padding with the surface's
 //      real continuation instead of an extrapolation (Mesh::uv_atlas_gutter).
