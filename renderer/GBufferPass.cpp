@@ -15,8 +15,7 @@
 
 namespace sss::renderer {
 
-namespace {
-vk::DescriptorSetLayoutBuilder bindings() {
+vk::DescriptorSetLayoutBuilder surface_set_bindings() {
   vk::DescriptorSetLayoutBuilder b;
   b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
@@ -24,6 +23,17 @@ vk::DescriptorSetLayoutBuilder bindings() {
         shader::kMaxTextures);
   return b;
 }
+
+void write_surface_set(VkDescriptorSet set, const FrameResources& resources) {
+  vk::DescriptorWriter writer(set);
+  writer.uniform_buffer(0, resources.frame_uniforms);
+  const std::vector<VkDescriptorImageInfo> textures = resources.scene.texture_descriptors();
+  for (uint32_t i = 0; i < textures.size(); ++i)
+    writer.image(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures[i], i);
+  writer.update(resources.context);
+}
+
+namespace {
 
 vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout layout,
                                   bool uv_stretch) {
@@ -43,19 +53,14 @@ vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout l
 
 GBufferPass::GBufferPass(const FrameResources& resources)
     : r_(resources),
-      set_layout_(bindings().build(r_.context, kName)),
+      set_layout_(surface_set_bindings().build(r_.context, kName)),
       layout_(vk::create_pipeline_layout(r_.context, set_layout_.get(), sizeof(shader::DrawPush),
                                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                          kName)),
       pipeline_(build_pipeline(r_.context, layout_.get(), false)),
-      pool_(r_.context, bindings(), 1, kName) {
+      pool_(r_.context, surface_set_bindings(), 1, kName) {
   set_ = pool_.allocate(set_layout_.get());
-  vk::DescriptorWriter writer(set_);
-  writer.uniform_buffer(0, r_.frame_uniforms);
-  const std::vector<VkDescriptorImageInfo> textures = r_.scene.texture_descriptors();
-  for (uint32_t i = 0; i < textures.size(); ++i)
-    writer.image(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures[i], i);
-  writer.update(r_.context);
+  write_surface_set(set_, r_);
 }
 
 void GBufferPass::set_uv_stretch(bool on) {

@@ -9,6 +9,11 @@
 
 namespace sss::renderer {
 
+// The set the passes that draw the scene's surfaces with surface.glsl bind (the G-buffer,
+// the texture path's atlas raster): 0 the frame uniforms, 1 the material textures.
+vk::DescriptorSetLayoutBuilder surface_set_bindings();
+void write_surface_set(VkDescriptorSet set, const FrameResources& resources);
+
 class GBufferPass {
  public:
   static constexpr const char* kName = "gbuffer";

@@ -1,5 +1,6 @@
 #include "renderer/SssTexturePass.h"
 
+#include "renderer/GBufferPass.h"
 #include "renderer/MaterialTable.h"
 #include "renderer/vk/Barrier.h"
 #include "renderer/vk/GraphicsPipeline.h"
@@ -24,14 +25,6 @@ namespace sss::renderer {
 namespace {
 
 constexpr VkFormat kAtlasFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-
-vk::DescriptorSetLayoutBuilder raster_bindings() {
-  const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | fs)
-      .add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs, shader::kMaxTextures);
-  return b;
-}
 
 vk::DescriptorSetLayoutBuilder lighting_bindings() {
   const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -121,12 +114,12 @@ struct SssTexturePass::Textures {
 
 SssTexturePass::SssTexturePass(const FrameResources& resources, const RenderOptions& options)
     : r_(resources),
-      raster_set_layout_(raster_bindings().build(r_.context, "texture irradiance")),
+      raster_set_layout_(surface_set_bindings().build(r_.context, "texture irradiance")),
       raster_layout_(vk::create_pipeline_layout(
           r_.context, raster_set_layout_.get(), sizeof(shader::DrawPush),
           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, "texture irradiance")),
       raster_pipeline_(raster_pipeline(r_.context, raster_layout_.get())),
-      raster_pool_(r_.context, raster_bindings(), 1, "texture irradiance"),
+      raster_pool_(r_.context, surface_set_bindings(), 1, "texture irradiance"),
       lighting_(r_.context, lighting_bindings(), sss_spv_texture_lighting_comp,
                 sizeof(shader::TexturePush), shader::kMaxTextureObjects, "texture lighting"),
       dilate_(r_.context, dilate_bindings(), sss_spv_texture_dilate_comp, 0,
@@ -141,12 +134,7 @@ SssTexturePass::SssTexturePass(const FrameResources& resources, const RenderOpti
 SssTexturePass::~SssTexturePass() = default;
 
 void SssTexturePass::write_descriptors() {
-  vk::DescriptorWriter writer(raster_set_);
-  writer.uniform_buffer(0, r_.frame_uniforms);
-  const std::vector<VkDescriptorImageInfo> textures = r_.scene.texture_descriptors();
-  for (uint32_t i = 0; i < textures.size(); ++i)
-    writer.image(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures[i], i);
-  writer.update(r_.context);
+  write_surface_set(raster_set_, r_);
   for (Textures& t : textures_) write_lighting(t);
 }
 

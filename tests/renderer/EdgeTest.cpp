@@ -29,6 +29,7 @@
 //    2N roundings and the accumulation N more: eps = 3N * 2^-11 T (8.8e-3 T for N = 6;
 //    measured worst 2.6e-3 T, on the lit side). Sub-pixel Gaussians, whose sampled
 //    variance is off, are at most a pixel wide and lie within the pixel ramp.
+#include "BoxAverage.h"
 #include "RenderTest.h"
 
 #include "profiles/EdgeResponse.h"
@@ -65,23 +66,6 @@ struct EdgeRun {
   MaterialData materials;
 };
 
-// Average of f over [x - h/2, x + h/2] (Gauss-Legendre, 8 points on each of 4 panels).
-template <typename F>
-double pixel_average(const F& f, double x, double h) {
-  static const double gx[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                               0.9602898564975363};
-  static const double gw[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                               0.1012285362903763};
-  double sum = 0.0;
-  const int panels = 4;
-  const double ph = h / panels;
-  for (int p = 0; p < panels; ++p) {
-    const double c = x - 0.5 * h + (p + 0.5) * ph;
-    for (int i = 0; i < 4; ++i)
-      sum += gw[i] * (f(c - 0.5 * ph * gx[i]) + f(c + 0.5 * ph * gx[i])) * 0.5 * ph;
-  }
-  return sum / h;
-}
 
 class EdgeTest : public RenderTest {
  protected:
@@ -183,8 +167,8 @@ void check_gaussians(const std::string& preset, const EdgeRun& run) {
     for (int c = 0; c < 3; ++c) {
       const auto m_exact = [&](double t) { return profiles::edge_response(profile, t)[c]; };
       const auto m_fit = [&](double t) { return profiles::edge_response(fit, t)[c]; };
-      const double avg_exact = pixel_average(m_exact, xc, kPixelMm);
-      const double avg_fit = pixel_average(m_fit, xc, kPixelMm);
+      const double avg_exact = box_average(m_exact, xc, kPixelMm);
+      const double avg_fit = box_average(m_fit, xc, kPixelMm);
       const double eps = gaussians_eps(fit) * T[c];
       // The renderer's own target: the fit's response over the pixel.
       EXPECT_NEAR(run.pi_L[x][c], avg_fit, eps) << preset << " implementation at x=" << xc;
@@ -207,8 +191,8 @@ void check_gaussians(const std::string& preset, const EdgeRun& run) {
   for (int c = 0; c < 3; ++c) {
     const auto m_exact = [&](double t) { return profiles::edge_response(profile, t)[c]; };
     const auto m_fit = [&](double t) { return profiles::edge_response(fit, t)[c]; };
-    const double tol = std::fabs(pixel_average(m_fit, 2.0, kPixelMm) - M2[c]) +
-                       std::fabs(pixel_average(m_exact, 2.0, kPixelMm) - M2[c]) +
+    const double tol = std::fabs(box_average(m_fit, 2.0, kPixelMm) - M2[c]) +
+                       std::fabs(box_average(m_exact, 2.0, kPixelMm) - M2[c]) +
                        gaussians_eps(fit) * T[c];
     EXPECT_NEAR(run.pi_L[140][c], M2[c], tol) << preset << " 2 mm channel " << c;
   }

@@ -15,6 +15,7 @@
 // of the gaussians mode (3N x 2^-11 T) plus the lighting's and the dilation's stores and
 // the lookup's 8-bit bilinear weights (lavapipe: 1/256 of a texel step; covered by the
 // bracket, which spans two steps): eps = (3N + 2) x 2^-11 T.
+#include "BoxAverage.h"
 #include "RenderTest.h"
 
 #include "profiles/EdgeResponse.h"
@@ -49,23 +50,6 @@ RenderOptions texture_options(std::uint32_t w, std::uint32_t h, std::uint32_t si
   return o;
 }
 
-// Average of f over [x - h/2, x + h/2] (Gauss-Legendre, 8 points on each of 4 panels).
-template <typename F>
-double box_average(const F& f, double x, double h) {
-  static const double gx[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                               0.9602898564975363};
-  static const double gw[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                               0.1012285362903763};
-  double sum = 0.0;
-  const int panels = 4;
-  const double ph = h / panels;
-  for (int p = 0; p < panels; ++p) {
-    const double c = x - 0.5 * h + (p + 0.5) * ph;
-    for (int i = 0; i < 4; ++i)
-      sum += gw[i] * (f(c - 0.5 * ph * gx[i]) + f(c + 0.5 * ph * gx[i])) * 0.5 * ph;
-  }
-  return sum / h;
-}
 
 // The largest mm-per-texel of object 0 along u (x) or v (y) over its covered texels.
 double texel_mm(const Renderer& r, int axis) {
