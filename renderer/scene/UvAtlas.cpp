@@ -462,10 +462,16 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
     covered += std::abs(0.5 * cross2(b - a, d - a));
   }
 
-  // 6. Seam gutters. The chart's map, uv = (dot(to_u, p), dot(to_v, p)) + offset, is the
-  //    projection, rotation, scale and offset of step 5 written as one affine map.
+  // 6. Seam gutters: each chart's neighbourhood unfolded into its padding, triangle by
+  //    triangle across shared edges (breadth-first): a triangle across edge ab of a placed
+  //    triangle (a chart triangle at its chart's map, or a gutter triangle already placed)
+  //    keeps a and b where they are and puts its third corner c on the other side of ab,
+  //    as the 3D triangle abc scaled by |AB| / |ab| (a similar triangle). So the gutter
+  //    continues the surface at the chart's local scale however sharply it turns at the
+  //    chart's border (a projection along the chart's axis would fold there), out to
+  //    1.5 x the padding's width in scene units (surface path between centroids).
   {
-    const double reach = 3.0 * pad / std::max(s, 1e-30);  // 1.5 x the gap, scene units
+    const double reach = 3.0 * pad / std::max(s, 1e-30);
     std::vector<glm::dvec3> to_u(C), to_v(C);
     std::vector<glm::dvec2> offset(C);
     for (std::size_t c = 0; c < C; ++c) {
@@ -476,43 +482,75 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
       to_v[c] = s * (sn * u + cs * v);
       offset[c] = -s * box_min[c] + origin[c] + pad;
     }
+    const auto centroid = [&](std::uint32_t t) {
+      return (glm::dvec3(P[I[3 * t]]) + glm::dvec3(P[I[3 * t + 1]]) + glm::dvec3(P[I[3 * t + 2]])) / 3.0;
+    };
+    struct Placed {
+      std::array<glm::dvec2, 3> uv;
+      double dist = 0.0;  // surface path from the chart, scene units
+    };
     std::vector<std::uint32_t> seen(n, kNone);
-    std::deque<std::pair<std::uint32_t, glm::dvec3>> frontier;  // triangle, border point
+    std::unordered_map<std::uint32_t, Placed> placed;
+    std::deque<std::pair<std::uint32_t, std::uint32_t>> frontier;  // (triangle, placed parent)
     for (std::uint32_t c = 0; c < C; ++c) {
-      const int ax = atlas.charts[c].axis;
-      glm::dvec3 dir(0.0);
-      dir[ax / 2] = ax % 2 == 0 ? 1.0 : -1.0;
+      placed.clear();
       frontier.clear();
       for (std::uint32_t t : chart_faces[c]) {
         seen[t] = c;
-        const glm::dvec3 centre = (glm::dvec3(P[I[3 * t]]) + glm::dvec3(P[I[3 * t + 1]]) +
-                                   glm::dvec3(P[I[3 * t + 2]])) / 3.0;
+        Placed pl;
+        for (int k = 0; k < 3; ++k) {
+          const glm::dvec3 p(P[I[3 * t + k]]);
+          pl.uv[k] = glm::dvec2(glm::dot(to_u[c], p), glm::dot(to_v[c], p)) + offset[c];
+        }
+        placed[t] = pl;
         for (std::uint32_t nb : neighbour[t])
-          if (nb != kNone && atlas.triangle_chart[nb] != c) frontier.emplace_back(nb, centre);
+          if (nb != kNone && atlas.triangle_chart[nb] != c) frontier.emplace_back(nb, t);
       }
       const std::uint32_t host = chart_faces[c].front();
       while (!frontier.empty()) {
-        const auto [t, from] = frontier.front();
+        const auto [t, parent] = frontier.front();
         frontier.pop_front();
         if (seen[t] == c) continue;
+        const Placed& pp = placed.at(parent);
+        // The shared edge: the parent's corners whose welded vertices t also has.
+        int pe[3] = {-1, -1, -1};  // for each corner of t, the parent's corner (or -1)
+        int shared = 0;
+        for (int k = 0; k < 3; ++k)
+          for (int q = 0; q < 3; ++q)
+            if (weld[I[3 * t + k]] == weld[I[3 * parent + q]]) pe[k] = q, ++shared;
+        if (shared != 2) continue;
+        int kc = 0;
+        while (pe[kc] >= 0) ++kc;
+        const int ka = (kc + 1) % 3, kb = (kc + 2) % 3;
+        const glm::dvec3 a(P[I[3 * t + ka]]), b(P[I[3 * t + kb]]), cc(P[I[3 * t + kc]]);
+        const glm::dvec2 A = pp.uv[pe[ka]], B = pp.uv[pe[kb]];
+        const int parent_third = 3 - pe[ka] - pe[kb];
+        const double ab2 = glm::dot(b - a, b - a), AB = glm::length(B - A);
+        if (!(ab2 > 0.0) || !(AB > 0.0)) continue;
+        const double scale = AB / std::sqrt(ab2);
+        const double along = glm::dot(cc - a, b - a) / ab2;
+        const double height = glm::length(cc - (a + along * (b - a)));
+        glm::dvec2 normal(-(B - A).y, (B - A).x);
+        normal /= AB;
+        if (glm::dot(pp.uv[parent_third] - A, normal) > 0.0) normal = -normal;  // away from the parent
+        Placed pl;
+        pl.uv[ka] = A;
+        pl.uv[kb] = B;
+        pl.uv[kc] = A + along * (B - A) + normal * height * scale;
+        pl.dist = pp.dist + glm::length(centroid(t) - centroid(parent));
+        if (pl.dist > reach) continue;
         seen[t] = c;
-        const glm::dvec3 a(P[I[3 * t]]), b(P[I[3 * t + 1]]), d(P[I[3 * t + 2]]);
-        const glm::dvec3 nrm = glm::cross(b - a, d - a);
-        const double len = glm::length(nrm);
-        if (!(len > 0.0) || glm::dot(nrm, dir) < 0.05 * len) continue;  // would fold over
-        const glm::dvec3 centre = (a + b + d) / 3.0;
-        if (glm::length(centre - from) > reach) continue;
         GutterTriangle g;
         g.host_triangle = host;
         for (int k = 0; k < 3; ++k) {
-          const glm::dvec3 p(P[I[3 * t + k]]);
           g.source[k] = I[3 * t + k];
-          g.uv[k] = glm::vec2(glm::dot(to_u[c], p) + offset[c].x, glm::dot(to_v[c], p) + offset[c].y);
-          g.depth[k] = float(0.25 + 0.5 * std::min(1.0, glm::length(p - from) / reach));
+          g.uv[k] = glm::vec2(pl.uv[k]);
+          g.depth[k] = float(0.25 + 0.5 * std::min(1.0, pl.dist / reach));
         }
         atlas.gutter.push_back(g);
+        placed[t] = pl;
         for (std::uint32_t nb : neighbour[t])
-          if (nb != kNone && seen[nb] != c && atlas.triangle_chart[nb] != c) frontier.emplace_back(nb, from);
+          if (nb != kNone && seen[nb] != c && atlas.triangle_chart[nb] != c) frontier.emplace_back(nb, t);
       }
     }
   }

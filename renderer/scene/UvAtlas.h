@@ -20,9 +20,10 @@
 //      [0,1]^2 with `padding_texels` of empty texels around every chart at `resolution`
 //      (room for the seam dilation of d'Eon & Luebke 2007).
 //   5. seam gutters: for each chart, the triangles of other charts within reach of its
-//      border (edge-adjacent, breadth-first, centroid within 1.5 x the padding's width in
-//      scene units of the border triangle they grew from, facing within 87° of the chart's
-//      axis so that the projection does not fold) mapped by the chart's own projection;
+//      border (edge-adjacent, breadth-first, up to 1.5 x the padding's width in scene units
+//      along the surface), unfolded across shared edges at the chart's local scale (each
+//      keeps the shared edge's UVs and puts its third corner as the similar triangle on
+//      the other side), so the surface continues however sharply it turns at the border;
 //      drawn behind the charts' own triangles, they fill the padding with the surface's
 //      real continuation instead of an extrapolation (Mesh::uv_atlas_gutter).
 // Before step 2, vertices are welded by position (to 1e-6 of the diagonal) and a face
