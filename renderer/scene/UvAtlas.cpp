@@ -465,11 +465,11 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
   // 6. Seam gutters: each chart's neighbourhood unfolded into its padding, triangle by
   //    triangle across shared edges (breadth-first): a triangle across edge ab of a placed
   //    triangle (a chart triangle at its chart's map, or a gutter triangle already placed)
-  //    keeps a and b where they are and puts its third corner c on the other side of ab,
-  //    as the 3D triangle abc scaled by |AB| / |ab| (a similar triangle). So the gutter
-  //    continues the surface at the chart's local scale however sharply it turns at the
-  //    chart's border (a projection along the chart's axis would fold there), out to
-  //    1.5 x the padding's width in scene units (surface path between centroids).
+  //    keeps a and b where they are and puts its third corner c where the placed
+  //    triangle's own affine map sends c turned about ab into its plane. So the gutter
+  //    continues the surface at the chart's local (anisotropic) scale however sharply it
+  //    turns at the chart's border (a projection along the chart's axis would fold there),
+  //    out to 1.5 x the padding's width in scene units (surface path between centroids).
   {
     const double reach = 3.0 * pad / std::max(s, 1e-30);
     std::vector<glm::dvec3> to_u(C), to_v(C);
@@ -525,18 +525,32 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
         const glm::dvec3 a(P[I[3 * t + ka]]), b(P[I[3 * t + kb]]), cc(P[I[3 * t + kc]]);
         const glm::dvec2 A = pp.uv[pe[ka]], B = pp.uv[pe[kb]];
         const int parent_third = 3 - pe[ka] - pe[kb];
-        const double ab2 = glm::dot(b - a, b - a), AB = glm::length(B - A);
-        if (!(ab2 > 0.0) || !(AB > 0.0)) continue;
-        const double scale = AB / std::sqrt(ab2);
-        const double along = glm::dot(cc - a, b - a) / ab2;
-        const double height = glm::length(cc - (a + along * (b - a)));
-        glm::dvec2 normal(-(B - A).y, (B - A).x);
-        normal /= AB;
-        if (glm::dot(pp.uv[parent_third] - A, normal) > 0.0) normal = -normal;  // away from the parent
+        // c turned about ab into the parent's plane, on the side away from the parent's
+        // third corner, then mapped by the parent's own affine 3D -> UV map: the gutter
+        // keeps the chart's anisotropic scale (a tilted chart's texels are longer across
+        // the tilt), so the blur's texel sizes agree across the border.
+        const glm::dvec3 third(P[I[3 * parent + parent_third]]);
+        const glm::dvec3 ab = b - a;
+        const double ab2 = glm::dot(ab, ab);
+        if (!(ab2 > 0.0)) continue;
+        const double along = glm::dot(cc - a, ab) / ab2;
+        const double height = glm::length(cc - (a + along * ab));
+        glm::dvec3 side = (third - a) - ab * (glm::dot(third - a, ab) / ab2);  // in the parent's plane
+        const double side_len = glm::length(side);
+        if (!(side_len > 0.0)) continue;
+        const glm::dvec3 unfolded = a + along * ab - side / side_len * height;
+        // The parent's affine map from barycentric-style coordinates on its edges.
+        const glm::dvec3 e1 = b - a, e2 = third - a, d = unfolded - a;
+        const double g11 = glm::dot(e1, e1), g12 = glm::dot(e1, e2), g22 = glm::dot(e2, e2);
+        const double det = g11 * g22 - g12 * g12;
+        if (!(std::abs(det) > 0.0)) continue;
+        const double r1 = glm::dot(d, e1), r2 = glm::dot(d, e2);
+        const double alpha = (r1 * g22 - r2 * g12) / det, beta = (r2 * g11 - r1 * g12) / det;
+        const glm::dvec2 C3 = pp.uv[parent_third];
         Placed pl;
         pl.uv[ka] = A;
         pl.uv[kb] = B;
-        pl.uv[kc] = A + along * (B - A) + normal * height * scale;
+        pl.uv[kc] = A + alpha * (B - A) + beta * (C3 - A);
         pl.dist = pp.dist + glm::length(centroid(t) - centroid(parent));
         if (pl.dist > reach) continue;
         seen[t] = c;

@@ -21,9 +21,10 @@
 //      (room for the seam dilation of d'Eon & Luebke 2007).
 //   5. seam gutters: for each chart, the triangles of other charts within reach of its
 //      border (edge-adjacent, breadth-first, up to 1.5 x the padding's width in scene units
-//      along the surface), unfolded across shared edges at the chart's local scale (each
-//      keeps the shared edge's UVs and puts its third corner as the similar triangle on
-//      the other side), so the surface continues however sharply it turns at the border;
+//      along the surface), unfolded across shared edges (each keeps the shared edge's UVs,
+//      turns its third corner about that edge into the placed neighbour's plane and maps
+//      it by the neighbour's own affine 3D -> UV map, so the chart's anisotropic scale
+//      carries on), so the surface continues however sharply it turns at the border;
 //      drawn behind the charts' own triangles, they fill the padding with the surface's
 //      real continuation instead of an extrapolation (Mesh::uv_atlas_gutter).
 // Before step 2, vertices are welded by position (to 1e-6 of the diagonal) and a face
