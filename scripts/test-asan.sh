@@ -2,7 +2,7 @@
 # Builds the `asan` preset (ASan + UBSan + -D_GLIBCXX_ASSERTIONS, in build-asan/) and runs
 # every test under it, then renders one headless lavapipe frame of the default scene with
 # the sanitized sss-viewer. Any sanitizer report fails the run (halt_on_error, UBSan
-# without recover). Extra arguments go to ctest (CI passes -E to skip the slowest ones).
+# without recover). Extra arguments go to ctest (.ci/run passes none: every test).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 "$(dirname "$0")/install-deps.sh"
