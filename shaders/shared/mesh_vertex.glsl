@@ -1,0 +1,32 @@
+// The vertex stage of the passes that draw the scene's meshes with every attribute
+// (gbuffer.vert, texture_irradiance.vert): the GpuVertex inputs, the surface outputs
+// surface.glsl reads, and their transform by the draw's model matrix. Not shared with C++.
+#ifndef SSS_SHADERS_MESH_VERTEX_GLSL
+#define SSS_SHADERS_MESH_VERTEX_GLSL
+
+#include "frame.h"
+
+layout(push_constant) uniform Push { DrawPush draw; };
+
+layout(location = 0) in vec3 in_position;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+layout(location = 3) in vec4 in_tangent;
+layout(location = 4) in vec4 in_atlas;  // u, v, UV island, atlas raster depth
+layout(location = 0) out vec3 out_world;
+layout(location = 1) out vec3 out_normal;
+layout(location = 2) out vec2 out_uv;
+layout(location = 3) out vec4 out_tangent;
+
+// Writes outputs 0..3 (world position, normal, material UV, tangent); returns the world
+// position.
+vec4 write_surface_outputs() {
+  vec4 world = draw.model * vec4(in_position, 1.0);
+  out_world = world.xyz;
+  out_normal = transpose(inverse(mat3(draw.model))) * in_normal;
+  out_uv = in_uv;
+  out_tangent = vec4(mat3(draw.model) * in_tangent.xyz, in_tangent.w);
+  return world;
+}
+
+#endif
