@@ -24,7 +24,10 @@ Context::Core::~Core() {
 
 Context::Context(const ContextOptions& options)
     : log_(options.validation_log ? options.validation_log
-                                  : std::make_shared<ValidationLog>(options.print_validation)) {
+                                  : std::make_shared<ValidationLog>(options.print_validation)),
+      fail_allocation_after_(options.fail_allocation_after
+                                 ? options.fail_allocation_after
+                                 : fail_allocation_after_from_environment()) {
   create_instance(options);
   if (options.create_surface) {
     core_.surface = options.create_surface(core_.instance);

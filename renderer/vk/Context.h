@@ -8,18 +8,28 @@
 // Validation: with enable_validation and the Khronos layer installed, the layer is loaded
 // with the requested extra checks, and every warning and error it reports is kept in a
 // thread-safe list (validation_messages()) and printed to stderr. Without the layer the
-// Context says so once on stderr and runs without it (validation_enabled() is false).
+// Context says so once on stderr and runs without it (validation_enabled() is false),
+// except in a validation run: when SSS_VALIDATION_CHECKS is set (Environment.h) the
+// checks it names replace sync_validation / best_practices, and a missing layer is an
+// error (VK_ERROR_LAYER_NOT_PRESENT), so that such a run cannot pass without checking.
+//
+// Allocation failures can be simulated (ContextOptions::fail_allocation_after, or
+// SSS_FAIL_ALLOCATION_AFTER): allocate_memory (Memory.cpp) asks the Context before each
+// vkAllocateMemory and counts the successful ones here.
 #pragma once
 
 #include "renderer/vk/DeviceSelection.h"
+#include "renderer/vk/Environment.h"
 #include "renderer/vk/ValidationLog.h"
 
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -41,6 +51,10 @@ struct ContextOptions {
   // Called once the instance exists; the returned surface is owned by the Context.
   std::function<VkSurfaceKHR(VkInstance)> create_surface;
   std::string application_name = "sss";
+  // After this many successful device-memory allocations every further one fails with
+  // VK_ERROR_OUT_OF_DEVICE_MEMORY (a simulated failure, said so in the error). Unset:
+  // SSS_FAIL_ALLOCATION_AFTER decides (no limit when that is unset too).
+  std::optional<uint64_t> fail_allocation_after;
 };
 
 // What the renderer may need to know about the device it runs on.
@@ -81,6 +95,18 @@ class Context {
 
   // True when the validation layer is loaded and reporting into this Context.
   bool validation_enabled() const { return validation_enabled_; }
+  // The checks requested of the layer (what SSS_VALIDATION_CHECKS or the options asked
+  // for; meaningful when validation_enabled()).
+  ValidationChecks validation_checks() const { return validation_checks_; }
+
+  // Simulated allocation failure (see ContextOptions::fail_allocation_after). Only
+  // allocate_memory calls the last two.
+  std::optional<uint64_t> fail_allocation_after() const { return fail_allocation_after_; }
+  uint64_t successful_allocations() const { return successful_allocations_.load(); }
+  bool allocation_must_fail() const {
+    return fail_allocation_after_ && successful_allocations_.load() >= *fail_allocation_after_;
+  }
+  void count_successful_allocation() const { successful_allocations_.fetch_add(1); }
   std::vector<ValidationMessage> validation_messages() const { return log_->messages(); }
   std::size_t validation_message_count() const { return log_->size(); }
   void clear_validation_messages() { log_->clear(); }
@@ -124,6 +150,9 @@ class Context {
   uint32_t queue_family_ = 0;
   DeviceInfo info_;
   bool validation_enabled_ = false;
+  ValidationChecks validation_checks_ = ValidationChecks::Core;
+  std::optional<uint64_t> fail_allocation_after_;
+  mutable std::atomic<uint64_t> successful_allocations_{0};
   PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label_ = nullptr;
   PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label_ = nullptr;
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;

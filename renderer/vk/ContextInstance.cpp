@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,9 +65,30 @@ void Context::create_instance(const ContextOptions& options) {
                           "; the renderer needs 1.3");
   }
 
+  // A validation run (SSS_VALIDATION_CHECKS set) names the checks, replacing the
+  // options' own, and must not run without the layer.
+  const std::optional<ValidationChecks> run_checks =
+      options.enable_validation ? validation_checks_from_environment() : std::nullopt;
+  bool sync_validation = options.sync_validation;
+  bool best_practices = options.best_practices;
+  if (run_checks) {
+    sync_validation = *run_checks == ValidationChecks::Sync;
+    best_practices = *run_checks == ValidationChecks::BestPractices;
+  }
+  validation_checks_ = best_practices    ? ValidationChecks::BestPractices
+                       : sync_validation ? ValidationChecks::Sync
+                                         : ValidationChecks::Core;
+
   bool use_layer = false;
   if (options.enable_validation) {
     use_layer = layer_installed(kValidationLayer);
+    if (!use_layer && run_checks) {
+      throw VulkanError(VK_ERROR_LAYER_NOT_PRESENT,
+                        std::string("SSS_VALIDATION_CHECKS=") +
+                            std::string(validation_checks_name(*run_checks)) + " asks for " +
+                            kValidationLayer +
+                            ", which is not installed (Debian: vulkan-validationlayers)");
+    }
     if (!use_layer) {
       static std::once_flag once;
       std::call_once(once, [] {
@@ -105,10 +127,10 @@ void Context::create_instance(const ContextOptions& options) {
   // VK_LAYER_ENABLES set instead, it is. The struct belongs to VK_EXT_validation_features,
   // which the layer itself offers, so that extension is enabled with it.
   std::vector<VkValidationFeatureEnableEXT> enables;
-  if (use_layer && options.sync_validation) {
+  if (use_layer && sync_validation) {
     enables.push_back(VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT);
   }
-  if (use_layer && options.best_practices) {
+  if (use_layer && best_practices) {
     enables.push_back(VK_VALIDATION_FEATURE_ENABLE_BEST_PRACTICES_EXT);
   }
   VkDebugUtilsMessengerCreateInfoEXT messenger_info = ValidationLog::messenger_info(log_.get());

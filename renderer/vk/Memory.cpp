@@ -5,9 +5,18 @@
 
 #include <bit>
 #include <bitset>
+#include <cstdio>
 #include <string>
 
 namespace sss::vk {
+
+namespace {
+std::string hex(uint32_t value) {
+  char text[9];
+  std::snprintf(text, sizeof text, "%x", value);
+  return text;
+}
+}  // namespace
 
 std::string_view memory_usage_name(MemoryUsage usage) {
   switch (usage) {
@@ -98,7 +107,28 @@ Allocation allocate_memory(const Context& context, const VkMemoryRequirements& r
   allocate.allocationSize = requirements.size;
   allocate.memoryTypeIndex = type;
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  VK_CHECK(vkAllocateMemory(context.device(), &allocate, nullptr, &memory));
+  // The renderer's one call of vkAllocateMemory. A simulated failure (SSS_FAIL_ALLOCATION_
+  // AFTER, ContextOptions::fail_allocation_after) takes the same path as a real one.
+  const bool simulated = context.allocation_must_fail();
+  const VkResult allocated = simulated
+                              ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+                              : vkAllocateMemory(context.device(), &allocate, nullptr, &memory);
+  if (allocated < 0) {
+    const VkMemoryType& memory_type = info.memory.memoryTypes[type];
+    std::string message;
+    if (simulated) {
+      message = "simulated allocation failure (fail after " +
+                std::to_string(*context.fail_allocation_after()) +
+                " allocations, SSS_FAIL_ALLOCATION_AFTER): ";
+    }
+    message += "vkAllocateMemory of " + std::to_string(requirements.size) + " bytes of " +
+               std::string(memory_usage_name(usage)) + " memory (memory type " +
+               std::to_string(type) + ", heap " + std::to_string(memory_type.heapIndex) +
+               ", property flags 0x" + hex(memory_type.propertyFlags) + ") on " + info.name +
+               " failed with " + result_name(allocated);
+    throw VulkanError(allocated, message);
+  }
+  context.count_successful_allocation();
 
   Allocation result;
   result.memory = MemoryHandle(context.device(), memory);
