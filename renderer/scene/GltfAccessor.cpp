@@ -81,6 +81,9 @@ Status locate(GltfContext& ctx, int index, int components, const std::string& ob
   if (stride < element)
     return ctx.fail(view_name, "byteStride", std::to_string(stride) + " is smaller than the " +
                                                  std::to_string(element) + "-byte elements of " + name);
+  if (a.byteOffset >= view.byteLength)
+    return ctx.fail(name, "byteOffset", std::to_string(a.byteOffset) + " lies past the " +
+                                            std::to_string(view.byteLength) + " bytes of " + view_name);
   if (a.byteOffset % std::uint64_t(csize) != 0 ||
       (std::uint64_t(view.byteOffset) + a.byteOffset) % std::uint64_t(csize) != 0)
     return ctx.fail(name, "byteOffset", "is not aligned to its " + std::to_string(csize) +

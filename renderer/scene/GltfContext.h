@@ -26,6 +26,8 @@ struct GltfContext {
   Scene& scene;
   // Encoded bytes of URI images, captured by the image hook (index = images[i]).
   const std::vector<std::vector<unsigned char>>& uri_image_bytes;
+  // Declared media type of images[i] (GltfJsonFacts::image_media_type).
+  const std::vector<std::string>& image_media_type;
   std::uint64_t bytes_charged = 0;
   std::vector<std::vector<std::uint32_t>> mesh_primitives;  // glTF mesh -> scene meshes
   std::vector<std::optional<std::uint32_t>> texture_map;     // glTF texture -> scene texture

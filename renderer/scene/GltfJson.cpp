@@ -84,11 +84,13 @@ std::optional<std::string> check_json_depth(std::string_view text, int max_depth
 }
 
 std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
-                                                       const std::string& file) {
+                                                       const std::string& file,
+                                                       std::optional<std::uint64_t> glb_bin_bytes) {
   if (auto e = check_json_depth(text, kMaxJsonDepth)) return LoadError{file, "", "", *e};
   const json root = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
   if (root.is_discarded()) return LoadError{file, "", "", "is not valid JSON"};
   if (!root.is_object()) return LoadError{file, "", "", "the JSON root must be an object"};
+  if (auto e = check_gltf_schema(root, file)) return *e;
   const Checker c{file, root};
 
   SSS_TRY(buffers, c.array("buffers"));
@@ -98,7 +100,17 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
     SSS_TRY(length, c.uint_member(b, at("buffers", i), "byteLength", true));
     if (length == 0) return c.fail(at("buffers", i), "byteLength", "must be >= 1");
     buffer_bytes.push_back(length);
-    if (!b.contains("uri")) continue;  // the GLB's BIN chunk
+    if (!b.contains("uri")) {  // the GLB's BIN chunk (glTF 2.0 §4.4.3.3)
+      if (!glb_bin_bytes || i != 0)
+        return c.fail(at("buffers", i), "uri",
+                      glb_bin_bytes ? "is required; only buffers[0] of a GLB may omit it (the BIN chunk)"
+                                    : "is required in a .gltf file (only a GLB's buffers[0] may omit it)");
+      if (length > *glb_bin_bytes)
+        return c.fail(at("buffers", i), "byteLength",
+                      std::to_string(length) + " bytes, but the GLB's BIN chunk has " +
+                          std::to_string(*glb_bin_bytes) + (*glb_bin_bytes ? "" : " (it has none)"));
+      continue;
+    }
     if (!b["uri"].is_string()) return c.fail(at("buffers", i), "uri", "must be a string");
     if (auto e = check_uri(b["uri"].get<std::string>(), UriUse::Buffer, length))
       return c.fail(at("buffers", i), "uri", *e);
@@ -130,15 +142,23 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
   }
 
   SSS_TRY(images, c.array("images"));
+  std::vector<std::string> media_types(images->size());
   for (std::size_t i = 0; i < images->size(); ++i) {
     const json& img = (*images)[i];
     const std::string object = at("images", i);
     if (img.contains("uri") == img.contains("bufferView"))
       return c.fail(object, "", "needs exactly one of uri and bufferView");
+    if (img.contains("mimeType")) media_types[i] = img["mimeType"].get<std::string>();  // schema: png/jpeg
     if (img.contains("uri")) {
       if (!img["uri"].is_string()) return c.fail(object, "uri", "must be a string");
-      if (auto e = check_uri(img["uri"].get<std::string>(), UriUse::Image))
-        return c.fail(object, "uri", *e);
+      const std::string uri = img["uri"].get<std::string>();
+      if (auto e = check_uri(uri, UriUse::Image)) return c.fail(object, "uri", *e);
+      if (uri.rfind("data:", 0) == 0) {
+        const std::string type = uri.substr(5, uri.find(';') - 5);  // check_uri: png or jpeg
+        if (!media_types[i].empty() && media_types[i] != type)
+          return c.fail(object, "mimeType", "is \"" + media_types[i] + "\" but the data URI is " + type);
+        media_types[i] = type;
+      }
       continue;
     }
     SSS_TRY(v, c.uint_member(img, object, "bufferView", true));
@@ -160,6 +180,7 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
 
   SSS_TRY(materials, c.array("materials"));
   GltfJsonFacts facts;
+  facts.image_media_type = std::move(media_types);
   facts.material_count = materials->size();
   facts.material_sss.resize(materials->size());
   for (std::size_t i = 0; i < materials->size(); ++i) {

@@ -7,6 +7,8 @@
 #include "renderer/scene/LoadError.h"
 #include "renderer/scene/Material.h"
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -26,14 +28,24 @@ std::optional<std::string> check_json_depth(std::string_view text, int max_depth
 struct GltfJsonFacts {
   std::size_t material_count = 0;
   std::vector<std::optional<SssMaterial>> material_sss;  // materials[i].extras.sss
+  // images[i]'s declared media type ("image/png", "image/jpeg"): its data URI's type or
+  // its mimeType; empty when it declares none (a file URI without mimeType).
+  std::vector<std::string> image_media_type;
 };
 
-// Checks: the root is an object; extensionsRequired (only KHR_lights_punctual);
-// buffers[i].uri and images[i].uri (check_uri, with the buffer's byteLength); every
-// bufferViews[i] (buffer index, byte range with 64-bit arithmetic, stride);
-// images[i].bufferView; materials[i].extras.sss (parse_sss_extras). The error names the
-// file, the object and the field.
-std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
-                                                       const std::string& file);
+// The type of every glTF 2.0 property tinygltf reads and every index into another array
+// (GltfSchema.cpp says why this cannot wait for tinygltf). nullopt when all are right.
+std::optional<LoadError> check_gltf_schema(const nlohmann::json& root, const std::string& file);
+
+// Checks: the root is an object; check_gltf_schema; extensionsRequired (only
+// KHR_lights_punctual); buffers[i].uri and images[i].uri (check_uri, with the buffer's
+// byteLength); a buffer without uri only as a GLB's buffers[0], no longer than the BIN
+// chunk (`glb_bin_bytes`: the BIN chunk's size for a GLB, nullopt for a .gltf); every
+// bufferViews[i] (byte range with 64-bit arithmetic, stride); images[i].bufferView;
+// materials[i].extras.sss (parse_sss_extras). The error names the file, the object and
+// the field.
+std::variant<GltfJsonFacts, LoadError> check_gltf_json(
+    std::string_view text, const std::string& file,
+    std::optional<std::uint64_t> glb_bin_bytes = std::nullopt);
 
 }  // namespace sss::scene

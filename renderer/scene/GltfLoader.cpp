@@ -1,6 +1,7 @@
 // load_gltf: the order of checks. (1) The file is read with a size cap. (2) A GLB's
 // container is checked and rebuilt from its checked chunks. (3) The JSON is checked for depth, URIs, image views and
-// extras.sss before tinygltf sees it. (4) tinygltf parses with file access confined to
+// extras.sss before tinygltf sees it, and every property's type and every index
+// (GltfSchema.cpp). (4) tinygltf parses with file access confined to
 // the file's folder and image decoding deferred; any error or warning it reports fails
 // the load. (5) The model is converted part by part, each checked before use.
 #include "renderer/scene/GltfLoader.h"
@@ -70,10 +71,12 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   const bool glb = has_glb_magic(bytes) || ext == ".glb";
   std::string_view json;
   std::vector<unsigned char> glb_bytes;  // the checked chunks, as tinygltf will see them
+  std::optional<std::uint64_t> bin_bytes;
   if (glb) {
     auto layout = parse_glb(bytes);
     if (auto* e = std::get_if<FieldError>(&layout)) return LoadError{path, "glb", e->field, e->message};
     json = std::get<GlbLayout>(layout).json;
+    bin_bytes = std::get<GlbLayout>(layout).bin.size();
     glb_bytes = rebuild_glb(std::get<GlbLayout>(layout));
     if (glb_bytes.size() > std::numeric_limits<unsigned>::max()) return fail("", "is too large for a GLB");
   } else {
@@ -82,7 +85,7 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   if (json.size() > options.max_json_bytes)
     return fail("", "its JSON is " + std::to_string(json.size()) + " bytes, more than the limit of " +
                         std::to_string(options.max_json_bytes) + " (LoadOptions::max_json_bytes)");
-  auto facts = check_gltf_json(json, path);
+  auto facts = check_gltf_json(json, path, bin_bytes);
   if (auto* e = std::get_if<LoadError>(&facts)) return *e;
 
   std::error_code ec;
@@ -110,8 +113,8 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   Scene scene;
   scene.name = std::filesystem::path(path).stem().string();
   scene.mm_per_unit = options.mm_per_unit;
-  GltfContext ctx{path, options, model, scene, uri_images, 0, {}, {}, {}};
   const GltfJsonFacts& f = std::get<GltfJsonFacts>(facts);
+  GltfContext ctx{path, options, model, scene, uri_images, f.image_media_type, 0, {}, {}, {}};
   if (auto e = check_extensions(ctx)) return *e;
   if (auto e = check_buffer_views(ctx)) return *e;
   if (auto e = convert_materials(ctx, f)) return *e;

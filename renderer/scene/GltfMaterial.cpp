@@ -37,6 +37,13 @@ Status decode(GltfContext& ctx, int index, std::shared_ptr<const ImageRgba8>& ou
     bytes = ctx.uri_image_bytes[i];
   }
   if (bytes.empty()) return ctx.fail(object, field, "has no image data");
+  // The bytes must be what the file says they are (a PNG declared as JPEG is a broken
+  // or crafted file); decode_image then refuses anything but PNG and JPEG.
+  const std::string_view sniffed = image_media_type(bytes);
+  const std::string& declared = i < ctx.image_media_type.size() ? ctx.image_media_type[i] : std::string();
+  if (!declared.empty() && !sniffed.empty() && sniffed != declared)
+    return ctx.fail(object, img.bufferView >= 0 ? "mimeType" : field,
+                    "declares " + declared + " but the bytes are " + std::string(sniffed));
   ImageLimits limits = ctx.options.image_limits;
   const std::uint64_t left = ctx.options.max_scene_bytes - ctx.bytes_charged;
   limits.max_pixels = std::min(limits.max_pixels, left / 4);

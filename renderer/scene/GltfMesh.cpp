@@ -71,6 +71,15 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
   const std::size_t n = f.size() / 3;
   if (n > std::numeric_limits<std::uint32_t>::max())
     return ctx.fail(object, "attributes.POSITION", "too many vertices for 32-bit indices");
+  // Every attribute has as many elements as POSITION (glTF 2.0 §3.7.2.1), also those not
+  // read here (COLOR_0, JOINTS_0, ...): their indices were checked by check_gltf_schema.
+  for (const auto& [semantic, accessor] : prim.attributes) {
+    if (auto e = out_of_range("accessors", accessor, ctx.model.accessors.size()))
+      return ctx.fail(object, "attributes." + semantic, *e);
+    if (auto e = attribute_count(ctx, object, semantic.c_str(),
+                                 ctx.model.accessors[std::size_t(accessor)].count, n))
+      return e;
+  }
   mesh.positions.resize(n);
   for (std::size_t i = 0; i < n; ++i) mesh.positions[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
   if (attr("NORMAL") >= 0) {

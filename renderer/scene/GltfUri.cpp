@@ -113,20 +113,32 @@ bool FileSandbox::contains(const std::string& path) const {
   return true;
 }
 
+bool FileSandbox::resolves_inside(const std::string& path) const {
+  if (!contains(path)) return false;
+  std::error_code ec;
+  const std::filesystem::path real = std::filesystem::canonical(path, ec);
+  if (ec) return false;
+  const std::filesystem::path real_root = std::filesystem::canonical(root, ec);
+  if (ec) return false;
+  FileSandbox resolved = *this;
+  resolved.root = real_root;
+  return resolved.contains(real.string());
+}
+
 tinygltf::FsCallbacks sandbox_callbacks(FileSandbox* sandbox) {
   tinygltf::FsCallbacks fs{};
   fs.user_data = sandbox;
   fs.FileExists = [](const std::string& path, void* user) {
     const auto* box = static_cast<const FileSandbox*>(user);
     std::error_code ec;
-    return box->contains(path) && std::filesystem::is_regular_file(path, ec);
+    return box->resolves_inside(path) && std::filesystem::is_regular_file(path, ec);
   };
   fs.ExpandFilePath = [](const std::string& path, void*) { return path; };  // no ~, no $VAR
   fs.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err,
                         const std::string& path, void* user) {
     auto* box = static_cast<FileSandbox*>(user);
-    if (!box->contains(path)) {
-      if (err) *err += path + ": outside the glTF file's folder\n";
+    if (!box->resolves_inside(path)) {
+      if (err) *err += path + ": outside the glTF file's folder (or a link out of it)\n";
       return false;
     }
     auto read = read_file_capped(path, std::min(box->max_file_bytes, box->bytes_left));

@@ -33,7 +33,10 @@ struct FileSandbox {
   std::filesystem::path root;  // absolute folder of the glTF file
   std::uint64_t max_file_bytes = 0;
   std::uint64_t bytes_left = 0;  // shared by every external file of one load
-  bool contains(const std::string& path) const;
+  bool contains(const std::string& path) const;  // lexically, without touching the disk
+  // contains(path), and the file the path resolves to (symbolic links followed) lies
+  // below the folder the root resolves to.
+  bool resolves_inside(const std::string& path) const;
 };
 
 tinygltf::FsCallbacks sandbox_callbacks(FileSandbox* sandbox);

@@ -7,24 +7,48 @@
 
 namespace sss::scene {
 
+namespace {
+
+std::optional<std::string> check_size(std::uint64_t w, std::uint64_t h, const ImageLimits& limits) {
+  if (w == 0 || h == 0) return std::string("has a zero size");
+  if (w > limits.max_side || h > limits.max_side || w * h > limits.max_pixels)
+    return "is " + std::to_string(w) + "x" + std::to_string(h) + ", larger than the limit (" +
+           std::to_string(limits.max_side) + " per side, " + std::to_string(limits.max_pixels) +
+           " pixels)";
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string_view image_media_type(std::span<const unsigned char> bytes) {
+  if (bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0) return "image/png";
+  if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return "image/jpeg";
+  return {};
+}
+
 std::variant<ImageRgba8, std::string> decode_image(std::span<const unsigned char> bytes,
                                                    const ImageLimits& limits) {
   if (bytes.empty()) return std::string("has no bytes");
   if (bytes.size() > static_cast<std::size_t>(INT_MAX)) return std::string("is larger than 2 GiB");
   // glTF allows PNG and JPEG only; stb_image's other decoders are never reached.
-  const bool png = bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0;
-  const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
-  if (!png && !jpeg) return std::string("is neither PNG nor JPEG (the formats glTF allows)");
+  if (image_media_type(bytes).empty()) return std::string("is neither PNG nor JPEG (the formats glTF allows)");
+  // A PNG's size is read from its IHDR (PNG spec §5.3, §11.2.2: the first chunk, width
+  // and height big-endian at bytes 16 and 20) before stb_image sees it: stb refuses
+  // w * h * 4 > 2^30 in its header pass with a message that does not say why.
+  if (image_media_type(bytes) == "image/png" && bytes.size() >= 24 &&
+      std::memcmp(bytes.data() + 12, "IHDR", 4) == 0) {
+    const auto be32 = [&](std::size_t at) {
+      return std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 |
+             std::uint32_t(bytes[at + 2]) << 8 | std::uint32_t(bytes[at + 3]);
+    };
+    if (auto e = check_size(be32(16), be32(20), limits)) return *e;
+  }
   const int len = static_cast<int>(bytes.size());
   int w = 0, h = 0, channels = 0;
   if (!stbi_info_from_memory(bytes.data(), len, &w, &h, &channels))
     return std::string("is not a PNG or JPEG image stb_image can read: ") + stbi_failure_reason();
   if (w <= 0 || h <= 0) return std::string("has a zero size");
-  if (std::uint64_t(w) > limits.max_side || std::uint64_t(h) > limits.max_side ||
-      std::uint64_t(w) * std::uint64_t(h) > limits.max_pixels)
-    return "is " + std::to_string(w) + "x" + std::to_string(h) + ", larger than the limit (" +
-           std::to_string(limits.max_side) + " per side, " + std::to_string(limits.max_pixels) +
-           " pixels)";
+  if (auto e = check_size(std::uint64_t(w), std::uint64_t(h), limits)) return *e;
   int dw = 0, dh = 0;
   stbi_uc* data = stbi_load_from_memory(bytes.data(), len, &dw, &dh, &channels, 4);
   if (!data) return std::string("cannot be decoded: ") + stbi_failure_reason();

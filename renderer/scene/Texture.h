@@ -8,6 +8,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -42,6 +43,10 @@ struct ImageLimits {
   std::uint32_t max_side = 16384;            // lavapipe's max 2D image (DESIGN.md §9)
   std::uint64_t max_pixels = 64ull << 20;    // 256 MiB decoded
 };
+
+// "image/png" or "image/jpeg" from the bytes' signature (PNG: the 8-byte signature of
+// PNG §5.2; JPEG: SOI FF D8 then a marker FF); empty for anything else.
+std::string_view image_media_type(std::span<const unsigned char> bytes);
 
 // Decodes PNG or JPEG bytes (stb_image) into RGBA8. The header is read first and the
 // size checked against `limits` before any pixel is decoded. Returns a message on

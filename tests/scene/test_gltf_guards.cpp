@@ -127,6 +127,42 @@ TEST(Sandbox, ContainsOnlyTheFolder) {
   EXPECT_FALSE(box.contains("/etc/passwd"));
 }
 
+// A symbolic link inside the folder that points out of it is refused like "../x": the
+// path is checked again after links are resolved.
+TEST(Sandbox, LinksOutOfTheFolderAreRefused) {
+  const testing::TempDir dir("sandbox_link");
+  std::filesystem::create_directories(dir / "scene");
+  testing::GltfTestWriter w;
+  const std::vector<float> pos = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const int p = w.floats(pos, "VEC3", 3);
+  w.push("meshes", {{"primitives", {{{"attributes", {{"POSITION", p}}}}}}});
+  w.push("nodes", {{"mesh", 0}});
+  // The real .bin lies outside the scene folder; scene/tri.bin links to it.
+  w.write_gltf_external(dir / "outside.gltf", "tri.bin");
+  std::filesystem::create_symlink(dir / "tri.bin", dir / "scene/tri.bin");
+  std::filesystem::copy_file(dir / "outside.gltf", dir / "scene/linked.gltf");
+  ASSERT_TRUE(std::holds_alternative<Scene>(load_gltf((dir / "outside.gltf").string())));
+  auto r = load_gltf((dir / "scene/linked.gltf").string());
+  ASSERT_TRUE(std::holds_alternative<LoadError>(r));
+  EXPECT_NE(std::get<LoadError>(r).what().find("tri.bin"), std::string::npos) << std::get<LoadError>(r).what();
+  // A link that stays inside the folder is fine.
+  std::filesystem::rename(dir / "tri.bin", dir / "scene/real.bin");
+  std::filesystem::remove(dir / "scene/tri.bin");
+  std::filesystem::create_symlink("real.bin", dir / "scene/tri.bin");
+  r = load_gltf((dir / "scene/linked.gltf").string());
+  EXPECT_TRUE(std::holds_alternative<Scene>(r)) << std::get<LoadError>(r).what();
+}
+
+TEST(Images, MediaTypeFromSignature) {
+  const std::vector<unsigned char> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  const std::vector<unsigned char> jpeg = {0xFF, 0xD8, 0xFF, 0xE0};
+  const std::vector<unsigned char> gif = {'G', 'I', 'F', '8', '9', 'a'};
+  EXPECT_EQ(image_media_type(png), "image/png");
+  EXPECT_EQ(image_media_type(jpeg), "image/jpeg");
+  EXPECT_EQ(image_media_type(gif), "");
+  EXPECT_EQ(image_media_type(std::span<const unsigned char>(png).first(7)), "");
+}
+
 TEST(JsonDepth, CountsOutsideStrings) {
   EXPECT_EQ(check_json_depth(R"({"a": [[["]]]]]]]]"]]]})", 4), std::nullopt);
   EXPECT_NE(check_json_depth("[[[[[", 4), std::nullopt);
