@@ -76,10 +76,21 @@ std::variant<Medium, FieldError> medium_from_artist(Model model, const ArtistPar
     const std::string ch = std::string("[") + kChannelNames[c] + "]";
     if (!std::isfinite(p.mfp_mm[c]) || !(p.mfp_mm[c] > 0.0))
       return FieldError{"mfp" + ch, "mean free path must be > 0 mm, got " + str(p.mfp_mm[c])};
+    // The coefficient range of Coefficients::validate as a length: 1/kMaxCoefficient
+    // (1 nm; a decade of margin for sigma_s = alpha' sigma_t' / (1 - g)) to
+    // 1/kMinSigmaTReduced (1 km).
+    if (p.mfp_mm[c] < 10.0 / kMaxCoefficient || p.mfp_mm[c] > 1.0 / kMinSigmaTReduced)
+      return FieldError{"mfp" + ch, "mean free path must lie in [" + str(10.0 / kMaxCoefficient) +
+                                        ", " + str(1.0 / kMinSigmaTReduced) + "] mm, got " +
+                                        str(p.mfp_mm[c])};
     if (!std::isfinite(p.g) || !(std::fabs(p.g) < 1.0))
       return FieldError{"g", "must lie in (-1, 1), got " + str(p.g)};
     if (!std::isfinite(p.eta) || !(p.eta > 0.0))
       return FieldError{"eta", "must be > 0, got " + str(p.eta)};
+    if (p.eta < kEtaMin || p.eta > kEtaMax)
+      return FieldError{"eta", "must lie in [" + str(kEtaMin) + ", " + str(kEtaMax) +
+                                   "] (the index relative to the outside that the models' "
+                                   "Fresnel fits cover), got " + str(p.eta)};
     if (model == Model::Multipole && !(p.thickness_mm > p.mfp_mm[c]))
       return FieldError{"thickness" + ch,
                         "the multipole model needs a slab thicker than one reduced mean free "

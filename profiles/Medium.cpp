@@ -39,9 +39,29 @@ std::optional<FieldError> Coefficients::validate(const std::string& suffix) cons
     return bad("sigma_a",
                "is 0, an albedo of 1: light never dies out and the profile has no finite "
                "width; give a small positive absorption (e.g. 1e-4 mm^-1)");
+  if (sigma_a > kMaxCoefficient)
+    return bad("sigma_a", "must be <= " + number(kMaxCoefficient) + " mm^-1 (a mean free path "
+               "of 1 nm), got " + number(sigma_a));
+  if (sigma_s > kMaxCoefficient)
+    return bad("sigma_s", "must be <= " + number(kMaxCoefficient) + " mm^-1 (a mean free path "
+               "of 1 nm), got " + number(sigma_s));
   if (!(std::fabs(g) < 1.0)) return bad("g", "must lie in (-1, 1), got " + number(g));
   if (!(eta > 0.0)) return bad("eta", "must be > 0, got " + number(eta));
+  if (eta < kEtaMin || eta > kEtaMax)
+    return bad("eta", "must lie in [" + number(kEtaMin) + ", " + number(kEtaMax) +
+                          "] (the index relative to the outside that the models' Fresnel "
+                          "fits cover), got " + number(eta));
   if (sigma_s_reduced() < 0.0) return bad("g", "gives a negative reduced scattering");
+  if (sigma_t_reduced() < kMinSigmaTReduced)
+    return bad("sigma_t",
+               "the reduced extinction sigma_a + sigma_s (1 - g) = " + number(sigma_t_reduced()) +
+                   " mm^-1 is below " + number(kMinSigmaTReduced) +
+                   " mm^-1 (a reduced mean free path over 1 km)");
+  if (sigma_a < kMinAbsorptionRatio * sigma_t_reduced())
+    return bad("sigma_a",
+               "is " + number(sigma_a) + ", under " + number(kMinAbsorptionRatio) +
+                   " of sigma_t' = " + number(sigma_t_reduced()) +
+                   ": an albedo this close to 1 gives a profile over 5e5 mean free paths wide");
   return std::nullopt;
 }
 

@@ -46,9 +46,29 @@ struct Coefficients {
   // Classical effective transport coefficient sqrt(3 sigma_a sigma_t') (Jensen et al. 2001).
   double sigma_tr_classical() const;
 
-  // Checks every field; the error names it with `suffix` appended (e.g. "[G]").
+  // Checks every field; the error names it with `suffix` appended (e.g. "[G]"). The
+  // ranges are those of kEtaMin..kEtaMax and kMaxCoefficient..kMinSigmaTReduced below.
   std::optional<FieldError> validate(const std::string& suffix = "") const;
 };
+
+// The refractive index every model accepts, relative to the outside. Below 1 the
+// Groenhuis fit of Fdr that the classical dipole and the multipole use turns negative
+// (Fdr(0.9) = -0.26, so the boundary term A = (1+Fdr)/(1-Fdr) < 1, a boundary that
+// gives light back), and above 2.5 d'Eon's polynomial fits of the Fresnel moments that
+// the better dipole, PBD and Burley use leave the exact moments (first moment +26% at
+// eta 3, and the better dipole's profile goes negative there); on [1, 2.5] both moment
+// fits stay within 0.0025 of fresnel_moment's numerical integral (tested in
+// tests/profiles/test_medium.cpp). Real media in air: water 1.33, skin ~1.4, glass 1.5,
+// diamond 2.42.
+inline constexpr double kEtaMin = 1.0, kEtaMax = 2.5;
+// Coefficients above 1e6 mm^-1 (a mean free path under 1 nm) or a reduced extinction
+// below 1e-6 mm^-1 (a reduced mean free path over 1 km) are outside what a renderer in mm
+// can use; beyond them the closed forms overflow (sigma_tr = sqrt(3 sigma_a sigma_t'))
+// and the profiles return inf/NaN (measured: 1e150 and 1e-300 mm^-1 do).
+inline constexpr double kMaxCoefficient = 1e6, kMinSigmaTReduced = 1e-6;
+// sigma_a / sigma_t' below this (a reduced albedo within 1e-12 of 1) is refused like
+// sigma_a = 0: the diffusion length 1/sigma_tr is then over 5e5 reduced mean free paths.
+inline constexpr double kMinAbsorptionRatio = 1e-12;
 
 // An RGB medium, optionally a finite slab.
 struct Medium {
@@ -63,7 +83,8 @@ struct Medium {
   bool is_slab() const { return thickness_mm < std::numeric_limits<double>::infinity(); }
 
   // Rejects NaN/Inf, sigma_a <= 0 (an albedo of 1 has no finite diffusion length),
-  // sigma_s < 0, |g| >= 1, eta <= 0, and a non-positive thickness. The error names the
+  // sigma_s < 0, |g| >= 1, eta outside [kEtaMin, kEtaMax], coefficients outside
+  // kMaxCoefficient / kMinSigmaTReduced / kMinAbsorptionRatio, and a non-positive thickness. The error names the
   // field and channel, e.g. "sigma_a[G]".
   std::optional<FieldError> validate() const;
 

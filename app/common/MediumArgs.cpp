@@ -13,13 +13,13 @@ using profiles::Medium;
 
 void add_medium_options(CLI::App& cmd, MediumArgs& a) {
   cmd.add_option("--preset", a.preset, "Measured medium of Jensen et al. 2001 (see `presets`)");
-  cmd.add_option("--sigma-a", a.sigma_a, "Absorption coefficient, mm^-1: R,G,B or one value");
-  cmd.add_option("--sigma-s", a.sigma_s, "Scattering coefficient, mm^-1: R,G,B or one value");
+  cmd.add_option("--sigma-a", a.sigma_a, "Absorption coefficient, mm^-1, (0, 1e6]: R,G,B or one value");
+  cmd.add_option("--sigma-s", a.sigma_s, "Scattering coefficient, mm^-1, [0, 1e6]: R,G,B or one value");
   cmd.add_option("--color", a.color,
                  "Artist mode: diffuse colour (total reflectance) R,G,B in (0,1)");
-  cmd.add_option("--mfp", a.mfp, "Artist mode: reduced mean free path 1/sigma_t', mm: R,G,B");
+  cmd.add_option("--mfp", a.mfp, "Artist mode: reduced mean free path 1/sigma_t', mm, [1e-5, 1e6]: R,G,B");
   cmd.add_option("--g", a.g, "Henyey-Greenstein anisotropy in (-1,1) (default 0)");
-  cmd.add_option("--eta", a.eta, "Refractive index of the medium (default 1.3; preset's own)");
+  cmd.add_option("--eta", a.eta, "Refractive index of the medium, 1..2.5 (default 1.3; preset's own)");
   cmd.add_option("--thickness", a.thickness, "Slab thickness, mm (default: semi-infinite)");
 }
 
@@ -149,6 +149,10 @@ std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
     if (f.rfind("thickness", 0) == 0) f = "--thickness";
     if (f.rfind("eta", 0) == 0) f = "--eta" + f.substr(3);
     if (f.rfind("g[", 0) == 0) f = "--g" + f.substr(1);
+    // sigma_t[C] is made of both options (and --g for the reduced one).
+    if (f.rfind("sigma_t", 0) == 0)
+      f = std::string(by_preset ? "--preset " + a.preset + ": " : "") + "--sigma-a/--sigma-s" +
+          f.substr(7);
     e->field = f;
     return *e;
   }

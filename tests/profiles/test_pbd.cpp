@@ -165,7 +165,7 @@ TEST(Pbd, FiniteAndNonNegativeEverywhere) {
   const double inf = std::numeric_limits<double>::infinity();
   for (BeamSampling s : {BeamSampling::Exponential, BeamSampling::Equiangular, BeamSampling::Mis}) {
     for (double g : {0.0, 0.8, -0.3}) {
-      for (double eta : {1.0, 1.3, 0.8}) {
+      for (double eta : {1.0, 1.3, 2.5}) {  // the ends of kEtaMin..kEtaMax
         const PhotonBeamDiffusion p({0.032, 0.74, g, eta}, 8, s);
         EXPECT_TRUE(std::isfinite(p.total_reflectance()));
         for (double r : {0.0, 1e-300, 1e-12, 1e-3, 1.0, 1e3, 1e6, 1e30, 1e200, inf}) {
