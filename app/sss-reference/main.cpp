@@ -1,7 +1,7 @@
 // sss-reference: the offline CPU reference renderer (DESIGN.md §4, §6).
 //   sss-reference SCENE --out FILE.exr [--width W] [--height H] [--model M] [MEDIUM] ...
-// Errors exit 2 (usage, input) or 1 (runtime); Ctrl-C stops the render, writes nothing
-// and exits 130.
+// Errors exit 2 (usage, input) or 1 (runtime); Ctrl-C (SIGTERM) stops the render, writes
+// nothing and exits 130 (143).
 #include "CliSupport.h"
 #include "MaterialOverrides.h"
 
@@ -18,6 +18,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -29,11 +30,16 @@ using namespace sss::app;
 namespace {
 
 std::atomic<bool> g_cancel{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT handler needs a lock-free flag");
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs a lock-free flag");
 
-extern "C" void on_interrupt(int) {
+// SIGINT (Ctrl-C) and SIGTERM (kill, a CI timeout) stop the render the same way: nothing
+// is written, an existing output stays as it was, and the exit status is 128 + the signal.
+extern "C" void on_interrupt(int sig) {
+  g_signal.store(sig);
   g_cancel.store(true);
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+  std::signal(sig, SIG_DFL);  // a second signal ends the process at once
 }
 
 int usage(const std::string& message) { return usage_error("sss-reference", message); }
@@ -115,7 +121,20 @@ int main(int argc, char** argv) {
   app.add_option("--exposure", exposure, "Exposure of the PNG (default 1)");
   app.add_flag("--quiet", quiet, "No progress bar");
   app.add_flag("--stats", stats, "Print point counts and stage times on stderr");
+  app.get_option("--seed")->check(CLI::NonNegativeNumber);  // "-1" would wrap to 2^64 - 1
   if (const auto stop = parse_command_line(app, argc, argv, "sss-reference")) return *stop;
+  // Each side is capped at 16384 by its check; the product at what image files are read
+  // back with (image::kMaxImagePixels).
+  if (std::uint64_t(width) * std::uint64_t(height) > image::kMaxImagePixels)
+    return usage("--width x --height: at most " + std::to_string(image::kMaxImagePixels) +
+                 " pixels, got " + std::to_string(width) + " x " + std::to_string(height));
+  if (!(std::isfinite(spacing) && spacing > 0.0))
+    return usage("--spacing: expected a finite number > 0 (mean free paths), got " + message_number(spacing));
+  if (max_points == 0) return usage("--max-points: expected a number >= 1, got 0");
+  if (!(std::isfinite(error_bound) && error_bound >= 0.0))
+    return usage("--error-bound: expected a finite number >= 0 (sr), got " + message_number(error_bound));
+  if (!(std::isfinite(exposure) && exposure > 0.0f))
+    return usage("--exposure: expected a finite number > 0, got " + message_number(exposure));
   const std::string ext = lower_extension(out);
   if (ext != ".exr" && ext != ".png") return usage("--out: expected a .exr or .png file name, got '" + out + "'");
   if (!png.empty() && lower_extension(png) != ".png") return usage("--png: expected a .png file name, got '" + png + "'");
@@ -142,6 +161,7 @@ int main(int argc, char** argv) {
   o.exposure = exposure;
 
   std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
   ProgressBar bar(!quiet);
   try {
     const reference::ReferenceImage r = reference::render_reference(
@@ -154,8 +174,10 @@ int main(int argc, char** argv) {
     if (!png.empty()) image::write_png(png, r.display);
     if (stats) print_stats(r.stats);
   } catch (const reference::Cancelled&) {
-    std::cerr << "\nsss-reference: interrupted; nothing was written\n";
-    return kExitInterrupted;
+    const int sig = g_signal.load();
+    std::cerr << "\nsss-reference: interrupted" << (sig == SIGTERM ? " (SIGTERM)" : "")
+              << "; nothing was written\n";
+    return sig == SIGTERM ? 128 + SIGTERM : kExitInterrupted;
   } catch (const std::invalid_argument& e) {
     return usage(e.what());
   } catch (const std::exception& e) {

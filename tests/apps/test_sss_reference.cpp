@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <spawn.h>
 #include <sys/wait.h>
@@ -81,7 +82,7 @@ TEST(SssReferenceApp, BadInputExitsTwoNamingTheProblem) {
       {"builtin:sphere --out " + out.string() + " --sigma-a -1 --sigma-s 1", "--sigma-a"},
       {"builtin:sphere --out " + out.string() + " --spacing 0", "spacing"},
       {"builtin:sphere --out " + out.string() + " --spacing 0.5 --max-points 10", "exceed"},
-      {"builtin:sphere --out " + out.string() + " --error-bound -1", "error bound"},
+      {"builtin:sphere --out " + out.string() + " --error-bound -1", "--error-bound"},
   };
   for (const Case& c : cases) {
     const CliRun r = reference(c.args);
@@ -118,6 +119,41 @@ TEST(SssReferenceApp, CtrlCStopsWithoutWritingAFile) {
   EXPECT_FALSE(fs::exists(out));
   for (const auto& e : fs::directory_iterator(scratch()))
     EXPECT_EQ(e.path().filename().string().find("interrupted"), std::string::npos) << e.path();
+}
+
+TEST(SssReferenceApp, SignalsNeverLeaveAHalfFileNorDestroyTheOldOne) {
+  // An output from an earlier run is in place; a second run into the same file is stopped
+  // 1.5 s in (mid-render, as CtrlCStopsWithoutWritingAFile) by SIGINT, SIGTERM or SIGKILL.
+  // SIGINT and SIGTERM stop it cleanly (130, 143: 128 + the signal); SIGKILL cannot be
+  // handled. In every case the old file is byte for byte as it was and nothing else (no
+  // half file, no temporary) is left in the folder.
+  const fs::path folder = scratch() / "signals";
+  fs::create_directories(folder);
+  const fs::path out = folder / "render.exr";
+  { std::ofstream(out, std::ios::binary) << "an earlier render"; }
+  const std::string exe = SSS_REFERENCE_EXE;
+  for (const int sig : {SIGINT, SIGTERM, SIGKILL}) {
+    std::vector<std::string> args = {exe, "builtin:sphere", "--out", out.string(), "--spacing", "0.25", "--quiet", "--threads", "1"};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    ASSERT_EQ(::posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    ::kill(pid, sig);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    if (sig == SIGKILL) {
+      EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "it finished within 1.5 s";
+    } else {
+      ASSERT_TRUE(WIFEXITED(status)) << "signal " << sig << " killed it instead of stopping it";
+      EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
+    }
+    EXPECT_EQ(slurp(out), "an earlier render") << "signal " << sig;
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(folder)) ++entries;
+    EXPECT_EQ(entries, 1) << "signal " << sig << ": something besides render.exr was left";
+  }
 }
 
 }  // namespace
