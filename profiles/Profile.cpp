@@ -55,8 +55,16 @@ std::unique_ptr<RadialProfile> make_monte_carlo(const Coefficients& c, double th
   const double mfp = c.mfp_reduced();
   const double outer = 20.0 / c.sigma_tr_classical() + 10.0 * mfp;
   mc.bin_edges_mm = log_bin_edges(0.01 * mfp, outer, 96);
-  return std::make_unique<TabulatedProfile>(
-      TabulatedProfile::from_monte_carlo(run_monte_carlo(c, mc)));
+  const MonteCarloResult result = run_monte_carlo(c, mc);
+  try {
+    return std::make_unique<TabulatedProfile>(TabulatedProfile::from_monte_carlo(result));
+  } catch (const std::invalid_argument& e) {
+    // A dark medium (albedo near 0) sends too few photons back to tabulate R(r).
+    throw std::invalid_argument(
+        "photons: " + std::to_string(opt.mc_photons) + " Monte Carlo photons left too few annuli with "
+        "reflectance to tabulate the profile (albedo " + message_number(c.albedo()) +
+        "; raise the photon count) [" + e.what() + "]");
+  }
 }
 
 }  // namespace

@@ -204,3 +204,17 @@ TEST(ParameterRanges, NoProfileIsSingularAtZero) {
   }
   EXPECT_EQ(checked, 5 * (5 * 3 * 3) + 3);
 }
+
+// A dark medium gives Monte Carlo too few returning photons to tabulate: a clear error that
+// names the photon count (not a table of zeros, nor a NaN).
+TEST(ParameterRanges, MonteCarloWithTooFewReturningPhotonsSaysSo) {
+  ModelOptions o;
+  o.mc_photons = 1u << 12;
+  o.mc_threads = 1;
+  try {
+    make_profile(Model::MonteCarlo, {1.0, 1e-6, 0.0, 1.3}, kInf, o);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("photons: 4096", 0), 0u) << e.what();
+  }
+}
