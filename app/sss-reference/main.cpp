@@ -21,6 +21,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -121,7 +122,12 @@ int main(int argc, char** argv) {
   app.add_option("--exposure", exposure, "Exposure of the PNG (default 1)");
   app.add_flag("--quiet", quiet, "No progress bar");
   app.add_flag("--stats", stats, "Print point counts and stage times on stderr");
-  app.get_option("--seed")->check(CLI::NonNegativeNumber);  // "-1" would wrap to 2^64 - 1
+  // CLI11 wraps "-1" to 2^64 - 1 for an unsigned option.
+  app.get_option("--seed")->check(CLI::Validator(
+      [](std::string& v) {
+        return v.find('-') == std::string::npos ? std::string() : "expected a number >= 0, got '" + v + "'";
+      },
+      "UINT"));
   if (const auto stop = parse_command_line(app, argc, argv, "sss-reference")) return *stop;
   // Each side is capped at 16384 by its check; the product at what image files are read
   // back with (image::kMaxImagePixels).
@@ -138,6 +144,19 @@ int main(int argc, char** argv) {
   const std::string ext = lower_extension(out);
   if (ext != ".exr" && ext != ".png") return usage("--out: expected a .exr or .png file name, got '" + out + "'");
   if (!png.empty() && lower_extension(png) != ".png") return usage("--png: expected a .png file name, got '" + png + "'");
+
+  // An output folder that is not there fails now rather than after a long render (the
+  // write itself still reports every other failure).
+  for (const std::string* file : {&out, &png}) {
+    if (file->empty()) continue;
+    const std::filesystem::path parent = std::filesystem::path(*file).parent_path();
+    std::error_code ec;
+    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+      std::cerr << "sss-reference: error: " << *file << ": the folder " << parent.string()
+                << " does not exist or is not a folder\n";
+      return kExitRuntime;
+    }
+  }
 
   auto loaded = scene::load_scene(scene_name);
   if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what());

@@ -96,6 +96,14 @@ TEST(SssReferenceApp, UnwritableOutputIsARuntimeFailure) {
   const CliRun r = reference("builtin:sphere --out /nonexistent-dir/x.exr --width 8 --height 8 --spacing 3 --quiet");
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("/nonexistent-dir/x.exr"), std::string::npos) << r.err;
+  // A "folder" that is a regular file (refused even when running as root), for --png too.
+  const fs::path file = scratch() / "a-file";
+  { std::ofstream(file) << "x"; }
+  const CliRun p = reference("builtin:sphere --out " + (scratch() / "ok.exr").string() + " --png " +
+                             (file / "x.png").string() + " --width 8 --height 8 --spacing 3 --quiet");
+  EXPECT_EQ(p.code, 1) << p.err;
+  EXPECT_NE(p.err.find((file / "x.png").string()), std::string::npos) << p.err;
+  EXPECT_FALSE(fs::exists(scratch() / "ok.exr"));  // refused before anything was written
 }
 
 TEST(SssReferenceApp, CtrlCStopsWithoutWritingAFile) {
