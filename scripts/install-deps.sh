@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages the build needs. Idempotent: does nothing when they
 # are all present. Run as root (or with sudo available).
-# --fuzz adds clang 14 and its runtime libraries (libFuzzer, ASan, UBSan) for the `fuzz`
+# --fuzz adds clang 14, its runtime libraries (libFuzzer, ASan, UBSan) and zlib (for the
+# instrumented tinyexr, fuzz/ThirdPartyExr.cpp) for the `fuzz`
 # preset (scripts/fuzz.sh); the ordinary build and the asan preset use gcc only.
 set -euo pipefail
 
@@ -16,7 +17,7 @@ PACKAGES=(
   libglfw3-dev libimgui-dev xvfb xauth
 )
 if [ "${1:-}" = "--fuzz" ]; then
-  PACKAGES+=(clang-14 libclang-rt-14-dev)
+  PACKAGES+=(clang-14 libclang-rt-14-dev zlib1g-dev)
 fi
 
 missing=()
