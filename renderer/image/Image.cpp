@@ -37,6 +37,69 @@ void require_writable(const std::string& path, const Image& img) {
                      std::to_string(img.height));
 }
 
+// Walks an OpenEXR header before tinyexr sees it: Debian's tinyexr 1.0.1 asserts (aborts
+// the process) on some hostile headers, e.g. an unknown value of the "type" attribute
+// (tinyexr.h ConvertHeader; found by fuzzing, fuzz/regressions/image/). The layout is the
+// OpenEXR file format's ("The OpenEXR File Layout", openexr.com): magic 20000630, a 4-byte
+// version field (low byte 2; bit 0x200 tiled, 0x400 long names, 0x800 deep data, 0x1000
+// multi-part), then attributes (name NUL, type name NUL, int32 little-endian size, value)
+// up to an empty name. Only single-part, non-deep files are read here. Returns an error
+// message, or an empty string when the header is well formed; width and height come from
+// its dataWindow, computed in 64 bits.
+std::string check_exr_header(const std::vector<unsigned char>& b, std::int64_t& width,
+                             std::int64_t& height) {
+  if (b.size() < 8) return "truncated EXR header";
+  const std::uint32_t field = std::uint32_t(b[4]) | std::uint32_t(b[5]) << 8 |
+                              std::uint32_t(b[6]) << 16 | std::uint32_t(b[7]) << 24;
+  if ((field & 0xff) != 2) return "EXR version " + std::to_string(field & 0xff) + " (only 2 is read)";
+  if (field & 0x1800) return "multi-part and deep EXR files are not read";
+  const std::size_t max_name = (field & 0x400) ? 255 : 31;
+  auto read_cstr = [&](std::size_t& at, std::string& out) {
+    const std::size_t end = std::min(b.size(), at + max_name + 1);
+    for (std::size_t i = at; i < end; ++i)
+      if (b[i] == 0) {
+        out.assign(reinterpret_cast<const char*>(&b[at]), i - at);
+        at = i + 1;
+        return true;
+      }
+    return false;
+  };
+  auto le32 = [&](std::size_t at) {
+    return std::int32_t(std::uint32_t(b[at]) | std::uint32_t(b[at + 1]) << 8 |
+                        std::uint32_t(b[at + 2]) << 16 | std::uint32_t(b[at + 3]) << 24);
+  };
+  std::size_t at = 8;
+  bool have_window = false;
+  for (int count = 0;; ++count) {
+    if (count > 1024) return "EXR header has more than 1024 attributes";
+    std::string name, type;
+    if (!read_cstr(at, name)) return "EXR header attribute name is not terminated";
+    if (name.empty()) break;
+    if (!read_cstr(at, type)) return "EXR header attribute " + name + ": type name is not terminated";
+    if (b.size() - at < 4) return "EXR header attribute " + name + ": truncated";
+    const std::int32_t size = le32(at);
+    at += 4;
+    if (size < 0 || std::size_t(size) > b.size() - at)
+      return "EXR header attribute " + name + ": size " + std::to_string(size) + " past the end";
+    const unsigned char* value = &b[at];
+    if (name == "type") {
+      // The value up to its first NUL, as tinyexr reads it.
+      const std::string v(std::string(reinterpret_cast<const char*>(value), std::size_t(size)).c_str());
+      if (type != "string" || (v != "scanlineimage" && v != "tiledimage"))
+        return "EXR header attribute type: \"" + v + "\" (only scanlineimage and tiledimage are read)";
+    } else if (name == "dataWindow") {
+      if (type != "box2i" || size != 16) return "EXR header attribute dataWindow: not a box2i";
+      const std::int64_t x0 = le32(at), y0 = le32(at + 4), x1 = le32(at + 8), y1 = le32(at + 12);
+      width = x1 - x0 + 1;
+      height = y1 - y0 + 1;
+      have_window = true;
+    }
+    at += std::size_t(size);
+  }
+  if (!have_window) return "EXR header has no dataWindow";
+  return {};
+}
+
 }  // namespace
 
 float srgb_encode(float v) {
@@ -77,6 +140,14 @@ std::variant<Image, ImageError> read_image(const std::string& path) {
     return img;
   }
   if (std::memcmp(bytes.data(), kExr, 4) == 0) {
+    // dataWindow's max - min + 1 of hostile 32-bit corners overflows an int: in 64 bits
+    // (found by fuzzing, fuzz/regressions/image/exr_data_window_int_overflow.exr).
+    std::int64_t w64 = 0, h64 = 0;
+    if (std::string why = check_exr_header(bytes, w64, h64); !why.empty())
+      return ImageError{path, why};
+    if (w64 <= 0 || h64 <= 0 || w64 > kMaxImageSide || h64 > kMaxImageSide ||
+        !check_size(static_cast<int>(w64), static_cast<int>(h64)))
+      return ImageError{path, "EXR size out of range"};
     EXRVersion version;
     EXRHeader header;
     InitEXRHeader(&header);
@@ -87,12 +158,10 @@ std::variant<Image, ImageError> read_image(const std::string& path) {
         TINYEXR_SUCCESS) {
       std::string msg = err ? err : "corrupt EXR header";
       FreeEXRErrorMessage(err);
+      FreeEXRHeader(&header);  // a failed parse may have filled part of it (found by fuzzing)
       return ImageError{path, msg};
     }
-    const int w = header.data_window.max_x - header.data_window.min_x + 1;
-    const int h = header.data_window.max_y - header.data_window.min_y + 1;
-    FreeEXRHeader(&header);
-    if (!check_size(w, h)) return ImageError{path, "EXR size out of range"};
+    FreeEXRHeader(&header);  // its size was checked above, in 64 bits
     float* out = nullptr;
     int ow = 0, oh = 0;
     if (LoadEXRFromMemory(&out, &ow, &oh, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {

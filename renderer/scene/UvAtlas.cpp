@@ -57,38 +57,63 @@ bool overlaps(const Tri2& a, const Tri2& b, double tol) {
   return true;
 }
 
-// Sparse uniform grid of triangle ids, for the overlap searches.
+// Sparse uniform grid of triangle ids, for the overlap searches. A triangle whose box
+// would cover more than kMaxCells cells (a huge triangle among small ones, or coordinates
+// so large that the cell index would not fit an int64: both came from fuzzing hostile
+// glTF files, fuzz/regressions/gltf/atlas_*) goes into one list that every visit scans,
+// so the search stays exact and the grid's work per triangle stays bounded. Such a triangle
+// has an edge longer than 64 cells, and cells are two mean edges wide, so there are few.
 class TriGrid {
  public:
   explicit TriGrid(double cell) : inv_cell_(1.0 / cell) {}
   template <class F>  // f(id) for every id in a cell the box touches; returns cells visited
   std::size_t visit(const Tri2& t, F&& f) const {
     std::size_t visited = 0;
-    for_cells(t, [&](std::int64_t key) {
-      ++visited;
-      const auto it = cells_.find(key);
-      if (it != cells_.end())
-        for (std::uint32_t id : it->second) f(id);
-    });
-    return visited;
+    for (std::uint32_t id : oversized_) f(id);
+    if (!for_cells(t, [&](std::int64_t key) {
+          ++visited;
+          const auto it = cells_.find(key);
+          if (it != cells_.end())
+            for (std::uint32_t id : it->second) f(id);
+        })) {
+      for (const auto& [key, ids] : cells_)  // an oversized query meets every cell
+        for (std::uint32_t id : ids) f(id);
+      visited += cells_.size();
+    }
+    return visited + oversized_.size();
   }
   void insert(const Tri2& t, std::uint32_t id) {
-    for_cells(t, [&](std::int64_t key) { cells_[key].push_back(id); });
+    if (!for_cells(t, [&](std::int64_t key) { cells_[key].push_back(id); })) oversized_.push_back(id);
   }
-  void clear() { cells_.clear(); }
+  void clear() {
+    cells_.clear();
+    oversized_.clear();
+  }
 
  private:
+  static constexpr double kMaxCells = 4096.0;
+  // Calls f for each cell of the box; false (and no call) when the box is oversized or
+  // not finite.
   template <class F>
-  void for_cells(const Tri2& t, F&& f) const {
+  bool for_cells(const Tri2& t, F&& f) const {
     const glm::dvec2 lo = glm::min(glm::min(t[0], t[1]), t[2]) * inv_cell_;
     const glm::dvec2 hi = glm::max(glm::max(t[0], t[1]), t[2]) * inv_cell_;
-    const auto x0 = std::int64_t(std::floor(lo.x)), x1 = std::int64_t(std::floor(hi.x));
-    const auto y0 = std::int64_t(std::floor(lo.y)), y1 = std::int64_t(std::floor(hi.y));
+    constexpr double kMaxIndex = 1e15;  // well inside int64 and exact in a double
+    if (!(std::abs(lo.x) < kMaxIndex && std::abs(lo.y) < kMaxIndex && std::abs(hi.x) < kMaxIndex &&
+          std::abs(hi.y) < kMaxIndex))
+      return false;
+    const double fx0 = std::floor(lo.x), fx1 = std::floor(hi.x);
+    const double fy0 = std::floor(lo.y), fy1 = std::floor(hi.y);
+    if ((fx1 - fx0 + 1.0) * (fy1 - fy0 + 1.0) > kMaxCells) return false;
+    const auto x0 = std::int64_t(fx0), x1 = std::int64_t(fx1);
+    const auto y0 = std::int64_t(fy0), y1 = std::int64_t(fy1);
     for (std::int64_t y = y0; y <= y1; ++y)
       for (std::int64_t x = x0; x <= x1; ++x) f((y << 32) ^ (x & 0xffffffff));
+    return true;
   }
   double inv_cell_;
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells_;
+  std::vector<std::uint32_t> oversized_;
 };
 
 bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
