@@ -5,6 +5,7 @@
 #include "renderer/vk/Context.h"
 #include "renderer/vk/Image.h"
 
+#include <algorithm>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -82,8 +83,35 @@ void DescriptorPool::reset() { VK_CHECK(vkResetDescriptorPool(pool_.device(), po
 DescriptorWriter& DescriptorWriter::buffer(uint32_t binding, VkDescriptorType type,
                                            const VkDescriptorBufferInfo& info, uint32_t element) {
   buffers_.push_back(info);
-  writes_.push_back({binding, element, type, false, buffers_.size() - 1});
+  writes_.push_back({binding, element, type, false, buffers_.size() - 1,
+                     info.range == VK_WHOLE_SIZE ? 0 : info.range});
   return *this;
+}
+
+namespace {
+// The bytes a descriptor of [offset, offset + range) of `b` covers.
+VkDescriptorBufferInfo checked_range(uint32_t binding, const Buffer& b, VkDeviceSize offset,
+                                     VkDeviceSize range) {
+  if (offset >= b.size() || (range != VK_WHOLE_SIZE && range > b.size() - offset)) {
+    throw std::out_of_range("descriptor binding " + std::to_string(binding) + ": range at " +
+                            std::to_string(offset) + " is outside the buffer of " +
+                            std::to_string(b.size()) + " bytes");
+  }
+  return b.descriptor(offset, range);
+}
+}  // namespace
+
+VkDeviceSize descriptor_offset_alignment(const Context& context, VkDescriptorType type) {
+  const VkPhysicalDeviceLimits& limits = context.info().limits;
+  switch (type) {
+    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC:
+      return std::max<VkDeviceSize>(1, limits.minUniformBufferOffsetAlignment);
+    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC:
+      return std::max<VkDeviceSize>(1, limits.minStorageBufferOffsetAlignment);
+    default: return 1;
+  }
 }
 
 DescriptorWriter& DescriptorWriter::image(uint32_t binding, VkDescriptorType type,
@@ -95,11 +123,15 @@ DescriptorWriter& DescriptorWriter::image(uint32_t binding, VkDescriptorType typ
 
 DescriptorWriter& DescriptorWriter::uniform_buffer(uint32_t binding, const Buffer& b,
                                                    VkDeviceSize offset, VkDeviceSize range) {
-  return buffer(binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, b.descriptor(offset, range));
+  buffer(binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, checked_range(binding, b, offset, range));
+  writes_.back().range = range == VK_WHOLE_SIZE ? b.size() - offset : range;
+  return *this;
 }
 DescriptorWriter& DescriptorWriter::storage_buffer(uint32_t binding, const Buffer& b,
                                                    VkDeviceSize offset, VkDeviceSize range) {
-  return buffer(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, b.descriptor(offset, range));
+  buffer(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, checked_range(binding, b, offset, range));
+  writes_.back().range = range == VK_WHOLE_SIZE ? b.size() - offset : range;
+  return *this;
 }
 DescriptorWriter& DescriptorWriter::storage_image(uint32_t binding, const Image& i) {
   return image(binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, i.descriptor(VK_IMAGE_LAYOUT_GENERAL));
@@ -114,6 +146,31 @@ DescriptorWriter& DescriptorWriter::combined_image(uint32_t binding, const Image
 }
 DescriptorWriter& DescriptorWriter::sampler(uint32_t binding, VkSampler s) {
   return image(binding, VK_DESCRIPTOR_TYPE_SAMPLER, {s, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED});
+}
+
+void DescriptorWriter::check_buffer_limits(const Context& context, const Pending& p) const {
+  const VkPhysicalDeviceLimits& limits = context.info().limits;
+  const bool uniform = p.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ||
+                       p.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
+  const bool storage = p.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ||
+                       p.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC;
+  if (!uniform && !storage) return;
+  const std::string where = "descriptor binding " + std::to_string(p.binding) + ": ";
+  const VkDeviceSize alignment = descriptor_offset_alignment(context, p.type);
+  const VkDeviceSize offset = buffers_[p.index].offset;
+  if (offset % alignment != 0) {
+    throw std::invalid_argument(
+        where + (uniform ? "uniform" : "storage") + " buffer offset " + std::to_string(offset) +
+        " is not a multiple of " +
+        (uniform ? "minUniformBufferOffsetAlignment (" : "minStorageBufferOffsetAlignment (") +
+        std::to_string(alignment) + ") of " + context.info().name);
+  }
+  const VkDeviceSize max_range = uniform ? limits.maxUniformBufferRange : limits.maxStorageBufferRange;
+  if (p.range > max_range) {
+    throw std::invalid_argument(where + std::to_string(p.range) + " bytes exceed " +
+                                (uniform ? "maxUniformBufferRange (" : "maxStorageBufferRange (") +
+                                std::to_string(max_range) + ") of " + context.info().name);
+  }
 }
 
 void DescriptorWriter::update(const Context& context) const {
@@ -132,6 +189,7 @@ void DescriptorWriter::update(const Context& context) const {
       w.pImageInfo = &images_[p.index];
     } else {
       w.pBufferInfo = &buffers_[p.index];
+      check_buffer_limits(context, p);
     }
     writes.push_back(w);
   }

@@ -56,7 +56,15 @@ class DescriptorPool {
   DescriptorPoolHandle pool_;
 };
 
-// Collects writes to one set and applies them in one vkUpdateDescriptorSets.
+// The device's alignment for the offset of a uniform (minUniformBufferOffsetAlignment)
+// or storage (minStorageBufferOffsetAlignment) buffer descriptor; 1 for other types. Code
+// that places several ranges in one buffer rounds their offsets up to it (align_up).
+VkDeviceSize descriptor_offset_alignment(const Context& context, VkDescriptorType type);
+
+// Collects writes to one set and applies them in one vkUpdateDescriptorSets. update()
+// refuses (std::invalid_argument naming the binding, the limit and its value) a buffer
+// range whose offset breaks the device's offset alignment or whose size exceeds
+// maxUniformBufferRange / maxStorageBufferRange.
 class DescriptorWriter {
  public:
   explicit DescriptorWriter(VkDescriptorSet set) : set_(set) {}
@@ -87,7 +95,10 @@ class DescriptorWriter {
     VkDescriptorType type;
     bool is_image;
     std::size_t index;  // into buffers_ or images_
+    VkDeviceSize range = 0;  // bytes the descriptor covers; 0: not known (VK_WHOLE_SIZE)
   };
+  void check_buffer_limits(const Context& context, const Pending& p) const;
+
   VkDescriptorSet set_;
   std::vector<Pending> writes_;
   std::vector<VkDescriptorBufferInfo> buffers_;

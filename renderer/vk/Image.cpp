@@ -15,6 +15,25 @@ bool is_cube(VkImageViewType type) {
   return type == VK_IMAGE_VIEW_TYPE_CUBE || type == VK_IMAGE_VIEW_TYPE_CUBE_ARRAY;
 }
 
+// Image usages and the format feature each needs (Vulkan spec, "Valid Usage" of
+// VkImageCreateInfo: the usage must be supported by the format's features).
+struct UsageFeature {
+  VkImageUsageFlags usage;
+  VkFormatFeatureFlags feature;
+  const char* name;
+};
+constexpr UsageFeature kUsageFeatures[] = {
+    {VK_IMAGE_USAGE_SAMPLED_BIT, VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT, "a sampled image"},
+    {VK_IMAGE_USAGE_STORAGE_BIT, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT, "a storage image"},
+    {VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT,
+     "a colour attachment"},
+    {VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT,
+     "a depth attachment"},
+    {VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_FORMAT_FEATURE_TRANSFER_SRC_BIT, "a transfer source"},
+    {VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_FORMAT_FEATURE_TRANSFER_DST_BIT,
+     "a transfer destination"},
+};
+
 void validate(const Context& context, const ImageDesc& d) {
   const std::string what = "Image \"" + d.name + "\": ";
   if (d.width == 0 || d.height == 0) throw std::invalid_argument(what + "width or height is 0");
@@ -28,6 +47,35 @@ void validate(const Context& context, const ImageDesc& d) {
   }
   if (d.view_type == VK_IMAGE_VIEW_TYPE_2D && d.array_layers != 1) {
     throw std::invalid_argument(what + "several layers need VK_IMAGE_VIEW_TYPE_2D_ARRAY");
+  }
+
+  const VkPhysicalDeviceLimits& limits = context.info().limits;
+  const uint32_t max_side =
+      is_cube(d.view_type) ? limits.maxImageDimensionCube : limits.maxImageDimension2D;
+  if (d.width > max_side || d.height > max_side) {
+    throw VulkanError(VK_ERROR_FORMAT_NOT_SUPPORTED,
+                      what + std::to_string(d.width) + "x" + std::to_string(d.height) +
+                          " exceeds " +
+                          (is_cube(d.view_type) ? "maxImageDimensionCube (" :
+                                                  "maxImageDimension2D (") +
+                          std::to_string(max_side) + ") of " + context.info().name);
+  }
+  if (d.array_layers > limits.maxImageArrayLayers) {
+    throw VulkanError(VK_ERROR_FORMAT_NOT_SUPPORTED,
+                      what + std::to_string(d.array_layers) + " layers exceed maxImageArrayLayers (" +
+                          std::to_string(limits.maxImageArrayLayers) + ") of " +
+                          context.info().name);
+  }
+  // The format's features for optimal tiling first: a missing one is named (and the
+  // query below is then not made: best practices reports every error result).
+  VkFormatProperties format_props{};
+  vkGetPhysicalDeviceFormatProperties(context.physical_device(), d.format, &format_props);
+  for (const auto& [usage, feature, usage_name] : kUsageFeatures) {
+    if ((d.usage & usage) && !(format_props.optimalTilingFeatures & feature)) {
+      throw VulkanError(VK_ERROR_FORMAT_NOT_SUPPORTED,
+                        what + format_name(d.format) + " cannot be used as " + usage_name +
+                            " (optimal tiling) on " + context.info().name);
+    }
   }
 
   VkImageFormatProperties props{};

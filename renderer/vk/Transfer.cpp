@@ -18,6 +18,31 @@ namespace {
 constexpr Scope kCopyStage{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE};
 constexpr Scope kTransferWriteOnly{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
 
+// Every use an image may have in `layout`, for the coarse dependencies of one-shot copies
+// with whatever came before or comes after: all stages, but only the accesses that the
+// layout allows (best practices, ImageBarrierAccessLayout: MEMORY_READ|MEMORY_WRITE into
+// SHADER_READ_ONLY_OPTIMAL names accesses that cannot happen in that layout).
+Scope uses_in(VkImageLayout layout) {
+  constexpr VkPipelineStageFlags2 kAll = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  switch (layout) {
+    case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL:
+      return {kAll, VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_INPUT_ATTACHMENT_READ_BIT};
+    case VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL:
+    case VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL:
+      return {kAll, VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_INPUT_ATTACHMENT_READ_BIT |
+                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT};
+    case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: return {kAll, VK_ACCESS_2_TRANSFER_READ_BIT};
+    case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL: return {kAll, VK_ACCESS_2_TRANSFER_WRITE_BIT};
+    case VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL:
+      return {kAll, VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+    case VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL:
+    case VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL:
+      return {kAll, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+    default: return kAllCommands;  // GENERAL and the rest
+  }
+}
+
 VkDeviceSize image_bytes(const Image& image) {
   if (image.desc().samples != VK_SAMPLE_COUNT_1_BIT) {
     throw std::invalid_argument("Image \"" + image.desc().name +
@@ -109,10 +134,11 @@ void upload_image(const Context& context, const Image& dst, std::span<const std:
                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     if (final_layout != VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL) {
       pipeline_barrier(cmd, {image_barrier(dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, final_layout,
-                                           kTransferWriteOnly, kAllCommands)});
+                                           kTransferWriteOnly, uses_in(final_layout))});
     } else {
       pipeline_barrier(
-          cmd, {image_barrier(dst, final_layout, final_layout, kTransferWriteOnly, kAllCommands)});
+          cmd, {image_barrier(dst, final_layout, final_layout, kTransferWriteOnly,
+                              uses_in(final_layout))});
     }
   });
 }
@@ -128,11 +154,12 @@ std::vector<std::byte> download_image(const Context& context, const Image& src,
                            "staging (image download)"});
   submit_once(context, [&](VkCommandBuffer cmd) {
     const VkImageLayout copy_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    pipeline_barrier(cmd, {image_barrier(src, layout, copy_layout, kAllCommands, kTransferRead)});
+    pipeline_barrier(cmd,
+                     {image_barrier(src, layout, copy_layout, uses_in(layout), kTransferRead)});
     const VkBufferImageCopy region = whole_mip0(src);
     vkCmdCopyImageToBuffer(cmd, src.handle(), copy_layout, staging.handle(), 1, &region);
     const VkImageMemoryBarrier2 restore[] = {
-        image_barrier(src, copy_layout, layout, kCopyStage, kAllCommands)};
+        image_barrier(src, copy_layout, layout, kCopyStage, uses_in(layout))};
     const VkBufferMemoryBarrier2 to_host[] = {buffer_barrier(staging, kTransferWrite, kHostRead)};
     pipeline_barrier(cmd, restore, to_host);
   });

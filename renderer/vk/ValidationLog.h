@@ -9,10 +9,13 @@
 
 #include <vulkan/vulkan.h>
 
+#include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sss::vk {
@@ -24,6 +27,17 @@ struct ValidationMessage {
   int32_t id_number = 0;
   std::string text;
 };
+
+// Messages that are dropped by exact ID (and, for one, a condition on the text), each
+// with its reason (ValidationLog.cpp: a few best-practices warnings that are design
+// choices or a bug of layer 1.3.239). Every other message is recorded.
+struct IgnoredMessage {
+  const char* id_name;
+  const char* reason;
+  bool (*applies)(std::string_view text);  // nullptr: every message with this ID
+};
+extern const std::array<IgnoredMessage, 5> kIgnoredMessages;
+bool is_ignored(std::string_view id_name, std::string_view text);
 
 // "[vulkan validation error] VUID-...: text" — one line per message.
 std::string to_string(const ValidationMessage& message);
@@ -37,6 +51,8 @@ class ValidationLog {
   std::vector<ValidationMessage> messages() const;
   std::size_t size() const;
   void clear();
+  // How many messages were dropped because their ID is in kIgnoredMessages.
+  std::size_t ignored() const { return ignored_.load(); }
 
   // Chain this into VkInstanceCreateInfo::pNext (so that instance creation and
   // destruction are covered) and pass it to vkCreateDebugUtilsMessengerEXT. It selects
@@ -52,6 +68,7 @@ class ValidationLog {
   bool print_;
   mutable std::mutex mutex_;
   std::vector<ValidationMessage> messages_;
+  std::atomic<std::size_t> ignored_{0};
 };
 
 }  // namespace sss::vk

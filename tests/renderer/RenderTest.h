@@ -1,6 +1,6 @@
 // The fixture of the renderer tests: the renderer/vk fixture (lavapipe, validation with
-// synchronization checks; any message fails the test) plus a helper that renders a scene
-// headlessly and reads the frame back.
+// the checks SSS_VALIDATION_CHECKS names, core + synchronization by default; any message
+// fails the test) plus a helper that renders a scene headlessly and reads the frame back.
 #pragma once
 
 #include "vk/VulkanTest.h"

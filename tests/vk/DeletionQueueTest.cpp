@@ -74,13 +74,14 @@ TEST_F(VulkanTest, FlushAllAndDestructorDestroyEverything) {
 TEST_F(VulkanTest, DeferredBufferOutlivesItsFrame) {
   constexpr uint32_t kFrames = 2;
   DeletionQueue queue(ctx(), kFrames);
-  const CommandPoolHandle pool =
-      create_command_pool(ctx(), VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT);
+  // One pool per frame in flight, reset whole when its frame comes round again.
+  std::vector<CommandPoolHandle> pools;
   std::vector<FenceHandle> fences;
   std::vector<VkCommandBuffer> cmds;
   for (uint32_t f = 0; f < kFrames; ++f) {
     fences.push_back(create_fence(ctx(), true));
-    cmds.push_back(allocate_command_buffer(ctx(), pool.get()));
+    pools.push_back(create_command_pool(ctx(), 0));
+    cmds.push_back(allocate_command_buffer(ctx(), pools.back().get()));
   }
   Buffer target(ctx(),
                 {1 << 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT});
@@ -91,6 +92,7 @@ TEST_F(VulkanTest, DeferredBufferOutlivesItsFrame) {
     queue.retire(f);  // frame f's previous use is over
     const VkFence fence = fences[f].get();
     VK_CHECK(vkResetFences(ctx().device(), 1, &fence));
+    VK_CHECK(vkResetCommandPool(ctx().device(), pools[f].get(), 0));
 
     // A per-frame source buffer, used by this frame's copy, then dropped at once.
     Buffer source(ctx(), {1 << 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload});

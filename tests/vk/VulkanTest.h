@@ -1,8 +1,11 @@
 // The fixture of the renderer/vk tests: a Context on lavapipe (or the device named by
-// SSS_TEST_DEVICE; an empty value picks the best device) with the validation layer,
-// core and synchronization checks. At the end of each test it waits for the device,
-// destroys the Context and fails the test for every message the layer reported,
-// including objects the test leaked (reported while the device is destroyed).
+// SSS_TEST_DEVICE; an empty value picks the best device) with the validation layer.
+// Which checks: SSS_VALIDATION_CHECKS=core|sync|best-practices when set (the three
+// separate runs of scripts/test-validation.sh; renderer/vk/Environment.h), otherwise
+// core + synchronization, so that the ordinary test run keeps catching hazards as it
+// always did. At the end of each test it waits for the device, destroys the Context and
+// fails the test for every message the layer reported, including objects the test
+// leaked (reported while the device is destroyed).
 #pragma once
 
 #include "renderer/vk/Context.h"
@@ -27,6 +30,37 @@ inline ContextOptions validated_options() {
   options.device_name = test_device_name();
   return options;
 }
+
+// Sets (value == nullptr: unsets) an environment variable for one scope and restores it
+// (ctest runs each test in its own process, so nothing else sees the change).
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) {
+      old_ = old;
+      had_ = true;
+    }
+    if (value != nullptr) {
+      ::setenv(name, value, 1);
+    } else {
+      ::unsetenv(name);
+    }
+  }
+  ~ScopedEnv() {
+    if (had_) {
+      ::setenv(name_, old_.c_str(), 1);
+    } else {
+      ::unsetenv(name_);
+    }
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+  std::string old_;
+  bool had_ = false;
+};
 
 class VulkanTest : public ::testing::Test {
  protected:
