@@ -93,6 +93,7 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
   if (auto e = check_gltf_schema(root, file)) return *e;
   const Checker c{file, root};
 
+  std::vector<std::pair<std::string, std::string>> file_uris;
   SSS_TRY(buffers, c.array("buffers"));
   std::vector<std::uint64_t> buffer_bytes;
   for (std::size_t i = 0; i < buffers->size(); ++i) {
@@ -114,6 +115,8 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
     if (!b["uri"].is_string()) return c.fail(at("buffers", i), "uri", "must be a string");
     if (auto e = check_uri(b["uri"].get<std::string>(), UriUse::Buffer, length))
       return c.fail(at("buffers", i), "uri", *e);
+    if (b["uri"].get<std::string>().rfind("data:", 0) != 0)
+      file_uris.emplace_back(at("buffers", i), b["uri"].get<std::string>());
   }
 
   // Every buffer view lies inside its buffer (tinygltf forms image pointers from them).
@@ -158,6 +161,8 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
         if (!media_types[i].empty() && media_types[i] != type)
           return c.fail(object, "mimeType", "is \"" + media_types[i] + "\" but the data URI is " + type);
         media_types[i] = type;
+      } else {
+        file_uris.emplace_back(object, uri);
       }
       continue;
     }
@@ -181,6 +186,7 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
   SSS_TRY(materials, c.array("materials"));
   GltfJsonFacts facts;
   facts.image_media_type = std::move(media_types);
+  facts.file_uris = std::move(file_uris);
   facts.material_count = materials->size();
   facts.material_sss.resize(materials->size());
   for (std::size_t i = 0; i < materials->size(); ++i) {

@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -31,6 +32,8 @@ struct GltfJsonFacts {
   // images[i]'s declared media type ("image/png", "image/jpeg"): its data URI's type or
   // its mimeType; empty when it declares none (a file URI without mimeType).
   std::vector<std::string> image_media_type;
+  // Every file URI (not data:), as {object, uri}: {"buffers[0]", "mesh.bin"}.
+  std::vector<std::pair<std::string, std::string>> file_uris;
 };
 
 // The type of every glTF 2.0 property tinygltf reads and every index into another array

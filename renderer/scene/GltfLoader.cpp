@@ -94,6 +94,17 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   if (ec) return fail("", "cannot resolve its folder: " + ec.message());
   sandbox.max_file_bytes = max_bytes;
   sandbox.bytes_left = options.max_external_bytes;
+  // Every file a URI names exists inside the folder, said here with the object and
+  // field; tinygltf would only say "File not found" (and only warn for an image).
+  for (const auto& [object, uri] : std::get<GltfJsonFacts>(facts).file_uris) {
+    const std::string file = (sandbox.root / decode_file_uri(uri)).string();  // tinygltf's JoinPath
+    if (!std::filesystem::exists(file, ec))
+      return LoadError{path, object, "uri", "\"" + uri + "\": no such file in " + sandbox.root.string()};
+    if (!std::filesystem::is_regular_file(file, ec))
+      return LoadError{path, object, "uri", "\"" + uri + "\" is not a regular file"};
+    if (!sandbox.resolves_inside(file))
+      return LoadError{path, object, "uri", "\"" + uri + "\" leads out of the glTF file's folder (a link)"};
+  }
   std::vector<std::vector<unsigned char>> uri_images;
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks(sandbox_callbacks(&sandbox));

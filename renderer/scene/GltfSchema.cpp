@@ -357,7 +357,7 @@ class Schema {
       const json* target = object(c, cn, "target", true);
       if (!target) return;
       common(*target, cn + ".target") && index(*target, cn + ".target", "node", "nodes") &&
-          one_of(*target, cn + ".target", "path", {"translation", "rotation", "scale", "weights"}, true);
+          one_of(*target, cn + ".target", "path", {"translation", "rotation", "scale", "weights", "pointer"}, true);  // pointer: KHR_animation_pointer
     }
   }
 
@@ -454,7 +454,7 @@ class Schema {
     if (!common(l, n) || !one_of(l, n, "type", {"directional", "point", "spot"}, true) ||
         !numbers(l, n, "color", 3) || !number(l, n, "intensity") || !number(l, n, "range"))
       return;
-    if (const json* spot = object(l, n, "spot", l["type"] == "spot"))
+    if (const json* spot = object(l, n, "spot"))  // absent: the extension's default cone
       common(*spot, n + ".spot") && number(*spot, n + ".spot", "innerConeAngle") &&
           number(*spot, n + ".spot", "outerConeAngle");
   }

@@ -104,6 +104,21 @@ std::optional<std::string> check_uri(std::string_view uri, UriUse use,
   return std::nullopt;
 }
 
+std::string decode_file_uri(std::string_view uri) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '+') {
+      out += ' ';
+    } else if (uri[i] == '%' && i + 2 < uri.size() && hex_value(uri[i + 1]) >= 0 && hex_value(uri[i + 2]) >= 0) {
+      out += static_cast<char>(hex_value(uri[i + 1]) * 16 + hex_value(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
 bool FileSandbox::contains(const std::string& path) const {
   const std::filesystem::path p = std::filesystem::path(path).lexically_normal();
   const std::filesystem::path rel = p.lexically_relative(root);

@@ -29,6 +29,10 @@ std::optional<std::string> check_uri(std::string_view uri, UriUse use,
 // The decoded size of strict base64 text, or nullopt if it is not strict base64.
 std::optional<std::uint64_t> base64_decoded_size(std::string_view text);
 
+// A file URI as tinygltf 2.7.0 decodes it before opening the file (dlib::urldecode:
+// "%XX" escapes and '+' as a space). `uri` must have passed check_uri.
+std::string decode_file_uri(std::string_view uri);
+
 struct FileSandbox {
   std::filesystem::path root;  // absolute folder of the glTF file
   std::uint64_t max_file_bytes = 0;

@@ -409,10 +409,13 @@ gltf('uri_backslash.gltf', 'buffers[0].uri', 'backslash', d => { d.buffers[0].ur
 gltf('uri_percent_slash.gltf', 'buffers[0].uri', 'absolute path once percent-decoded', d => { d.buffers[0].uri = '%2fetc/passwd'; });
 gltf('uri_percent_nul.gltf', 'buffers[0].uri', 'control character', d => { d.buffers[0].uri = 'triangle.bin%00.png'; });
 gltf('uri_drive_letter.gltf', 'buffers[0].uri', 'scheme', d => { d.buffers[0].uri = 'C:/Windows/win.ini'; });
-// A message from tinygltf counts even when it returned success: a missing image file is
-// only a warning to tinygltf 2.7.0 (ParseImage), an error here.
-gltf('image_file_missing.gltf', 'missing.png', 'tinygltf', textured({ uri: 'missing.png' }));
-gltf('buffer_file_missing.gltf', 'missing.bin', 'tinygltf', d => { d.buffers[0].uri = 'missing.bin'; });
+gltf('image_file_missing.gltf', 'images[0].uri', 'no such file', textured({ uri: 'missing.png' }));
+gltf('buffer_file_missing.gltf', 'buffers[0].uri', 'no such file', d => { d.buffers[0].uri = 'missing.bin'; });
+gltf('uri_is_a_folder.gltf', 'buffers[0].uri', 'not a regular file', d => { d.buffers[0].uri = '.'; });
+// A message from tinygltf counts even when it returned success: an image file it cannot
+// read (here: empty) is only a warning to tinygltf 2.7.0 (ParseImage), an error here.
+writeFileSync(join(dir, 'empty.png'), '');
+gltf('image_file_empty.gltf', 'empty.png', 'tinygltf', textured({ uri: 'empty.png' }));
 
 writeFileSync(join(dir, 'expected.json'), JSON.stringify(expected, null, 1) + '\n');
 console.log(`${Object.keys(expected).length} files`);
