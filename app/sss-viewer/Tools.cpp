@@ -1,6 +1,7 @@
 #include "Tools.h"
 
 #include "CliSupport.h"
+#include "InputFiles.h"
 
 #include "renderer/FrameTargets.h"
 #include "renderer/Renderer.h"
@@ -214,7 +215,8 @@ std::optional<std::string> ViewerTools::draw(renderer::Renderer& r, const LiveSt
   const ImVec2 size = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(size.x - 8.0f, 8.0f), ImGuiCond_FirstUseEver, ImVec2(1.0f, 0.0f));
   ImGui::SetNextWindowSizeConstraints(ImVec2(310, 0), ImVec2(310, std::max(size.y - 16.0f, 50.0f)));
-  ImGui::SetNextWindowCollapsed(!expand_, expand_ ? ImGuiCond_Always : ImGuiCond_FirstUseEver);
+  const bool expand = expand_ || show_open_;
+  ImGui::SetNextWindowCollapsed(!expand, expand ? ImGuiCond_Always : ImGuiCond_FirstUseEver);
   poll_reference(r, live);  // also while the window is collapsed
   if (ImGui::Begin("Tools", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     draw_open();
@@ -226,13 +228,18 @@ std::optional<std::string> ViewerTools::draw(renderer::Renderer& r, const LiveSt
 }
 
 void ViewerTools::draw_open() {
+  if (show_open_) ImGui::SetNextItemOpen(true);
+  show_open_ = false;
   if (!ImGui::CollapsingHeader("Open", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::TextWrapped("A .gltf/.glb path or builtin:NAME, or drop a file on the window.");
   const bool enter = ImGui::InputText("##path", open_path_, sizeof open_path_,
                                       ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
   if ((ImGui::Button("Open") || enter) && open_path_[0] != '\0') open_request_ = open_path_;
-  if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+  if (message_.empty()) return;
+  if (message_error_) ImGui::PushStyleColor(ImGuiCol_Text, kRed);
+  ImGui::TextWrapped("%s", message_.c_str());
+  if (message_error_) ImGui::PopStyleColor();
 }
 
 void ViewerTools::compare_now(renderer::Renderer& r) {
@@ -389,7 +396,11 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
   }
 }
 
-std::string write_new_file(const std::string& path, const std::string& bytes, bool replace) {
+std::string write_new_file(const std::string& path, const std::string& bytes, bool replace,
+                           const std::vector<std::filesystem::path>* inputs) {
+  if (path.empty()) return "no file name given";
+  if (inputs != nullptr)
+    if (auto refused = refuse_input_overwrite(path, *inputs)) return *refused;
   if (!replace && exists(path))
     return path + " exists: tick 'replace existing files' or change the name";
   try {
@@ -412,11 +423,13 @@ std::string export_materials(const LiveState& live, const std::string& path, boo
         entry["extras"]["sss"] = nlohmann::ordered_json::parse(scene::sss_extras_json(m.sss).dump());
       doc["materials"].push_back(entry);
     }
-    return write_new_file(path, doc.dump(2) + "\n", replace);
+    return write_new_file(path, doc.dump(2) + "\n", replace, live.inputs);
   }
+  if (live.inputs != nullptr)
+    if (auto refused = refuse_input_overwrite(path, *live.inputs)) return *refused;
   auto bytes = scene::gltf_with_sss_materials(live.source, live.materials, path);
   if (auto* e = std::get_if<scene::LoadError>(&bytes)) return e->what();
-  return write_new_file(path, std::get<std::string>(bytes), replace);
+  return write_new_file(path, std::get<std::string>(bytes), replace, live.inputs);
 }
 
 std::string export_kernel(const renderer::Renderer& r, const LiveState& live, std::size_t material,
@@ -438,7 +451,7 @@ std::string export_kernel(const renderer::Renderer& r, const LiveState& live, st
   } catch (const std::exception& e) {
     return e.what();
   }
-  return write_new_file(path, bytes, replace);
+  return write_new_file(path, bytes, replace, live.inputs);
 }
 
 void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live) {

@@ -16,6 +16,7 @@
 #include "renderer/vk/Image.h"
 
 #include <atomic>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -41,6 +42,8 @@ struct LiveState {
   // The window's framebuffer: the size of the reference (the renderer may draw a scaled
   // frame while the view moves).
   std::uint32_t width = 0, height = 0;
+  // The files the scene was loaded from (InputFiles.h): no export may replace them.
+  const std::vector<std::filesystem::path>* inputs = nullptr;
 };
 
 // The CPU reference of one view, rendered on a worker thread. Destroying or starting
@@ -97,7 +100,14 @@ class ViewerTools {
 
   // A new scene: cancels the reference and forgets the comparison.
   void reset();
-  void set_message(std::string message) { message_ = std::move(message); }
+  // The Open section's line: a failed open shows in red and opens the Tools window (it
+  // starts collapsed), so the user sees why the scene did not change.
+  void set_message(std::string message, bool error = false) {
+    message_ = std::move(message);
+    message_error_ = error;
+    if (error) show_open_ = true;
+  }
+  const std::string& message() const { return message_; }
 
   // What to blit over the frame: `image` (kDisplayFormat, TRANSFER_SRC_OPTIMAL, frame
   // size) over the columns left of `split` (a fraction of the width; 1 = all of it).
@@ -121,6 +131,8 @@ class ViewerTools {
   char open_path_[512] = "";
   std::optional<std::string> open_request_;
   std::string message_;
+  bool message_error_ = false;
+  bool show_open_ = false;  // expand the window (and its Open section) at the next draw
 
   ReferenceJob job_;
   float spacing_mfp_ = 0.5f;
@@ -148,9 +160,11 @@ class ViewerTools {
 };
 
 // The Export section's actions (the buttons call them); each returns "saved PATH" or
-// why nothing was written. An existing file is replaced only with `replace`; the input
-// glTF never is. Files are written atomically.
-std::string write_new_file(const std::string& path, const std::string& bytes, bool replace);
+// why nothing was written. An existing file is replaced only with `replace`; the scene's
+// own files (`inputs`: the glTF and its buffers and images) never are, even with
+// `replace`. Files are written atomically.
+std::string write_new_file(const std::string& path, const std::string& bytes, bool replace,
+                           const std::vector<std::filesystem::path>* inputs = nullptr);
 // A glTF/GLB source: a copy with every material's extras.sss (GltfExport.h). A built-in
 // scene: {"scene", "materials": [{"name", "extras": {"sss": {...}}}]} as JSON.
 std::string export_materials(const LiveState& live, const std::string& path, bool replace);

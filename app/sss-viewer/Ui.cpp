@@ -1,6 +1,7 @@
 #include "Ui.h"
 
 #include "FrameOutput.h"
+#include "InputFiles.h"
 
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"
@@ -464,6 +465,10 @@ void ViewerUi::print_stats(std::FILE* out) const {
   std::fprintf(out, "%-16s %10.3f\n", "refit max frame", l.max_frame_ms);
 }
 
+std::optional<std::string> ViewerUi::screenshot_refusal(const std::string& path) const {
+  return refuse_input_overwrite(path, protected_);
+}
+
 void ViewerUi::draw_screenshot(const renderer::Renderer& r) {
   if (!ImGui::CollapsingHeader("Screenshot", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::InputText("file", shot_name_, sizeof shot_name_);
@@ -472,11 +477,15 @@ void ViewerUi::draw_screenshot(const renderer::Renderer& r) {
   const bool exr = ImGui::Button("Save EXR");
   if (png || exr) {
     const std::string path = std::string(shot_name_) + (png ? ".png" : ".exr");
-    try {
-      write_frame(r, path);
-      shot_message_ = "saved " + path;
-    } catch (const std::exception& e) {
-      shot_message_ = e.what();
+    if (auto refused = screenshot_refusal(path)) {
+      shot_message_ = *refused;
+    } else {
+      try {
+        write_frame(r, path);
+        shot_message_ = "saved " + path;
+      } catch (const std::exception& e) {
+        shot_message_ = e.what();
+      }
     }
   }
   if (!shot_message_.empty()) ImGui::TextUnformatted(shot_message_.c_str());

@@ -11,6 +11,8 @@
 #include "renderer/scene/Scene.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +43,11 @@ class ViewerUi {
   void print_stats(std::FILE* out) const;
 
   MaterialEditor& editor() { return editor_; }
+
+  // The scene's own files (InputFiles.h): the Screenshot panel refuses to write over them.
+  void set_protected_files(std::vector<std::filesystem::path> files) { protected_ = std::move(files); }
+  // What the Screenshot panel would write to `path`: nullopt to go ahead, or why not.
+  std::optional<std::string> screenshot_refusal(const std::string& path) const;
 
   // The window renders at this fraction of its size while the view moves or a widget is
   // dragged (1: always full size); the SSS panel's "moving scale" slider sets it.
@@ -75,6 +82,7 @@ class ViewerUi {
   double smoothed_ms_ = 0.0;
   char shot_name_[256] = "sss-viewer";
   std::string shot_message_;
+  std::vector<std::filesystem::path> protected_;
   std::string error_;
 };
 

@@ -38,12 +38,20 @@ struct ViewerArgs {
   std::string vsync = "on";  // window: on (FIFO) | off (MAILBOX / IMMEDIATE)
   bool validation = false;   // --validation or SSS_VALIDATION=1
   bool test_resize = false;  // hidden: resize and minimize the window between frames
+  bool test_resize_storm = false;  // hidden: 50 size changes, some within one frame
+  std::string test_host_oom;  // hidden: load | frame: std::bad_alloc thrown there
   std::string test_open;     // hidden: opens this file after two frames, as a drop would
   // hidden: renders the reference at frame 2 and shows it: split | reference | error
   std::string test_compare;
   float interactive_scale = 0.5f;  // --interactive-scale: render size while the view moves
   bool test_interaction = false;   // hidden: every frame counts as interacting (timing)
   std::string test_edit;     // hidden: preset=NAME | model=NAME, edited at the first frame
+  // --soak N (headless): N frames, the material changed every soak_every frames (Soak.h)
+  int soak = 0;
+  int soak_every = 100;
+  int soak_cycle = 10;
+  long soak_max_growth_kb = 1024;
+  std::string soak_csv, soak_svg;
 };
 
 }  // namespace sss::app

@@ -3,6 +3,7 @@
 #include "ExitCodes.h"
 #include "CliSupport.h"
 #include "FrameOutput.h"
+#include "InputFiles.h"
 #include "OrbitCamera.h"
 #include "Tools.h"
 #include "Ui.h"
@@ -26,7 +27,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <memory>
+#include <new>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -206,6 +209,7 @@ struct Session {
   std::unique_ptr<renderer::Renderer> renderer;
   std::unique_ptr<OrbitCamera> camera;
   std::unique_ptr<ViewerUi> ui;
+  std::vector<std::filesystem::path> inputs;  // its files: never written over
 };
 
 std::unique_ptr<Session> make_session(const vk::Context& ctx, scene::Scene scene, std::string source,
@@ -216,6 +220,8 @@ std::unique_ptr<Session> make_session(const vk::Context& ctx, scene::Scene scene
   s->renderer = std::make_unique<renderer::Renderer>(ctx, s->scene, options);
   s->camera = std::make_unique<OrbitCamera>(s->renderer->camera(), s->scene.bounds());
   s->ui = std::make_unique<ViewerUi>(s->scene, options.separable_taps);
+  s->inputs = scene_input_files(s->source);
+  s->ui->set_protected_files(s->inputs);
   return s;
 }
 
@@ -352,8 +358,24 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   int timed_frames = 0;
   std::optional<std::string> open_request_ui;  // from the Tools window, for the next frame
   bool test_opened = false;
+  // --test-resize-storm: the sizes, in order; three per loop iteration.
+  static constexpr int kStorm[10][2] = {{1, 1},   {2000, 1200}, {37, 611},  {640, 360}, {2, 3},
+                                        {1280, 720}, {321, 177}, {1, 400}, {900, 1}, {160, 90}};
+  constexpr int kStormChanges = 50;
+  int storm_next = 0;          // changes made so far
+  int frames_after_storm = 0;  // frames presented at the final size after the storm
+  std::uint64_t allocations_at_first_frame = 0;  // device-memory allocations (--stats)
+  const auto storm_resize = [&] {
+    if (storm_next >= kStormChanges) return;
+    const int* size = kStorm[storm_next % 10];
+    glfwSetWindowSize(window, size[0], size[1]);
+    if (++storm_next == kStormChanges) glfwSetWindowSize(window, a.width, a.height);
+  };
   auto last_interaction = std::chrono::steady_clock::time_point{};
   auto last = std::chrono::steady_clock::now();
+  // A failure inside a frame (a device allocation, a lost device) unwinds through the
+  // objects below, which the frame in flight may still use: wait for the device first.
+  try {
   while (!glfwWindowShouldClose(window)) {
     glfwPollEvents();
     std::optional<std::string> open_request = std::move(open_request_ui);
@@ -373,14 +395,16 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       renderer::RenderOptions next_options = session->renderer->options();
       next_options.width = uint32_t(std::max(fb_w, 1));  // full size, whatever was drawn last
       next_options.height = uint32_t(std::max(fb_h, 1));
-      if (auto next = open_scene(ctx, *open_request, next_options, message)) {
+      auto next = open_scene(ctx, *open_request, next_options, message);
+      const bool failed = next == nullptr;  // the scene shown stays
+      if (next) {
         next->ui->set_interactive_scale(session->ui->interactive_scale());
         tools.reset();
         session = std::move(next);  // the old renderer goes here, its frame finished
         glfwSetWindowTitle(window, window_title(session->scene, session->source).c_str());
       }
-      std::cerr << "sss-viewer: " << message << '\n';
-      tools.set_message(message);
+      std::cerr << "sss-viewer: " << (failed ? "error: " : "") << message << '\n';
+      tools.set_message(message, failed);
     }
     renderer::Renderer& r = *session->renderer;
     OrbitCamera& camera = *session->camera;
@@ -395,6 +419,10 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       }
       if (frames == 3) glfwRestoreWindow(window);
       if (frames == 4) glfwSetWindowSize(window, a.width, a.height);
+    }
+    if (a.test_resize_storm) {  // two changes before this frame's size is read
+      storm_resize();
+      storm_resize();
     }
     glfwGetFramebufferSize(window, &fb_w, &fb_h);
     if (simulated_minimized > 1) {
@@ -420,7 +448,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     vk::wait_for_fence(ctx, fence.get());
     ui.draw(r, frame_ms);
     LiveState live{&session->scene, session->source, ui.editor().applied(), ui.lights(),
-                   fb.width, fb.height};
+                   fb.width, fb.height, &session->inputs};
     if (!a.test_compare.empty() && frames == 2 && !tools.reference_running() && !tools.metrics()) {
       tools.start_reference(r, live);
       tools.set_view(a.test_compare == "split" ? 1 : a.test_compare == "reference" ? 2 : 3, 0.5f);
@@ -447,6 +475,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       r.resize(render_size.width, render_size.height);
 
     r.render_frame();
+    if (a.test_resize_storm) storm_resize();  // and one while the frame is under way
     uint32_t index = 0;
     if (!sc.acquire(acquired.get(), index)) {
       recreate_swapchain(fb);
@@ -536,6 +565,11 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     if (!sc.present(index, rendered[index].get())) recreate_swapchain(fb);
 
     ++frames;
+    if (frames == 2 && a.test_host_oom == "frame") throw std::bad_alloc();
+    if (frames == 1) allocations_at_first_frame = ctx.successful_allocations();
+    if (a.test_resize_storm && storm_next >= kStormChanges && fb_w == a.width && fb_h == a.height &&
+        sc.extent().width == fb.width && sc.extent().height == fb.height)
+      ++frames_after_storm;
     const auto now = std::chrono::steady_clock::now();
     frame_ms = std::chrono::duration<double, std::milli>(now - last).count();
     last = now;
@@ -551,14 +585,25 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     }
     const bool waiting = (!a.test_edit.empty() && ui.busy()) ||
                          (!a.test_compare.empty() && (frames <= 2 || !tools.metrics()));
-    if (screenshot && frames >= a.frames && !waiting) break;
+    const bool storming = a.test_resize_storm && frames_after_storm < a.frames;
+    if (screenshot && frames >= a.frames && !waiting && !storming) break;
+  }
+  } catch (...) {
+    ctx.wait_idle();
+    throw;
   }
   vk::wait_for_fence(ctx, fence.get());
   ctx.wait_idle();
   const renderer::Renderer& r = *session->renderer;
   const ViewerUi& ui = *session->ui;
 
-  if (screenshot) write_frame(r, a.screenshot);
+  if (screenshot) {
+    if (auto refused = refuse_input_overwrite(a.screenshot, session->inputs)) {
+      std::cerr << "sss-viewer: error: --screenshot: " << *refused << '\n';
+      return kExitUsage;
+    }
+    write_frame(r, a.screenshot);
+  }
   if (a.stats) {
     std::printf("window %dx%d (rendered %ux%u), sss %s, mode %s, present %s, %d frame(s)\n",
                 fb_w, fb_h, r.options().width, r.options().height, std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
@@ -573,6 +618,8 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       std::printf("%-16s %10.1f\n", "fps", 1000.0 * timed_frames / timed_ms);
     }
     ui.print_stats(stdout);
+    std::printf("%-16s %10llu\n", "allocations", static_cast<unsigned long long>(ctx.successful_allocations()));
+    std::printf("%-16s %10llu\n", "allocations @1", static_cast<unsigned long long>(allocations_at_first_frame));
     if (const auto& m = tools.metrics())
       std::printf("compare: relative RMSE %.6f, PSNR %.2f dB, SSIM %.4f, max abs %.4f\n",
                   m->relative_rmse, m->psnr_db, m->ssim, m->max_abs_error);

@@ -5,6 +5,8 @@
 // The command-line contract is DESIGN.md §4; errors exit 2 (usage, input) or 1 (runtime).
 #include "CliSupport.h"
 #include "FrameOutput.h"
+#include "InputFiles.h"
+#include "Soak.h"
 #include "ViewerArgs.h"
 #include "Ui.h"
 #include "Window.h"
@@ -21,7 +23,10 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
 #include <iostream>
+#include <new>
 
 using namespace sss;
 using namespace sss::app;
@@ -48,7 +53,8 @@ std::string debug_view_help() {
          "bounding diameter, grey without UVs";
 }
 
-void write_atlases(const renderer::Renderer& r, const std::string& prefix) {
+void write_atlases(const renderer::Renderer& r, const std::string& prefix,
+                   const std::vector<std::filesystem::path>& inputs) {
   using Atlas = renderer::Renderer::Atlas;
   const auto& objects = r.texture_pass()->objects();
   for (std::size_t i = 0; i < objects.size(); ++i) {
@@ -58,6 +64,8 @@ void write_atlases(const renderer::Renderer& r, const std::string& prefix) {
       // The object's index keeps two objects of one name (a node's primitives) apart.
       const std::string path = prefix + "-" + std::to_string(i) + "-" + objects[i].options.name +
                                "-" + name + ".exr";
+      if (auto refused = refuse_input_overwrite(path, inputs))
+        throw std::runtime_error("--atlas-out: " + *refused);
       image::write_exr(path, r.read_atlas(i, which));
       std::printf("wrote %s\n", path.c_str());
     }
@@ -73,9 +81,7 @@ void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
   std::printf("%-16s %10.3f\n", "cpu mean", cpu_total_ms / frames);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int viewer_main(int argc, char** argv) {
   CLI::App app{"sss-viewer: real-time subsurface scattering (Vulkan), in a window or headless.",
                "sss-viewer"};
   ViewerArgs a;
@@ -117,6 +123,13 @@ int main(int argc, char** argv) {
                  "slider is dragged (default 0.5; 1 = always full size)")
       ->check(CLI::Range(0.1f, 1.0f));
   app.add_flag("--test-resize", a.test_resize)->group("");
+  // tests: 50 window size changes over ~17 frames (1x1, larger than the screen, thin; two
+  // before a frame's size is read and one between rendering and acquiring), then back
+  // to --width x --height; --screenshot counts --frames from there
+  app.add_flag("--test-resize-storm", a.test_resize_storm)->group("");
+  // tests: std::bad_alloc (host memory exhausted) after loading the scene ("load") or in
+  // the frame loop ("frame": the window's frame 2, after the first headless frame)
+  app.add_option("--test-host-oom", a.test_host_oom)->group("")->check(CLI::IsMember({"load", "frame"}));
   app.add_flag("--test-interaction", a.test_interaction)->group("");  // timing: always scaled  // tests: resize/minimize the window
   // tests and timing: one material edit through the panel's code path at the first frame;
   // --screenshot then waits for its refit to be presented (--stats prints its latency)
@@ -125,15 +138,35 @@ int main(int argc, char** argv) {
   // tests: the Compare button at frame 2, then split | reference | error is shown;
   // --screenshot waits for the comparison (--stats prints its metrics)
   app.add_option("--test-compare", a.test_compare)->group("");
+  app.add_option("--soak", a.soak,
+                 "Headless soak: render N frames, changing the first SSS material every "
+                 "--soak-every frames through the material panel's code; record resident "
+                 "memory and live Vulkan objects; exit 1 if memory grows by --soak-max-growth-kb "
+                 "or more after the first material cycle, or an object leaks (scripts/soak.sh)")
+      ->check(CLI::Range(1, 10000000));
+  app.add_option("--soak-every", a.soak_every, "--soak: frames between material changes (default 100)")
+      ->check(CLI::Range(1, 1000000));
+  app.add_option("--soak-cycle", a.soak_cycle,
+                 "--soak: steps in the material cycle: the accepted presets in order, the last "
+                 "step a coefficient edit (default 10); warm-up is one cycle")
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--soak-max-growth-kb", a.soak_max_growth_kb,
+                 "--soak: allowed RSS growth from the end of warm-up to the end (default 1024)")
+      ->check(CLI::Range(0L, 1L << 30));
+  app.add_option("--soak-csv", a.soak_csv, "--soak: write frame,rss_kb,vk_objects,material here");
+  app.add_option("--soak-svg", a.soak_svg, "--soak: plot resident memory and objects here (SVG)");
   if (const auto stop = parse_command_line(app, argc, argv, "sss-viewer")) return *stop;
 
   if (const char* v = std::getenv("SSS_VALIDATION"); v != nullptr && std::string(v) == "1")
     a.validation = true;
   std::string ext;
+  const bool soak_options = a.soak > 0 || !a.soak_csv.empty() || !a.soak_svg.empty();
+  if (soak_options && (!a.headless || a.soak == 0))
+    return usage("--soak-csv and --soak-svg need --soak N, and --soak needs --headless");
   if (a.headless) {
-    if (a.out.empty()) return usage("--headless needs --out FILE.png|FILE.exr");
+    if (a.out.empty() && a.soak == 0) return usage("--headless needs --out FILE.png|FILE.exr");
     ext = lower_extension(a.out);
-    if (ext != ".png" && ext != ".exr")
+    if (!a.out.empty() && ext != ".png" && ext != ".exr")
       return usage("--out: expected a .png or .exr file name, got '" + a.out + "'");
   } else {
     if (!a.out.empty())
@@ -192,9 +225,19 @@ int main(int argc, char** argv) {
   auto overridden = apply_material_overrides(scene, a.material);
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
   for (const std::string& w : scene.warnings) std::cerr << "sss-viewer: warning: " << w << '\n';
+  if (a.test_host_oom == "load") throw std::bad_alloc();
+  // No output may replace a file the scene was loaded from (checked again where a file
+  // is written after another scene was opened).
+  const std::vector<std::filesystem::path> inputs = scene_input_files(a.scene);
+  for (const auto& [option, path] : {std::pair{"--out", &a.out}, std::pair{"--screenshot", &a.screenshot},
+                                     std::pair{"--soak-csv", &a.soak_csv},
+                                     std::pair{"--soak-svg", &a.soak_svg}})
+    if (auto refused = refuse_input_overwrite(*path, inputs))
+      return usage(std::string(option) + ": " + *refused);
 
   try {
     if (!a.headless) return run_window(a, scene, options);
+    if (a.soak > 0) return run_soak(a, scene, options);
     vk::ContextOptions context_options;
     context_options.device_name = a.device;
     context_options.enable_validation = context_options.sync_validation = a.validation;
@@ -205,10 +248,14 @@ int main(int argc, char** argv) {
     for (int i = 0; i < a.frames; ++i) {
       r.render_frame();
       cpu_total += r.stats().cpu_ms;
+      if (a.test_host_oom == "frame") throw std::bad_alloc();
     }
     write_frame(r, a.out);
-    if (!a.atlas_out.empty()) write_atlases(r, a.atlas_out);
+    if (!a.atlas_out.empty()) write_atlases(r, a.atlas_out, inputs);
     if (a.stats) print_stats(r, a.frames, cpu_total);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "sss-viewer: error: out of host memory (std::bad_alloc)\n";
+    return kExitRuntime;
   } catch (const std::invalid_argument& e) {
     return usage(e.what());
   } catch (const std::exception& e) {
@@ -219,4 +266,19 @@ int main(int argc, char** argv) {
     return kExitRuntime;
   }
   return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Whatever escapes (host memory exhausted while loading, parsing or building the
+  // window's state) is a runtime failure with a message, never an abort: exit 1.
+  try {
+    return viewer_main(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "sss-viewer: error: out of host memory (std::bad_alloc)\n";
+  } catch (const std::exception& e) {
+    std::cerr << "sss-viewer: error: " << e.what() << '\n';
+  }
+  return kExitRuntime;
 }

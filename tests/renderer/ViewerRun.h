@@ -16,10 +16,22 @@ namespace sss::testing {
 inline bool have_xvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
 #ifdef SSS_VIEWER_EXE
-// `sss-viewer ARGS` in a 1280x720 virtual screen, SSS_VALIDATION=1.
-inline CliRun run_windowed(const std::string& args) {
-  return run_shell("SSS_VALIDATION=1 xvfb-run -a -s \"-screen 0 1280x720x24\" " +
+// `sss-viewer ARGS` in a 1280x720 virtual screen, SSS_VALIDATION=1 and `env` (more
+// VAR=VALUE settings) in its environment.
+inline CliRun run_windowed(const std::string& args, const std::string& env = "") {
+  return run_shell("SSS_VALIDATION=1 " + env + " xvfb-run -a -s \"-screen 0 1280x720x24\" " +
                    std::string(SSS_VIEWER_EXE) + " " + args);
+}
+
+// As run_windowed, but `code` is sss-viewer's own exit status, not xvfb-run's (which
+// can fail on its own, e.g. "problem while cleaning up temporary directory", exit 5,
+// seen once with other X servers starting beside it). -1: the marker is missing.
+inline CliRun run_windowed_own_status(const std::string& args, const std::string& env = "") {
+  CliRun r = run_shell("SSS_VALIDATION=1 " + env + " xvfb-run -a -s \"-screen 0 1280x720x24\" sh -c '" +
+                       std::string(SSS_VIEWER_EXE) + " " + args + "; echo sss-viewer-exit=$?'");
+  const auto at = r.out.rfind("sss-viewer-exit=");
+  r.code = at == std::string::npos ? -1 : std::atoi(r.out.c_str() + at + 16);
+  return r;
 }
 #endif
 

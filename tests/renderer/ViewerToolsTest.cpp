@@ -5,14 +5,19 @@
 // two images.
 #include <gtest/gtest.h>
 
+#include "InputFiles.h"
 #include "RenderTest.h"
 #include "Tools.h"
+#include "Ui.h"
 
 #include "renderer/image/Image.h"
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/scene/GltfExport.h"
+#include "renderer/scene/GltfFile.h"
 #include "renderer/scene/SssExtras.h"
 
+#include <imgui.h>
+#include <imgui_internal.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -86,6 +91,7 @@ TEST(ViewerTools, AFileThatDoesNotLoadLeavesTheScene) {
     ASSERT_EQ(w.code, 0) << w.out;  // the viewer goes on
     EXPECT_FALSE(has_validation_message(w.out)) << w.out;
     EXPECT_NE(w.out.find(path), std::string::npos) << w.out;  // the message names the file
+    EXPECT_NE(w.out.find("sss-viewer: error: " + path), std::string::npos) << w.out;
     EXPECT_EQ(w.out.find("opened"), std::string::npos) << w.out;
     EXPECT_LE(max_code_difference(shot, expected), 1.0f) << path;
   }
@@ -221,6 +227,142 @@ TEST_F(ViewerExport, MaterialsGoToANewGltfAndKernelsToJsonAndHeader) {
       EXPECT_FALSE(std::filesystem::exists(dir / "none.json"));
     }
   std::filesystem::remove_all(dir);
+}
+
+// The textured tile as a .gltf whose buffer and images are separate files ("tile.bin",
+// "tex a.png", named by the percent-encoded URI "tex%20a.png", "tex a2.png", ...), in `dir`.
+// Returns the .gltf's path.
+std::string write_external_tile(const std::filesystem::path& dir) {
+  const std::string glb = slurp(std::string(SSS_SOURCE_DIR) + "/assets/textured_tile.glb");
+  const std::vector<unsigned char> bytes(glb.begin(), glb.end());
+  auto layout = scene::parse_glb(bytes);
+  if (!std::holds_alternative<scene::GlbLayout>(layout)) return {};
+  const scene::GlbLayout& l = std::get<scene::GlbLayout>(layout);
+  nlohmann::json doc = nlohmann::json::parse(l.json);
+  std::ofstream(dir / "tile.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(l.bin.data()), std::streamsize(l.bin.size()));
+  doc["buffers"] = nlohmann::json::array({{{"byteLength", l.bin.size()}, {"uri", "tile.bin"}}});
+  int n = 0;
+  for (auto& image : doc["images"]) {  // "tex a.png", then "tex a2.png", ...
+    const std::string suffix = n++ == 0 ? "" : std::to_string(n);
+    const auto& view = doc["bufferViews"][image["bufferView"].get<std::size_t>()];
+    const std::size_t offset = view.value("byteOffset", std::size_t(0));
+    std::ofstream(dir / ("tex a" + suffix + ".png"), std::ios::binary)
+        .write(reinterpret_cast<const char*>(l.bin.data() + offset),
+               std::streamsize(view["byteLength"].get<std::size_t>()));
+    image = {{"uri", "tex%20a" + suffix + ".png"}};
+  }
+  const std::string path = (dir / "tile.gltf").string();
+  std::ofstream(path) << doc.dump(1);
+  return path;
+}
+
+// The viewer never overwrites a user's input file: not the glTF, its buffer or its
+// image, by any name (another spelling of the path, a symbolic link), not even with
+// "replace existing files" ticked; the message says why; every byte stays.
+TEST_F(ViewerExport, NoSaveReplacesAFileTheSceneWasLoadedFrom) {
+  const auto dir = std::filesystem::temp_directory_path() / "sss_viewer_input_files";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string gltf = write_external_tile(dir);
+  ASSERT_FALSE(gltf.empty());
+  const std::string bin = (dir / "tile.bin").string(), png = (dir / "tex a.png").string();
+  auto loaded = scene::load_scene(gltf);
+  ASSERT_TRUE(std::holds_alternative<scene::Scene>(loaded)) << std::get<scene::LoadError>(loaded).what();
+  scene::Scene scene = std::get<scene::Scene>(std::move(loaded));
+  ASSERT_FALSE(scene.textures.empty()) << "the image was loaded from its file";
+  scene::add_camera_if_missing(scene);
+  scene::add_light_if_missing(scene);
+  const std::vector<std::filesystem::path> inputs = scene_input_files(gltf);
+  ASSERT_GE(inputs.size(), 3u);  // the glTF, its buffer, its images
+  const auto listed = [&](const std::string& file) {
+    return std::any_of(inputs.begin(), inputs.end(),
+                       [&](const std::filesystem::path& p) { return std::filesystem::equivalent(p, file); });
+  };
+  EXPECT_TRUE(listed(gltf) && listed(bin) && listed(png));
+  std::filesystem::create_symlink(dir / "tile.bin", dir / "alias.json");
+  const std::string before_gltf = slurp(gltf), before_bin = slurp(bin), before_png = slurp(png);
+
+  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(64, 36));
+  const LiveState live{&scene, gltf, scene.materials, scene.lights, 64, 36, &inputs};
+  std::size_t sss = 0;
+  while (sss < scene.materials.size() && !scene.materials[sss].sss.enabled) ++sss;
+  ASSERT_LT(sss, scene.materials.size());
+  const std::string alias = (dir / "alias.json").string();
+  const std::string respelled = (dir / "." / ".." / dir.filename() / "tile.gltf").string();
+  for (const std::string& target : {gltf, respelled, bin, png}) {
+    for (bool replace : {false, true}) {
+      const std::string m = export_materials(live, target, replace);
+      EXPECT_NE(m.find("will not overwrite"), std::string::npos) << target << ": " << m;
+    }
+  }
+  for (const std::string& target : {bin, alias, png}) {
+    const std::string m = export_kernel(r, live, sss, target, true);
+    EXPECT_NE(m.find("will not overwrite " + target), std::string::npos) << m;
+    EXPECT_NE(m.find("a file of the loaded scene (" + gltf + ")"), std::string::npos) << m;
+  }
+  EXPECT_NE(write_new_file(gltf, "x", true, &inputs).find("it is the loaded scene file"),
+            std::string::npos);
+  // The Screenshot panel.
+  ViewerUi ui(scene);
+  ui.set_protected_files(inputs);
+  EXPECT_TRUE(ui.screenshot_refusal(png).has_value());
+  EXPECT_FALSE(ui.screenshot_refusal((dir / "shot.png").string()).has_value());
+  // A new name next to them is fine.
+  const std::string fresh = (dir / "fresh.json").string();
+  EXPECT_EQ(export_kernel(r, live, sss, fresh, false), "saved " + fresh);
+  EXPECT_EQ(slurp(gltf), before_gltf);
+  EXPECT_EQ(slurp(bin), before_bin);
+  EXPECT_EQ(slurp(png), before_png);
+
+#ifdef SSS_VIEWER_EXE
+  // The command line: --out (headless) and --screenshot (window) are refused before
+  // anything renders: exit 2, the file named, the image untouched.
+  for (const std::string& args : {" --headless --width 32 --height 18 --out '" + png + "'",
+                                  " --frames 1 --screenshot '" + png + "'"}) {
+    const sss::testing::CliRun c =
+        sss::testing::run_shell(std::string(SSS_VIEWER_EXE) + " '" + gltf + "'" + args);
+    EXPECT_EQ(c.code, 2) << args << "\n" << c.out;
+    EXPECT_NE(c.out.find("will not overwrite " + png), std::string::npos) << c.out;
+    EXPECT_EQ(slurp(png), before_png);
+  }
+#endif
+  std::filesystem::remove_all(dir);
+}
+
+// A failed open shows in the Tools window, which starts collapsed: the error opens it
+// (and its Open section), so the message is on screen, not only on stderr.
+TEST_F(ViewerExport, AFailedOpenOpensTheToolsWindowWithTheError) {
+  const scene::Scene scene = scene::sphere_scene();
+  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(64, 36));
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DisplaySize = ImVec2(960, 540);
+  unsigned char* pixels = nullptr;
+  int w = 0, h = 0;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  {
+    ViewerTools tools(ctx());
+    const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 64, 36};
+    const auto frame = [&] {
+      io.DeltaTime = 1.0f / 60.0f;
+      ImGui::NewFrame();
+      (void)tools.draw(r, live);
+      ImGui::Render();
+      return ImGui::FindWindowByName("Tools");
+    };
+    ImGuiWindow* window = frame();
+    ASSERT_NE(window, nullptr);
+    EXPECT_TRUE(window->Collapsed);  // out of the way until needed
+    const std::string error = "/nonexistent/scene.glb: cannot open file";
+    tools.set_message(error, true);
+    window = frame();
+    EXPECT_FALSE(window->Collapsed);
+    EXPECT_EQ(tools.message(), error);
+    EXPECT_NE(window->StateStorage.GetInt(window->GetID("Open"), 1), 0);  // the section is open
+  }
+  ImGui::DestroyContext();
 }
 
 // A built-in scene has no glTF: the blocks go to a JSON that parse_sss_extras reads back.
