@@ -31,15 +31,27 @@ namespace sss::renderer {
 
 namespace {
 
-void check_size(std::uint32_t width, std::uint32_t height) {
-  if (width == 0 || height == 0 || width > 16384 || height > 16384)
-    throw std::invalid_argument("image size must be 1..16384 on each side");
+// Each side of a render target is at most 16384 (the CLI's cap) and at most the
+// device's maxImageDimension2D, so that a size the device cannot make is refused before
+// anything is created or replaced.
+std::uint32_t max_side(const vk::Context& context) {
+  return std::min<std::uint32_t>(16384, context.info().limits.maxImageDimension2D);
 }
 
-void check_options(const RenderOptions& o) {
-  check_size(o.width, o.height);
-  if (o.shadow_map_size == 0 || o.shadow_map_size > 16384)
-    throw std::invalid_argument("shadow map size must be 1..16384");
+void check_size(const vk::Context& context, std::uint32_t width, std::uint32_t height) {
+  const std::uint32_t max = max_side(context);
+  if (width == 0 || height == 0 || width > max || height > max)
+    throw std::invalid_argument("image size " + std::to_string(width) + "x" +
+                                std::to_string(height) + " must be 1.." + std::to_string(max) +
+                                " on each side (maxImageDimension2D of " +
+                                context.info().name + ": " +
+                                std::to_string(context.info().limits.maxImageDimension2D) + ")");
+}
+
+void check_options(const vk::Context& context, const RenderOptions& o) {
+  check_size(context, o.width, o.height);
+  if (o.shadow_map_size == 0 || o.shadow_map_size > max_side(context))
+    throw std::invalid_argument("shadow map size must be 1.." + std::to_string(max_side(context)));
   const auto check_texture = [](std::uint32_t size, const std::string& what) {
     if (const std::string e = texture_size_error(size); !e.empty())
       throw std::invalid_argument(what + ": " + e);
@@ -49,9 +61,10 @@ void check_options(const RenderOptions& o) {
     check_texture(t.size, "texture size of object '" + t.name + "'");
 }
 
-const scene::Scene& checked(const scene::Scene& scene, const RenderOptions& o) {
+const scene::Scene& checked(const vk::Context& context, const scene::Scene& scene,
+                            const RenderOptions& o) {
   if (scene.cameras.empty()) throw std::invalid_argument("the scene has no camera");
-  check_options(o);
+  check_options(context, o);
   return scene;
 }
 
@@ -87,7 +100,7 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
                    const RenderOptions& options)
     : context_(context),
       options_(options),
-      camera_(checked(scene, options).cameras.front()),
+      camera_(checked(context, scene, options).cameras.front()),
       scene_lights_(scene.lights),
       bounds_(scene.bounds()),
       mm_per_unit_(scene.mm_per_unit),
@@ -103,7 +116,7 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
       samplers_(make_samplers(context)),
       resources_{context, targets_, frame_uniforms_, light_buffer_,
                  materials_.buffer(), samplers_, scene_, rect_},
-      pool_(vk::create_command_pool(context, VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT)),
+      pool_(vk::create_command_pool(context, 0)),  // one command buffer: reset the pool
       fence_(vk::create_fence(context)),
       timer_(context) {
   shadow_ = std::make_unique<ShadowPass>(resources_, lights_.shadowed);
@@ -237,7 +250,7 @@ void Renderer::set_materials(const std::vector<scene::Material>& materials, Mate
 }
 
 void Renderer::set_options(const RenderOptions& options) {
-  check_options(options);
+  check_options(context_, options);
   std::optional<MaterialData> data;
   if (options.separable_taps != options_.separable_taps)
     data = build_material_data(scene_.materials(), options.separable_taps);  // checks taps
@@ -258,7 +271,7 @@ void Renderer::set_options(const RenderOptions& options) {
 }
 
 void Renderer::resize(std::uint32_t width, std::uint32_t height) {
-  check_size(width, height);
+  check_size(context_, width, height);
   if (width == options_.width && height == options_.height) return;
   RenderOptions options = options_;
   options.width = width;
@@ -320,7 +333,9 @@ void Renderer::record(VkCommandBuffer cmd) {
 
 void Renderer::render_frame() {
   const auto start = std::chrono::steady_clock::now();
-  VK_CHECK(vkResetCommandBuffer(cmd_, 0));
+  // The pool holds cmd_ only; resetting the pool is the cheap way (best practices:
+  // vkCreateCommandPool-command-buffer-reset).
+  VK_CHECK(vkResetCommandPool(context_.device(), pool_.get(), 0));
   VkFence fence = fence_.get();
   VK_CHECK(vkResetFences(context_.device(), 1, &fence));
   vk::record_and_submit(context_, cmd_, fence, [this](VkCommandBuffer cmd) { record(cmd); });
