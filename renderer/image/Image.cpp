@@ -148,31 +148,76 @@ std::variant<Image, ImageError> read_image(const std::string& path) {
     if (w64 <= 0 || h64 <= 0 || w64 > kMaxImageSide || h64 > kMaxImageSide ||
         !check_size(static_cast<int>(w64), static_cast<int>(h64)))
       return ImageError{path, "EXR size out of range"};
+    // Not LoadEXRFromMemory: tinyexr 1.0.1's convenience loader leaks the header and the
+    // image whenever decoding fails or a channel is missing (found by fuzzing,
+    // fuzz/regressions/image/exr_load_image_failure_leak.exr) and reads a UINT channel's
+    // bits as floats. The header and image are owned here and freed on every path.
     EXRVersion version;
-    EXRHeader header;
-    InitEXRHeader(&header);
-    const char* err = nullptr;
     if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS)
       return ImageError{path, "corrupt EXR version field"};
+    EXRHeader header;
+    InitEXRHeader(&header);
+    std::unique_ptr<EXRHeader, int (*)(EXRHeader*)> header_owner(&header, FreeEXRHeader);
+    const char* err = nullptr;
+    auto fail = [&](const char* fallback) {
+      std::string msg = err ? err : fallback;
+      if (err) FreeEXRErrorMessage(err);
+      return ImageError{path, msg};
+    };
+    // A failed parse may have filled part of the header: the owner frees it (fuzzing).
     if (ParseEXRHeaderFromMemory(&header, &version, bytes.data(), bytes.size(), &err) !=
-        TINYEXR_SUCCESS) {
-      std::string msg = err ? err : "corrupt EXR header";
-      FreeEXRErrorMessage(err);
-      FreeEXRHeader(&header);  // a failed parse may have filled part of it (found by fuzzing)
-      return ImageError{path, msg};
+        TINYEXR_SUCCESS)
+      return fail("corrupt EXR header");
+    int idx[4] = {-1, -1, -1, -1};  // R, G, B, A
+    static const char* const kNames[4] = {"R", "G", "B", "A"};
+    for (int c = 0; c < header.num_channels; ++c) {
+      for (int k = 0; k < 4; ++k)
+        if (std::strcmp(header.channels[c].name, kNames[k]) == 0) idx[k] = c;
+      if (header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
+        header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
     }
-    FreeEXRHeader(&header);  // its size was checked above, in 64 bits
-    float* out = nullptr;
-    int ow = 0, oh = 0;
-    if (LoadEXRFromMemory(&out, &ow, &oh, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
-      std::string msg = err ? err : "corrupt EXR";
-      FreeEXRErrorMessage(err);
-      return ImageError{path, msg};
+    const bool gray = header.num_channels == 1;
+    if (!gray && (idx[0] < 0 || idx[1] < 0 || idx[2] < 0))
+      return ImageError{path, "EXR has no R, G and B channels (and is not one-channel)"};
+    EXRImage exr;
+    InitEXRImage(&exr);
+    std::unique_ptr<EXRImage, int (*)(EXRImage*)> image_owner(&exr, FreeEXRImage);
+    if (LoadEXRImageFromMemory(&exr, &header, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS)
+      return fail("corrupt EXR");
+    if (exr.width != w64 || exr.height != h64 || exr.num_channels != header.num_channels)
+      return ImageError{path, "EXR decoded to a size other than its dataWindow"};
+    Image img(exr.width, exr.height);
+    // One sample of channel c at index i of a block (the whole image or one tile).
+    auto sample = [&](unsigned char* const* block, int c, std::size_t i) -> float {
+      if (c < 0) return 1.0f;  // no alpha channel: opaque
+      if (header.requested_pixel_types[c] == TINYEXR_PIXELTYPE_UINT)
+        return static_cast<float>(reinterpret_cast<const std::uint32_t*>(block[c])[i]);
+      return reinterpret_cast<const float*>(block[c])[i];
+    };
+    auto put = [&](unsigned char* const* block, std::size_t src, std::size_t dst) {
+      for (int k = 0; k < 3; ++k) img.rgba[4 * dst + k] = sample(block, gray ? 0 : idx[k], src);
+      img.rgba[4 * dst + 3] = gray ? 1.0f : sample(block, idx[3], src);
+    };
+    if (header.tiled) {
+      if (exr.tiles == nullptr || header.tile_size_x <= 0 || header.tile_size_y <= 0)
+        return ImageError{path, "corrupt tiled EXR"};
+      for (int t = 0; t < exr.num_tiles; ++t) {
+        const EXRTile& tile = exr.tiles[t];
+        const std::int64_t x0 = std::int64_t{tile.offset_x} * header.tile_size_x;
+        const std::int64_t y0 = std::int64_t{tile.offset_y} * header.tile_size_y;
+        for (int j = 0; j < tile.height && j < header.tile_size_y; ++j)
+          for (int i = 0; i < tile.width && i < header.tile_size_x; ++i) {
+            const std::int64_t x = x0 + i, y = y0 + j;
+            if (x < 0 || y < 0 || x >= exr.width || y >= exr.height) continue;
+            put(tile.images, std::size_t(j) * std::size_t(header.tile_size_x) + std::size_t(i),
+                std::size_t(y) * std::size_t(exr.width) + std::size_t(x));
+          }
+      }
+    } else {
+      if (exr.images == nullptr) return ImageError{path, "corrupt EXR"};
+      const std::size_t n = std::size_t(exr.width) * std::size_t(exr.height);
+      for (std::size_t i = 0; i < n; ++i) put(exr.images, i, i);
     }
-    std::unique_ptr<float, void (*)(void*)> owned(out, std::free);
-    if (!check_size(ow, oh)) return ImageError{path, "EXR size out of range"};
-    Image img(ow, oh);
-    std::memcpy(img.rgba.data(), out, img.rgba.size() * sizeof(float));
     return img;
   }
   return ImageError{path, "not a PNG or OpenEXR file"};
