@@ -37,6 +37,26 @@ void require_writable(const std::string& path, const Image& img) {
                      std::to_string(img.height));
 }
 
+// Walks a PNG's chunks (PNG spec §5.3: 4-byte big-endian length, 4-byte type, data, CRC)
+// before stb_image sees them: stb grows its IDAT buffer to a chunk's declared length
+// before checking that the bytes exist, so a 70-byte file could make it allocate 2 GiB
+// (found by fuzzing, fuzz/regressions/image/png_idat_length_past_end.png). Every chunk
+// must lie inside the file, up to IEND.
+std::string check_png_chunks(const std::vector<unsigned char>& b) {
+  std::size_t at = 8;
+  while (true) {
+    if (b.size() - at < 12) return "PNG chunk at byte " + std::to_string(at) + " is truncated (no IEND)";
+    const std::uint32_t length = std::uint32_t(b[at]) << 24 | std::uint32_t(b[at + 1]) << 16 |
+                                 std::uint32_t(b[at + 2]) << 8 | std::uint32_t(b[at + 3]);
+    const std::string type(reinterpret_cast<const char*>(b.data() + at + 4), 4);
+    if (length > b.size() - at - 12)
+      return "PNG chunk " + type + " at byte " + std::to_string(at) + " claims " +
+             std::to_string(length) + " bytes, past the end of the file";
+    at += 12 + std::size_t(length);
+    if (type == "IEND") return {};
+  }
+}
+
 // Walks an OpenEXR header before tinyexr sees it: Debian's tinyexr 1.0.1 asserts (aborts
 // the process) on some hostile headers, e.g. an unknown value of the "type" attribute
 // (tinyexr.h ConvertHeader; found by fuzzing, fuzz/regressions/image/). The layout is the
@@ -81,12 +101,21 @@ std::string check_exr_header(const std::vector<unsigned char>& b, std::int64_t& 
     at += 4;
     if (size < 0 || std::size_t(size) > b.size() - at)
       return "EXR header attribute " + name + ": size " + std::to_string(size) + " past the end";
-    const unsigned char* value = &b[at];
+    const unsigned char* value = b.data() + at;
     if (name == "type") {
       // The value up to its first NUL, as tinyexr reads it.
       const std::string v(std::string(reinterpret_cast<const char*>(value), std::size_t(size)).c_str());
       if (type != "string" || (v != "scanlineimage" && v != "tiledimage"))
         return "EXR header attribute type: \"" + v + "\" (only scanlineimage and tiledimage are read)";
+    } else if (name == "compression") {
+      // NONE, RLE, ZIPS, ZIP only. tinyexr 1.0.1's PIZ decoder reads past its buffer on
+      // malformed data (found by fuzzing, fuzz/regressions/image/exr_piz_read_overflow.exr),
+      // and the others (PXR24, B44, DWA) it does not decode at all.
+      if (type != "compression" || size != 1) return "EXR header attribute compression: not a compression";
+      static const char* const kNames[] = {"none", "RLE", "ZIPS", "ZIP", "PIZ", "PXR24", "B44", "B44A", "DWAA", "DWAB"};
+      if (value[0] > 3)
+        return std::string("EXR compression ") + (value[0] < 10 ? kNames[value[0]] : std::to_string(value[0]).c_str()) +
+               " is not read (only none, RLE, ZIPS and ZIP; re-save the file with ZIP)";
     } else if (name == "dataWindow") {
       if (type != "box2i" || size != 16) return "EXR header attribute dataWindow: not a box2i";
       const std::int64_t x0 = le32(at), y0 = le32(at + 4), x1 = le32(at + 8), y1 = le32(at + 12);
@@ -128,6 +157,7 @@ std::variant<Image, ImageError> read_image(const std::string& path) {
   static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
   static const unsigned char kExr[4] = {0x76, 0x2f, 0x31, 0x01};
   if (std::memcmp(bytes.data(), kPng, 8) == 0) {
+    if (std::string why = check_png_chunks(bytes); !why.empty()) return ImageError{path, why};
     int w = 0, h = 0, comp = 0;
     const int len = static_cast<int>(bytes.size());
     if (!stbi_info_from_memory(bytes.data(), len, &w, &h, &comp) || !check_size(w, h))
@@ -182,8 +212,12 @@ std::variant<Image, ImageError> read_image(const std::string& path) {
     EXRImage exr;
     InitEXRImage(&exr);
     std::unique_ptr<EXRImage, int (*)(EXRImage*)> image_owner(&exr, FreeEXRImage);
-    if (LoadEXRImageFromMemory(&exr, &header, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS)
+    if (LoadEXRImageFromMemory(&exr, &header, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
+      // tinyexr frees what it allocated for a failed decode itself (DecodeEXRImage, without
+      // clearing the pointers): freeing it again would be a double free (fuzzing).
+      image_owner.release();
       return fail("corrupt EXR");
+    }
     if (exr.width != w64 || exr.height != h64 || exr.num_channels != header.num_channels)
       return ImageError{path, "EXR decoded to a size other than its dataWindow"};
     Image img(exr.width, exr.height);
