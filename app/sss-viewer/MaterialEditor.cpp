@@ -29,8 +29,9 @@ std::optional<FieldError> check_artist(const profiles::ArtistParameters& p) {
     if (!std::isfinite(p.mfp_mm[c]) || !(p.mfp_mm[c] > 0.0))
       return FieldError{"mfp" + ch, "mean free path must be > 0 mm, got " + str(p.mfp_mm[c])};
   }
-  if (!std::isfinite(p.eta) || !(p.eta > 0.0))
-    return FieldError{"eta", "must be > 0, got " + str(p.eta)};
+  if (!std::isfinite(p.eta) || !(p.eta >= profiles::kEtaMin) || !(p.eta <= profiles::kEtaMax))
+    return FieldError{"eta", "must lie in [" + str(profiles::kEtaMin) + ", " + str(profiles::kEtaMax) +
+                                 "] (the models' Fresnel fits), got " + str(p.eta)};
   return std::nullopt;
 }
 

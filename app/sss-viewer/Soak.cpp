@@ -177,6 +177,11 @@ std::string soak_svg(const std::vector<SoakSample>& samples, const SoakVerdict& 
       lo = std::min(lo, value(s));
       hi = std::max(hi, value(s));
     }
+    if (!(hi > lo)) {  // a flat line (the object count, ideally): give it room to show
+      const double pad = std::max(1.0, 0.05 * std::abs(lo));
+      lo -= pad;
+      hi += pad;
+    }
     const double step = tick_step(lo, hi);
     lo = std::floor(lo / step) * step;
     hi = std::max(std::ceil(hi / step) * step, lo + step);

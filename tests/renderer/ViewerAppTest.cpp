@@ -74,6 +74,7 @@ std::string broken_gltf() {
 
 TEST(ViewerApp, DocumentedErrors) {
   const std::string out = temp_path("error.png");
+  std::filesystem::remove(out);  // left by an earlier failed run, it would hide a new one
   struct Case {
     std::string args;
     int status;
@@ -100,6 +101,11 @@ TEST(ViewerApp, DocumentedErrors) {
       {"builtin:sphere --headless --out " + out + " --gaussians 9", 2, "--gaussians"},
       {"builtin:sphere --headless --out " + out + " --preset nope", 2, "preset"},
       {"builtin:sphere --headless --out " + out + " --taps 4", 2, "--taps"},
+      {"builtin:sphere --headless --out " + out + " --exposure 0", 2, "--exposure"},
+      {"builtin:sphere --headless --out " + out + " --exposure nan", 2, "--exposure"},
+      {"builtin:sphere --headless --out " + out + " --exposure -1", 2, "--exposure"},
+      {"builtin:sphere --headless --out " + out + " --width 16384 --height 16384", 2,
+       "--width x --height"},
       {"builtin:sphere --headless --out " + out + " --albedo half", 2, "--albedo"},
       {"builtin:nothing --headless --out " + out, 2, "builtin:nothing"},
       {"/nonexistent/scene.gltf --headless --out " + out, 2, "scene.gltf"},
