@@ -264,6 +264,10 @@ TEST_F(LiveUpdateTest, ZeroSizeResizeThrowsAndLeavesTheRendererUsable) {
   RenderOptions zero = o;
   zero.width = 0;
   EXPECT_THROW(live.set_options(zero), std::invalid_argument);
+  // Past the device's maxImageDimension2D (lavapipe: 16384) or the renderer's own 16384.
+  const std::uint32_t limit = std::min<std::uint32_t>(ctx().info().limits.maxImageDimension2D, 16384);
+  EXPECT_THROW(live.resize(limit + 1, kH), std::invalid_argument);
+  EXPECT_THROW(live.resize(kW, limit + 1), std::invalid_argument);
   EXPECT_EQ(live.options().width, kW);
   EXPECT_EQ(live.options().height, kH);
   live.render_frame();
