@@ -3,11 +3,14 @@
 #pragma once
 
 #include "CliSupport.h"
+#include "ViewerArgs.h"
 
 #include "renderer/Renderer.h"
 #include "renderer/image/Image.h"
+#include "renderer/vk/Context.h"
 
 #include <cstdio>
+#include <iostream>
 #include <string>
 
 namespace sss::app {
@@ -19,6 +22,19 @@ inline void write_frame(const renderer::Renderer& r, const std::string& path) {
     image::write_exr(path, r.read_hdr());
   else
     image::write_png(path, r.read_display());
+}
+
+// The Vulkan context of a headless run (a frame, --frames N, --soak): --device and
+// --validation (with synchronization checks, as SSS_VALIDATION=1).
+inline vk::ContextOptions headless_context_options(const ViewerArgs& a) {
+  vk::ContextOptions o;
+  o.device_name = a.device;
+  o.enable_validation = o.sync_validation = a.validation;
+  return o;
+}
+
+inline void print_warnings(const renderer::Renderer& r) {
+  for (const std::string& w : r.warnings()) std::cerr << "sss-viewer: warning: " << w << '\n';
 }
 
 // "pass  gpu ms" rows, then the GPU total and the renderer's CPU frame time.

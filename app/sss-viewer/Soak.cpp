@@ -225,12 +225,9 @@ std::string soak_svg(const std::vector<SoakSample>& samples, const SoakVerdict& 
 int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::RenderOptions& options) {
   if (a.soak_every < 1 || a.soak_cycle < 1)
     return usage_error("sss-viewer", "--soak-every and --soak-cycle must be at least 1");
-  vk::ContextOptions context_options;
-  context_options.device_name = a.device;
-  context_options.enable_validation = context_options.sync_validation = a.validation;
-  vk::Context context(context_options);
+  vk::Context context(headless_context_options(a));
   renderer::Renderer r(context, scene, options);
-  for (const std::string& w : r.warnings()) std::cerr << "sss-viewer: warning: " << w << '\n';
+  print_warnings(r);
   MaterialEditor editor(scene, options.separable_taps);
   if (editor.edits().empty())
     return usage_error("sss-viewer", "--soak: the scene " + a.scene +

@@ -248,12 +248,9 @@ int viewer_main(int argc, char** argv) {
   try {
     if (!a.headless) return run_window(a, scene, options);
     if (a.soak > 0) return run_soak(a, scene, options);
-    vk::ContextOptions context_options;
-    context_options.device_name = a.device;
-    context_options.enable_validation = context_options.sync_validation = a.validation;
-    vk::Context context(context_options);
+    vk::Context context(headless_context_options(a));
     renderer::Renderer r(context, scene, options);
-    for (const std::string& w : r.warnings()) std::cerr << "sss-viewer: warning: " << w << '\n';
+    print_warnings(r);
     double cpu_total = 0.0;
     for (int i = 0; i < a.frames; ++i) {
       r.render_frame();

@@ -106,22 +106,28 @@ TEST(SssReferenceApp, UnwritableOutputIsARuntimeFailure) {
   EXPECT_FALSE(fs::exists(scratch() / "ok.exr"));  // refused before anything was written
 }
 
-TEST(SssReferenceApp, CtrlCStopsWithoutWritingAFile) {
-  // A render long enough to interrupt (builtin:sphere at 0.25 mfp, 640x360); SIGINT
-  // after the process has started. Exit 130 and no output file (nor a temporary).
-  const fs::path out = scratch() / "interrupted.exr";
+// Starts a render long enough to interrupt (builtin:sphere at 0.25 mfp, 640x360, one
+// thread) into `out`, sends `sig` 1.5 s later and returns the wait status (-1 if the
+// process could not be started or waited for).
+int render_and_signal(const fs::path& out, int sig) {
   const std::string exe = SSS_REFERENCE_EXE;
-  const std::string o = out.string();
-  std::vector<std::string> args = {exe, "builtin:sphere", "--out", o, "--spacing", "0.25", "--quiet", "--threads", "1"};
+  std::vector<std::string> args = {exe, "builtin:sphere", "--out", out.string(), "--spacing", "0.25", "--quiet", "--threads", "1"};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   pid_t pid = 0;
-  ASSERT_EQ(::posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  if (::posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ) != 0) return -1;
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  ::kill(pid, SIGINT);
+  ::kill(pid, sig);
   int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  return ::waitpid(pid, &status, 0) == pid ? status : -1;
+}
+
+TEST(SssReferenceApp, CtrlCStopsWithoutWritingAFile) {
+  // A render long enough to interrupt (builtin:sphere at 0.25 mfp, 640x360); SIGINT
+  // after the process has started. Exit 130 and no output file (nor a temporary).
+  const fs::path out = scratch() / "interrupted.exr";
+  const int status = render_and_signal(out, SIGINT);
   ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal instead of stopping cleanly";
   EXPECT_EQ(WEXITSTATUS(status), 130);
   EXPECT_FALSE(fs::exists(out));
@@ -139,18 +145,8 @@ TEST(SssReferenceApp, SignalsNeverLeaveAHalfFileNorDestroyTheOldOne) {
   fs::create_directories(folder);
   const fs::path out = folder / "render.exr";
   { std::ofstream(out, std::ios::binary) << "an earlier render"; }
-  const std::string exe = SSS_REFERENCE_EXE;
   for (const int sig : {SIGINT, SIGTERM, SIGKILL}) {
-    std::vector<std::string> args = {exe, "builtin:sphere", "--out", out.string(), "--spacing", "0.25", "--quiet", "--threads", "1"};
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    ASSERT_EQ(::posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0);
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-    ::kill(pid, sig);
-    int status = 0;
-    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    const int status = render_and_signal(out, sig);
     if (sig == SIGKILL) {
       EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "it finished within 1.5 s";
     } else {

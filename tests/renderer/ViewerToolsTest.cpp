@@ -16,6 +16,8 @@
 #include "renderer/scene/GltfFile.h"
 #include "renderer/scene/SssExtras.h"
 
+#include "HeadlessImGui.h"
+
 #include <imgui.h>
 #include <imgui_internal.h>
 #include <nlohmann/json.hpp>
@@ -335,13 +337,8 @@ TEST_F(ViewerExport, NoSaveReplacesAFileTheSceneWasLoadedFrom) {
 TEST_F(ViewerExport, AFailedOpenOpensTheToolsWindowWithTheError) {
   const scene::Scene scene = scene::sphere_scene();
   renderer::Renderer r(ctx(), scene, renderer::testing::small_options(64, 36));
-  ImGui::CreateContext();
-  ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;
-  io.DisplaySize = ImVec2(960, 540);
-  unsigned char* pixels = nullptr;
-  int w = 0, h = 0;
-  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  renderer::testing::HeadlessImGui imgui;
+  ImGuiIO& io = imgui.io();
   {
     ViewerTools tools(ctx());
     const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 64, 36};
@@ -362,7 +359,6 @@ TEST_F(ViewerExport, AFailedOpenOpensTheToolsWindowWithTheError) {
     EXPECT_EQ(tools.message(), error);
     EXPECT_NE(window->StateStorage.GetInt(window->GetID("Open"), 1), 0);  // the section is open
   }
-  ImGui::DestroyContext();
 }
 
 // A built-in scene has no glTF: the blocks go to a JSON that parse_sss_extras reads back.

@@ -22,6 +22,8 @@
 #include "ViewerRun.h"
 
 #include <gtest/gtest.h>
+#include "HeadlessImGui.h"
+
 #include <imgui.h>
 #include <imgui_internal.h>
 
@@ -393,13 +395,8 @@ TEST_F(ViewerUiTest, PanelDrawsNarrowAndUploadsTheRefit) {
   const scene::Scene scene = default_scene();
   const RenderOptions o = small_options(kW, kH, SssMode::Screen);
   Renderer r(ctx(), scene, o);
-  ImGui::CreateContext();
-  ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;
-  io.DisplaySize = ImVec2(960, 540);
-  unsigned char* pixels = nullptr;
-  int w = 0, h = 0;
-  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  renderer::testing::HeadlessImGui imgui;
+  ImGuiIO& io = imgui.io();
   {
     app::ViewerUi ui(scene, o.separable_taps);
     ASSERT_TRUE(ui.script_edit("preset=ketchup"));
@@ -433,7 +430,6 @@ TEST_F(ViewerUiTest, PanelDrawsNarrowAndUploadsTheRefit) {
     EXPECT_FALSE(ui.set_light(r, ui.lights().size(), 0.0f, 0.0f, 1.0f, white));
     r.render_frame();
   }
-  ImGui::DestroyContext();
 }
 
 #ifdef SSS_VIEWER_EXE
