@@ -33,7 +33,6 @@ declare -A EXTRA_SEEDS=([gltf]="tests/data/bad")
 # ASan/UBSan halt on the first report; leak detection stays on (libFuzzer checks leaks
 # per input). UBSan reports are fatal through -fno-sanitize-recover (CMakePresets.json).
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
-export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 
 failed=()

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <span>
 
 namespace sss::image {
 
@@ -37,26 +38,6 @@ void require_writable(const std::string& path, const Image& img) {
                      std::to_string(img.height));
 }
 
-// Walks a PNG's chunks (PNG spec §5.3: 4-byte big-endian length, 4-byte type, data, CRC)
-// before stb_image sees them: stb grows its IDAT buffer to a chunk's declared length
-// before checking that the bytes exist, so a 70-byte file could make it allocate 2 GiB
-// (found by fuzzing, fuzz/regressions/image/png_idat_length_past_end.png). Every chunk
-// must lie inside the file, up to IEND.
-std::string check_png_chunks(const std::vector<unsigned char>& b) {
-  std::size_t at = 8;
-  while (true) {
-    if (b.size() - at < 12) return "PNG chunk at byte " + std::to_string(at) + " is truncated (no IEND)";
-    const std::uint32_t length = std::uint32_t(b[at]) << 24 | std::uint32_t(b[at + 1]) << 16 |
-                                 std::uint32_t(b[at + 2]) << 8 | std::uint32_t(b[at + 3]);
-    const std::string type(reinterpret_cast<const char*>(b.data() + at + 4), 4);
-    if (length > b.size() - at - 12)
-      return "PNG chunk " + type + " at byte " + std::to_string(at) + " claims " +
-             std::to_string(length) + " bytes, past the end of the file";
-    at += 12 + std::size_t(length);
-    if (type == "IEND") return {};
-  }
-}
-
 // Walks an OpenEXR header before tinyexr sees it: Debian's tinyexr 1.0.1 asserts (aborts
 // the process) on some hostile headers, e.g. an unknown value of the "type" attribute
 // (tinyexr.h ConvertHeader; found by fuzzing, fuzz/regressions/image/). The layout is the
@@ -73,6 +54,11 @@ std::string check_exr_header(const std::vector<unsigned char>& b, std::int64_t& 
                               std::uint32_t(b[6]) << 16 | std::uint32_t(b[7]) << 24;
   if ((field & 0xff) != 2) return "EXR version " + std::to_string(field & 0xff) + " (only 2 is read)";
   if (field & 0x1800) return "multi-part and deep EXR files are not read";
+  // Tiled files are refused too: tinyexr 1.0.1 asserts or divides by zero on malformed tile
+  // descriptions (a "tiles" size other than 9, level mode 3, tile size 0, a "type" that
+  // contradicts the tiled bit) and loses a failed tiled decode's buffers. write_exr and
+  // the renderers this project is compared with write scanline files.
+  if (field & 0x200) return "tiled EXR files are not read (re-save it as scanlines)";
   const std::size_t max_name = (field & 0x400) ? 255 : 31;
   auto read_cstr = [&](std::size_t& at, std::string& out) {
     const std::size_t end = std::min(b.size(), at + max_name + 1);
@@ -90,6 +76,8 @@ std::string check_exr_header(const std::vector<unsigned char>& b, std::int64_t& 
   };
   std::size_t at = 8;
   bool have_window = false;
+  int compression = 0;            // NONE when absent
+  std::int64_t chunk_count = -1;  // absent
   for (int count = 0;; ++count) {
     if (count > 1024) return "EXR header has more than 1024 attributes";
     std::string name, type;
@@ -105,8 +93,13 @@ std::string check_exr_header(const std::vector<unsigned char>& b, std::int64_t& 
     if (name == "type") {
       // The value up to its first NUL, as tinyexr reads it.
       const std::string v(std::string(reinterpret_cast<const char*>(value), std::size_t(size)).c_str());
-      if (type != "string" || (v != "scanlineimage" && v != "tiledimage"))
-        return "EXR header attribute type: \"" + v + "\" (only scanlineimage and tiledimage are read)";
+      if (type != "string" || v != "scanlineimage")
+        return "EXR header attribute type: \"" + v + "\" (only scanlineimage is read)";
+    } else if (name == "tiles") {
+      return "EXR header attribute tiles: tiled EXR files are not read (re-save it as scanlines)";
+    } else if (name == "chunkCount") {
+      if (type != "int" || size != 4) return "EXR header attribute chunkCount: not an int";
+      chunk_count = le32(at);
     } else if (name == "compression") {
       // NONE, RLE, ZIPS, ZIP only. tinyexr 1.0.1's PIZ decoder reads past its buffer on
       // malformed data (found by fuzzing, fuzz/regressions/image/exr_piz_read_overflow.exr),
@@ -116,6 +109,7 @@ std::string check_exr_header(const std::vector<unsigned char>& b, std::int64_t& 
       if (value[0] > 3)
         return std::string("EXR compression ") + (value[0] < 10 ? kNames[value[0]] : std::to_string(value[0]).c_str()) +
                " is not read (only none, RLE, ZIPS and ZIP; re-save the file with ZIP)";
+      compression = value[0];
     } else if (name == "dataWindow") {
       if (type != "box2i" || size != 16) return "EXR header attribute dataWindow: not a box2i";
       const std::int64_t x0 = le32(at), y0 = le32(at + 4), x1 = le32(at + 8), y1 = le32(at + 12);
@@ -126,10 +120,41 @@ std::string check_exr_header(const std::vector<unsigned char>& b, std::int64_t& 
     at += std::size_t(size);
   }
   if (!have_window) return "EXR header has no dataWindow";
+  // tinyexr sizes its offset table by chunkCount before checking it against the file (a
+  // 300-byte file could ask for 16 GiB): it must be the count the image has, one block
+  // per scanline for none/RLE/ZIPS and per 16 for ZIP (OpenEXR file layout).
+  if (chunk_count != -1 && height > 0) {
+    const std::int64_t lines = compression == 3 ? 16 : 1;
+    const std::int64_t expected = (height + lines - 1) / lines;
+    if (chunk_count != expected)
+      return "EXR header attribute chunkCount: " + std::to_string(chunk_count) + ", the image has " +
+             std::to_string(expected) + " blocks";
+  }
   return {};
 }
 
 }  // namespace
+
+// Walks a PNG's chunks (PNG spec §5.3: 4-byte big-endian length, 4-byte type, data, CRC)
+// before stb_image sees them: stb grows its IDAT buffer to a chunk's declared length
+// before checking that the bytes exist, so a 70-byte file could make it allocate 2 GiB
+// (found by fuzzing, fuzz/regressions/image/png_idat_length_past_end.png). Every chunk
+// must lie inside the file, up to IEND.
+std::string check_png_chunks(std::span<const unsigned char> b) {
+  if (b.size() < 8) return "too short to be a PNG";
+  std::size_t at = 8;
+  while (true) {
+    if (b.size() - at < 12) return "PNG chunk at byte " + std::to_string(at) + " is truncated (no IEND)";
+    const std::uint32_t length = std::uint32_t(b[at]) << 24 | std::uint32_t(b[at + 1]) << 16 |
+                                 std::uint32_t(b[at + 2]) << 8 | std::uint32_t(b[at + 3]);
+    const std::string type(reinterpret_cast<const char*>(b.data() + at + 4), 4);
+    if (length > b.size() - at - 12)
+      return "PNG chunk " + type + " at byte " + std::to_string(at) + " claims " +
+             std::to_string(length) + " bytes, past the end of the file";
+    at += 12 + std::size_t(length);
+    if (type == "IEND") return {};
+  }
+}
 
 float srgb_encode(float v) {
   if (!(v > 0.0f)) return 0.0f;
@@ -212,45 +237,32 @@ std::variant<Image, ImageError> read_image(const std::string& path) {
     EXRImage exr;
     InitEXRImage(&exr);
     std::unique_ptr<EXRImage, int (*)(EXRImage*)> image_owner(&exr, FreeEXRImage);
+    // tinyexr frees a failed decode's image itself (DecodeEXRImage calls FreeEXRImage,
+    // without clearing the pointers: freeing it again here was a double free), but it sets
+    // num_channels only on success, so its FreeEXRImage would free the channel array and
+    // lose the channel buffers (both found by fuzzing,
+    // fuzz/regressions/image/exr_decode_failure_double_free.exr). Set beforehand, it frees
+    // them all.
+    exr.num_channels = header.num_channels;
     if (LoadEXRImageFromMemory(&exr, &header, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
-      // tinyexr frees what it allocated for a failed decode itself (DecodeEXRImage, without
-      // clearing the pointers): freeing it again would be a double free (fuzzing).
       image_owner.release();
       return fail("corrupt EXR");
     }
     if (exr.width != w64 || exr.height != h64 || exr.num_channels != header.num_channels)
       return ImageError{path, "EXR decoded to a size other than its dataWindow"};
     Image img(exr.width, exr.height);
-    // One sample of channel c at index i of a block (the whole image or one tile).
-    auto sample = [&](unsigned char* const* block, int c, std::size_t i) -> float {
-      if (c < 0) return 1.0f;  // no alpha channel: opaque
+    if (header.tiled || exr.images == nullptr) return ImageError{path, "corrupt EXR"};  // refused above
+    // One sample of channel c (tinyexr allocates every channel at full size, whatever its
+    // sampling) at pixel i; HALF was decoded as FLOAT, UINT is converted.
+    auto sample = [&](int c, std::size_t i) -> float {
       if (header.requested_pixel_types[c] == TINYEXR_PIXELTYPE_UINT)
-        return static_cast<float>(reinterpret_cast<const std::uint32_t*>(block[c])[i]);
-      return reinterpret_cast<const float*>(block[c])[i];
+        return static_cast<float>(reinterpret_cast<const std::uint32_t*>(exr.images[c])[i]);
+      return reinterpret_cast<const float*>(exr.images[c])[i];
     };
-    auto put = [&](unsigned char* const* block, std::size_t src, std::size_t dst) {
-      for (int k = 0; k < 3; ++k) img.rgba[4 * dst + k] = sample(block, gray ? 0 : idx[k], src);
-      img.rgba[4 * dst + 3] = gray ? 1.0f : sample(block, idx[3], src);
-    };
-    if (header.tiled) {
-      if (exr.tiles == nullptr || header.tile_size_x <= 0 || header.tile_size_y <= 0)
-        return ImageError{path, "corrupt tiled EXR"};
-      for (int t = 0; t < exr.num_tiles; ++t) {
-        const EXRTile& tile = exr.tiles[t];
-        const std::int64_t x0 = std::int64_t{tile.offset_x} * header.tile_size_x;
-        const std::int64_t y0 = std::int64_t{tile.offset_y} * header.tile_size_y;
-        for (int j = 0; j < tile.height && j < header.tile_size_y; ++j)
-          for (int i = 0; i < tile.width && i < header.tile_size_x; ++i) {
-            const std::int64_t x = x0 + i, y = y0 + j;
-            if (x < 0 || y < 0 || x >= exr.width || y >= exr.height) continue;
-            put(tile.images, std::size_t(j) * std::size_t(header.tile_size_x) + std::size_t(i),
-                std::size_t(y) * std::size_t(exr.width) + std::size_t(x));
-          }
-      }
-    } else {
-      if (exr.images == nullptr) return ImageError{path, "corrupt EXR"};
-      const std::size_t n = std::size_t(exr.width) * std::size_t(exr.height);
-      for (std::size_t i = 0; i < n; ++i) put(exr.images, i, i);
+    const std::size_t n = std::size_t(exr.width) * std::size_t(exr.height);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int k = 0; k < 3; ++k) img.rgba[4 * i + k] = sample(gray ? 0 : idx[k], i);
+      img.rgba[4 * i + 3] = gray || idx[3] < 0 ? 1.0f : sample(idx[3], i);  // no alpha: opaque
     }
     return img;
   }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <string>
 #include <variant>
 #include <vector>
@@ -39,6 +40,11 @@ inline constexpr std::size_t kMaxImagePixels = std::size_t{1} << 26;
 
 // By file contents (PNG or EXR magic), whatever the extension.
 std::variant<Image, ImageError> read_image(const std::string& path);
+
+// The PNG's chunks, walked before a decoder sees them: each must lie inside the bytes, up
+// to IEND (stb_image grows its buffer to a chunk's declared length before checking that
+// the bytes exist). An empty string when they do, else what is wrong.
+std::string check_png_chunks(std::span<const unsigned char> png);
 
 // Throw WriteError (AtomicFile.h) on failure; values are clamped to [0, 1] and rounded.
 void write_png(const std::string& path, const Image& image);

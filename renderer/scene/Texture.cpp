@@ -1,5 +1,7 @@
 #include "renderer/scene/Texture.h"
 
+#include "renderer/image/Image.h"
+
 #include <stb_image.h>
 
 #include <climits>
@@ -43,6 +45,8 @@ std::variant<ImageRgba8, std::string> decode_image(std::span<const unsigned char
     };
     if (auto e = check_size(be32(16), be32(20), limits)) return *e;
   }
+  if (image_media_type(bytes) == "image/png")
+    if (std::string why = image::check_png_chunks(bytes); !why.empty()) return why;
   const int len = static_cast<int>(bytes.size());
   int w = 0, h = 0, channels = 0;
   if (!stbi_info_from_memory(bytes.data(), len, &w, &h, &channels))

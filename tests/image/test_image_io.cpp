@@ -6,6 +6,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 namespace fs = std::filesystem;
 using namespace sss::image;
@@ -89,4 +91,66 @@ TEST(ImageIo, UnknownExtensionAndBadImagesAreRefusedWithoutOutput) {
   EXPECT_THROW(write_png((d / "z.png").string(), Image(0, 0)), WriteError);
   EXPECT_FALSE(fs::exists(d / "a.jpg"));
   EXPECT_FALSE(fs::exists(d / "z.png"));
+}
+
+// What read_image refuses before a third-party decoder runs (each was a fuzzing finding
+// on Debian's stb_image / tinyexr 1.0.1: fuzz/regressions/image/).
+namespace {
+std::string read_error(const fs::path& p) {
+  auto r = read_image(p.string());
+  return std::holds_alternative<ImageError>(r) ? std::get<ImageError>(r).what() : std::string("loaded");
+}
+std::string slurp_bytes(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(f)), {});
+}
+}  // namespace
+
+TEST(ImageIo, PngChunkPastTheEndIsRefusedBeforeDecoding) {
+  // A valid 1x1 PNG whose IDAT claims 2^31 - 1 bytes: stb_image would grow its buffer
+  // to that size before finding the bytes missing.
+  const fs::path ok = dir() / "ok.png";
+  Image one(1, 1);
+  write_png(ok.string(), one);
+  std::string bytes = slurp_bytes(ok);
+  const std::size_t idat = bytes.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  bytes.replace(idat - 4, 4, std::string("\x7f\xff\xff\xff", 4));
+  const fs::path bad = dir() / "bad.png";
+  write_bytes(bad, bytes);
+  EXPECT_NE(read_error(bad).find("IDAT at byte"), std::string::npos) << read_error(bad);
+  EXPECT_NE(read_error(bad).find("past the end of the file"), std::string::npos);
+  // Cut before IEND: also refused, by the same walk.
+  write_bytes(bad, slurp_bytes(ok).substr(0, slurp_bytes(ok).size() - 12));
+  EXPECT_NE(read_error(bad).find("no IEND"), std::string::npos) << read_error(bad);
+}
+
+TEST(ImageIo, ExrHeadersTinyexrCannotReadSafelyAreRefused) {
+  const fs::path ok = dir() / "ok.exr";
+  write_exr(ok.string(), gradient(4, 3));
+  const std::string good = slurp_bytes(ok);
+  ASSERT_TRUE(std::holds_alternative<Image>(read_image(ok.string())));
+  const fs::path bad = dir() / "bad.exr";
+  // The tiled bit of the version field (byte 5, 0x02).
+  std::string tiled = good;
+  tiled[5] = char(tiled[5] | 0x02);
+  write_bytes(bad, tiled);
+  EXPECT_NE(read_error(bad).find("tiled EXR files are not read"), std::string::npos) << read_error(bad);
+  // PIZ (4) instead of ZIP: "compression\0compression\0" + int32 size 1 + the byte.
+  const std::string key("compression\0compression\0", 24);
+  const std::size_t at = good.find(key);
+  ASSERT_NE(at, std::string::npos);
+  std::string piz = good;
+  piz[at + key.size() + 4] = 4;
+  write_bytes(bad, piz);
+  EXPECT_NE(read_error(bad).find("EXR compression PIZ is not read"), std::string::npos) << read_error(bad);
+  // A dataWindow whose corners overflow an int: refused on size, in 64 bits.
+  const std::string window("dataWindow\0box2i\0", 17);
+  const std::size_t w = good.find(window);
+  ASSERT_NE(w, std::string::npos);
+  std::string huge = good;
+  huge.replace(w + window.size() + 4, 4, std::string("\x00\x00\x00\x80", 4));  // min_x = INT_MIN
+  huge.replace(w + window.size() + 12, 4, std::string("\xff\xff\xff\x7f", 4));  // max_x = INT_MAX
+  write_bytes(bad, huge);
+  EXPECT_NE(read_error(bad).find("EXR size out of range"), std::string::npos) << read_error(bad);
 }
