@@ -72,7 +72,8 @@ class Schema {
     const bool whole = v->is_number_integer() || v->is_number_unsigned();
     const bool in_range =
         whole && (v->is_number_unsigned()
-                      ? v->get<std::uint64_t>() <= static_cast<std::uint64_t>(hi)
+                      ? v->get<std::uint64_t>() <= static_cast<std::uint64_t>(hi) &&
+                            (lo <= 0 || v->get<std::uint64_t>() >= static_cast<std::uint64_t>(lo))
                       : v->get<std::int64_t>() >= lo && v->get<std::int64_t>() <= hi);
     if (!in_range)
       return fail(name, key, "must be an integer in [" + std::to_string(lo) + ", " +

@@ -401,7 +401,13 @@ gltf('image_mime_type_contradicts_uri.gltf', 'images[0].mimeType', 'but the data
   uri: dataUri('image/png', png(1, 1)), mimeType: 'image/jpeg' }));
 gltf('image_huge_dimensions.gltf', 'images[0].uri', 'larger than the limit', textured({ uri: dataUri('image/png', png(100000, 100000, { idat: false })) }));
 gltf('image_pixels_missing.gltf', 'images[0].uri', 'cannot be decoded', textured({ uri: dataUri('image/png', png(4, 4, { idat: false })) }));
-gltf('image_truncated.gltf', 'images[0].uri', 'cannot be decoded', textured({ uri: dataUri('image/png', png(64, 64).subarray(0, 60)) }));
+gltf('image_truncated.gltf', 'images[0].uri', 'past the end of the file', textured({ uri: dataUri('image/png', png(64, 64).subarray(0, 60)) }));
+gltf('image_corrupt_pixels.gltf', 'images[0].uri', 'cannot be decoded', textured({ uri: dataUri('image/png', (() => {
+  // Every chunk intact (lengths inside the file, IEND present), the IDAT's zlib stream garbled.
+  const p = Buffer.from(png(64, 64));
+  for (let i = 41; i < 49; ++i) p[i] = 0xff;
+  return p;
+})()) }));
 gltf('image_view_not_an_image.gltf', 'images[0].bufferView', 'neither PNG nor JPEG', textured({ bufferView: 0, mimeType: 'image/png' }));
 gltf('image_uri_dotdot.gltf', 'images[0].uri', '".." segment', textured({ uri: '../../etc/passwd' }));
 // URIs.
