@@ -2,6 +2,7 @@
 
 #include "renderer/scene/GltfFile.h"
 #include "renderer/scene/GltfLoader.h"
+#include "renderer/scene/GltfUri.h"
 
 #include <nlohmann/json.hpp>
 
@@ -12,28 +13,6 @@ namespace sss::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-int hex_digit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
-// RFC 3986 §2.1 percent-decoding, as tinygltf applies it before opening a URI's file;
-// a malformed escape is kept as written (the loader refused such a URI anyway).
-std::string percent_decoded(const std::string& s) {
-  std::string out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '%' && i + 2 < s.size() && hex_digit(s[i + 1]) >= 0 && hex_digit(s[i + 2]) >= 0) {
-      out += static_cast<char>(hex_digit(s[i + 1]) * 16 + hex_digit(s[i + 2]));
-      i += 2;
-    } else {
-      out += s[i];
-    }
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -57,7 +36,7 @@ std::vector<fs::path> scene_input_files(const std::string& source) {
     for (const nlohmann::json& item : doc[list])
       if (item.is_object() && item.contains("uri") && item["uri"].is_string()) {
         const std::string uri = item["uri"].get<std::string>();
-        if (uri.rfind("data:", 0) != 0) files.push_back(folder / percent_decoded(uri));
+        if (uri.rfind("data:", 0) != 0) files.push_back(folder / scene::decode_file_uri(uri));  // as the loader opens it
       }
   }
   return files;

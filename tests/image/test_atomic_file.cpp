@@ -116,7 +116,7 @@ TEST(AtomicFile, AProcessKilledMidWriteLeavesTheOldFileAndNothingElse) {
     }
     ::_exit(0);
   }
-  bool seen_mid_write = false;
+  bool seen_mid_write = false, reaped = false;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   const fs::path fds = "/proc/" + std::to_string(pid) + "/fd";
   while (!seen_mid_write && std::chrono::steady_clock::now() < deadline) {
@@ -127,11 +127,16 @@ TEST(AtomicFile, AProcessKilledMidWriteLeavesTheOldFileAndNothingElse) {
       if (!ec2 && target.rfind(dir().string(), 0) == 0 && target != p.string()) seen_mid_write = true;
     }
     int status = 0;
-    if (::waitpid(pid, &status, WNOHANG) == pid) break;  // finished before we saw it
+    if (::waitpid(pid, &status, WNOHANG) == pid) {  // finished before we saw it
+      reaped = true;
+      break;
+    }
   }
-  ::kill(pid, SIGKILL);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  if (!reaped) {  // a reaped pid may already belong to another process
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+  }
   const std::string now = slurp(p);
   EXPECT_TRUE(now == "precious" || now.size() == big.size()) << now.size() << " bytes";
   EXPECT_EQ(entries(), 1);  // no temporary, named or not

@@ -157,7 +157,9 @@ TEST(Soak, FiveHundredFramesKeepMemoryAndVulkanObjects) {
   EXPECT_EQ(rows.at(200).material, "coefficients");
   EXPECT_EQ(rows.at(300).material, "apple");
   EXPECT_GT(rows.at(200).objects, 0);
+#if !defined(__SANITIZE_ADDRESS__)  // ASan's quarantine keeps freed memory resident
   EXPECT_LT(rows.at(500).rss_kb - rows.at(200).rss_kb, 1024) << r.out;
+#endif
   EXPECT_EQ(rows.at(400).objects, rows.at(200).objects) << r.out;
   EXPECT_EQ(rows.at(500).objects, rows.at(300).objects) << r.out;
   std::ifstream plot(svg);
