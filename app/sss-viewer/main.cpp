@@ -100,8 +100,7 @@ int viewer_main(int argc, char** argv) {
   app.add_option("--mode", a.mode, "separable | gaussians (default separable)");
   add_material_override_options(app, a.material);
   app.add_option("--taps", a.taps, "Separable kernel taps (odd, 3..33; default 17)");
-  app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1)")
-      ->check(CLI::Range(1e-6, 1e6));
+  app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1, in [1e-6, 1e6])");
   app.add_option("--debug-view", a.debug_view, debug_view_help());
   app.add_option("--transmission", a.transmission,
                  "on | off: light through thin parts of SSS materials, thickness from the "
@@ -211,7 +210,7 @@ int viewer_main(int argc, char** argv) {
   if (a.taps < 3 || a.taps > 33 || a.taps % 2 == 0)
     return usage("--taps: expected an odd number in 3..33, got " + std::to_string(a.taps));
   options.separable_taps = a.taps;
-  if (!(a.exposure >= 1e-6 && a.exposure <= 1e6))  // CLI::Range lets NaN through
+  if (!(a.exposure >= 1e-6 && a.exposure <= 1e6))  // also NaN (CLI::Range would let it through)
     return usage("--exposure: must lie in [1e-06, 1e+06], got " + std::to_string(a.exposure));
   if (std::size_t(a.width) * std::size_t(a.height) > image::kMaxImagePixels)
     return usage("--width x --height: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
