@@ -1,0 +1,438 @@
+#include "profiles/McTableProfile.h"
+
+#include "profiles/Integrate.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace sss::profiles {
+
+double transport_decay_rate(double albedo) {
+  if (!std::isfinite(albedo) || !(albedo > 0.0) || !(albedo < 1.0))
+    throw std::invalid_argument("albedo: the transport decay rate needs an albedo in (0, 1), got " +
+                                message_number(albedo));
+  // f(κ) = α artanh(κ)/κ - 1 rises from α - 1 < 0 at κ = 0 to +∞ at κ = 1 (artanh(κ)/κ
+  // is increasing), so the root is unique. Bisection in κ, 200 halvings to exhaustion of
+  // double precision; each evaluation is one atanh, and this runs once per profile.
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 200 && hi - lo > 0.0; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    if (albedo * std::atanh(mid) / mid > 1.0)
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+namespace {
+
+const auto str = sss::message_number;
+
+// Interpolation weights along one axis: a cubic Hermite segment on [x_i, x_i+1] whose
+// tangents are the derivatives of the parabola through the node and its two neighbours
+// (Catmull-Rom generalised to a non-uniform grid; at the ends, the parabola through the
+// three end nodes). The result is linear in the node values: up to 4 (node, weight)
+// pairs. At a node (t = 0) the weights are exactly (1, 0, 0, 0), so a lookup at a table
+// node returns the node. With two nodes this is linear interpolation; with one, that node.
+struct AxisWeights {
+  std::array<std::size_t, 4> node{};
+  std::array<double, 4> weight{};
+  int count = 0;
+};
+
+// The derivative at xs[k] of the parabola through xs[a], xs[b], xs[c] (k one of them), as
+// weights of the three values: d/dx of the Lagrange basis polynomials.
+void parabola_slope(const std::vector<double>& xs, std::size_t a, std::size_t b, std::size_t c,
+                    std::size_t k, double scale, std::array<double, 4>& w, std::size_t base) {
+  const std::array<std::size_t, 3> n = {a, b, c};
+  for (std::size_t j : n) {
+    double d;
+    if (j == k) {
+      d = 0.0;
+      for (std::size_t m : n)
+        if (m != k) d += 1.0 / (xs[k] - xs[m]);
+    } else {
+      d = 1.0 / (xs[j] - xs[k]);
+      for (std::size_t m : n)
+        if (m != j && m != k) d *= (xs[k] - xs[m]) / (xs[j] - xs[m]);
+    }
+    w[j - base] += scale * d;
+  }
+}
+
+AxisWeights axis_weights(const std::vector<double>& xs, double x, bool linear = false) {
+  AxisWeights out;
+  const std::size_t n = xs.size();
+  if (n == 1) {
+    out.node[0] = 0;
+    out.weight[0] = 1.0;
+    out.count = 1;
+    return out;
+  }
+  // The segment [xs[i], xs[i+1]] with xs[i] <= x (the last segment holds x = xs.back()).
+  std::size_t i = static_cast<std::size_t>(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin());
+  i = std::min(i == 0 ? 0 : i - 1, n - 2);
+  const double h = xs[i + 1] - xs[i];
+  const double t = (x - xs[i]) / h;
+  const double h00 = (2.0 * t - 3.0) * t * t + 1.0, h01 = (3.0 - 2.0 * t) * t * t;
+  const double h10 = ((t - 2.0) * t + 1.0) * t, h11 = (t - 1.0) * t * t;
+  // Weights over nodes base .. base+3, base = i - 1 (or i at the first segment).
+  const std::size_t base = i == 0 ? 0 : i - 1;
+  std::array<double, 4> w{};
+  w[i - base] += h00;
+  w[i + 1 - base] += h01;
+  if (n == 2 || linear) {  // linear: both tangents are the secant
+    w[i - base] -= h10 + h11;
+    w[i + 1 - base] += h10 + h11;
+  } else {
+    // Tangent at xs[i], times h (the Hermite form uses h m).
+    if (i > 0)
+      parabola_slope(xs, i - 1, i, i + 1, i, h10 * h, w, base);
+    else
+      parabola_slope(xs, i, i + 1, i + 2, i, h10 * h, w, base);
+    // Tangent at xs[i+1].
+    if (i + 2 < n)
+      parabola_slope(xs, i, i + 1, i + 2, i + 1, h11 * h, w, base);
+    else
+      parabola_slope(xs, i - 1, i, i + 1, i + 1, h11 * h, w, base);
+  }
+  for (std::size_t j = 0; j < 4; ++j) {
+    if (w[j] == 0.0 || base + j >= n) continue;  // exactly 0 at a node: not contributing
+    out.node[static_cast<std::size_t>(out.count)] = base + j;
+    out.weight[static_cast<std::size_t>(out.count)] = w[j];
+    ++out.count;
+  }
+  return out;
+}
+
+// Checks the arrays' sizes and returns how many bins the lookup uses: the disc and the
+// annuli after it as long as they are log-uniform (the lookup computes a bin's index from
+// ln r). Annuli past the first irregular edge (e.g. a last edge rounded to a round number)
+// are left to the tail, like unreliable ones.
+std::size_t check_table(const McTableData& t) {
+  const std::size_t nodes = t.eta.size() * t.albedo.size(), bins = t.bins();
+  if (t.eta.empty() || t.albedo.empty() || bins < 4 || t.total.size() != nodes ||
+      t.total_se.size() != nodes || t.flux.size() != nodes * bins || t.flux_se.size() != nodes * bins)
+    throw std::invalid_argument(
+        "mc-table: the table's arrays do not match its axes (eta, albedo, at least 4 radial bins)");
+  const double step = std::log(t.r_edges[2] / t.r_edges[1]);
+  if (t.r_edges[0] != 0.0 || !(t.r_edges[1] > 0.0) || !(step > 0.0))
+    throw std::invalid_argument("mc-table: r_edges must be 0, then ascending radii");
+  // Uniform up to rounding: log_bin_edges-style edges r_1 e^{i step} agree to ~1e-15.
+  std::size_t regular = 2;
+  while (regular < bins &&
+         std::fabs(std::log(t.r_edges[regular + 1] / t.r_edges[regular]) - step) <= 1e-9 * step)
+    ++regular;
+  if (regular < 4)
+    throw std::invalid_argument("mc-table: r_edges must be log-uniform after the first edge");
+  return regular;
+}
+
+}  // namespace
+
+// The lookup, step by step (McTableProfile.h gives the overview).
+//
+// (α', η) interpolation. Nodes in α' are (nearly) uniform in u = √(1 - α'), and the
+// profile depends on u exponentially (the diffusion tail is ~exp(-√3 u r)), so ln(flux)
+// is close to linear in u and a cubic in u interpolates it far below the Monte Carlo noise;
+// the total behaves like 1 - c u near α' = 1 (Rd ≈ 1 - c√(1-α'), e.g. the η = 1 exact
+// 1 - H(1)√(1-α') has H(1) ≈ 2.9), so it is interpolated in its own value.
+// An annulus is "unreliable" if its flux is 0 or its relative standard error is above
+// kMaxRelativeError at any node that contributes (non-zero weight): the log of a noisier
+// value is biased and jumpy. Unreliable annuli are not enforced below; the
+// reconstruction bridges them (interior) or the tail covers them (outer).
+//
+// Below the table's first α' (0.01) the profile is the first slice scaled by α'/α'_0:
+// single scattering dominates a dark medium, R = α' R1 + O(α'²) with R1 the single-
+// scattering profile per unit albedo, so the relative error of the scaling is O(α'_0),
+// about 1%, and it vanishes at α'_0 (the extension is continuous there).
+McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) {
+  if (auto e = c.validate()) throw std::invalid_argument(e->what());
+  const std::size_t bins_used = check_table(table);
+  sigma_tp_ = c.sigma_t_reduced();
+  const double eta = c.eta;
+  double alpha = c.albedo_reduced();
+  // Rounding: α' computed as σs'/σt' may land an ulp or so off a node; 1e-12 absorbs that.
+  if (eta < table.eta.front() * (1.0 - 1e-12) || eta > table.eta.back() * (1.0 + 1e-12))
+    throw std::invalid_argument("eta: mc-table covers eta in [" + str(table.eta.front()) + ", " +
+                                str(table.eta.back()) + "], got " + str(eta));
+  const double alpha_max = table.albedo.back();
+  if (alpha > alpha_max + 1e-12)
+    throw std::invalid_argument("albedo: mc-table covers reduced albedo up to " + str(alpha_max) +
+                                " (sigma_a >= " + str(1.0 - alpha_max) +
+                                " sigma_t', absorption can be no weaker), got " + str(alpha));
+  alpha = std::min(alpha, alpha_max);
+  double scale = 1.0;
+  if (alpha < table.albedo.front()) {
+    scale = alpha / table.albedo.front();
+    alpha = table.albedo.front();
+  }
+
+  // The axes as interpolated: η directly, α' as u = √(1 - α') (ascending: α' reversed).
+  const std::size_t na = table.albedo.size();
+  std::vector<double> us(na);
+  for (std::size_t j = 0; j < na; ++j) us[j] = std::sqrt(1.0 - table.albedo[na - 1 - j]);
+  const double eta_q = std::clamp(eta, table.eta.front(), table.eta.back());
+  const double u_q = std::sqrt(1.0 - alpha);
+  struct Contribution {
+    std::size_t node;
+    double weight;
+    double alpha;
+  };
+  struct Stencil {
+    std::array<Contribution, 16> node{};
+    std::size_t count = 0;
+  };
+  auto stencil = [&](const AxisWeights& we, const AxisWeights& wa) {
+    Stencil st;
+    for (int i = 0; i < we.count; ++i)
+      for (int j = 0; j < wa.count; ++j) {
+        const std::size_t a = na - 1 - wa.node[static_cast<std::size_t>(j)];
+        st.node[st.count++] = {table.node(we.node[static_cast<std::size_t>(i)], a),
+                               we.weight[static_cast<std::size_t>(i)] *
+                                   wa.weight[static_cast<std::size_t>(j)],
+                               table.albedo[a]};
+      }
+    return st;
+  };
+  const Stencil cubic = stencil(axis_weights(table.eta, eta_q), axis_weights(us, u_q));
+  const Stencil linear = stencil(axis_weights(table.eta, eta_q, true), axis_weights(us, u_q, true));
+  total_ = total_se_ = 0.0;
+  for (std::size_t k = 0; k < cubic.count; ++k) {
+    const Contribution& n = cubic.node[k];
+    total_ += n.weight * table.total[n.node];
+    // The nodes share their random walks (McTable.h), so their errors are correlated:
+    // Σ|w| se bounds the interpolated error whatever the correlation.
+    total_se_ += std::fabs(n.weight) * table.total_se[n.node];
+  }
+  total_ = std::max(0.0, total_ * scale);
+  total_se_ *= scale;
+
+  // Per annulus: ln(flux / α') with the cubic stencil, or, where one of its nodes is
+  // unreliable, with the bilinear one (the two bracketing nodes per axis; at a node both
+  // are that node); unreliable at those too: not enforced. Dividing by the node's α'
+  // removes the ln α' singularity of a dark medium (flux ∝ α' as α' → 0, a log that
+  // bends steeply across the first nodes); near α' = 1 it changes nothing.
+  auto interpolate = [&](const Stencil& st, std::size_t b, double& out) {
+    double lnf = 0.0;
+    for (std::size_t k = 0; k < st.count; ++k) {
+      const std::size_t slot = st.node[k].node * table.bins() + b;
+      const double f = table.flux[slot];
+      if (!(f > 0.0 && table.flux_se[slot] <= kMaxRelativeError * f)) return false;
+      lnf += st.node[k].weight * std::log(f / st.node[k].alpha);
+    }
+    out = alpha * scale * std::exp(lnf);
+    return true;
+  };
+  const std::size_t bins = table.bins();
+  target_flux_.assign(bins, 0.0);
+  enforced_.assign(bins, 0);
+  for (std::size_t b = 0; b < bins_used; ++b)
+    enforced_[b] = interpolate(cubic, b, target_flux_[b]) || interpolate(linear, b, target_flux_[b]);
+  // Past the peak of the flux per annulus, the enforced range ends at the first unreliable
+  // annulus: a "reliable" one beyond it is a few lucky walks (batch means from few chunks
+  // can underestimate their own error), and the tail describes that region better.
+  {
+    std::size_t peak = 0;
+    for (std::size_t b = 1; b < bins_used; ++b)
+      if (enforced_[b] && (!enforced_[peak] || target_flux_[b] > target_flux_[peak])) peak = b;
+    bool cut = false;
+    for (std::size_t b = peak + 1; b < bins_used; ++b) {
+      cut = cut || !enforced_[b];
+      if (cut) enforced_[b] = 0, target_flux_[b] = 0.0;
+    }
+  }
+  for (std::size_t b = 0; b < bins; ++b)
+    if (!enforced_[b]) target_flux_[b] = 0.0;
+
+  // Histopolation in x = ln r (optical units). q(x) = 2π r² R(r), so the flux through
+  // an annulus [r_k, r_k+1) is ∫ q dx over [x_k, x_k+1]: the log-uniform annuli are equal
+  // intervals of width Δ in x. Node k sits at the centre c_k = x_1 + (k - ½)Δ of bin k;
+  // node 0, at x_1 - Δ/2, belongs to the disc [0, r_1). φ = ln q is a uniform Catmull-Rom
+  // spline through the nodes 0..K (K: the last enforced annulus), and outside them:
+  //  - below c_0, φ is linear with slope s: q ∝ r^s, R ∝ r^{s-2}. Near the source a pencil
+  //    beam's single scattering gives R ~ 1/r (s = 1) and multiple scattering a finite R
+  //    (s = 2); s is the slope between the first two enforced annuli, clamped to [1, 2]
+  //    (outside that range it can only be noise). The disc's flux sets node 0's value.
+  //  - above c_K, R(r) = R(r_K) exp(-κ (r - r_K)), an exponential tail in r continuous
+  //    with node K (and C1 with the spline, whose tangent at c_K is the tail's). κ is the
+  //    asymptotic transport decay rate κ0 (transport_decay_rate: the slowest mode of
+  //    isotropic transport decays like e^{-κ0 r}), or the rate between the last two
+  //    enforced nodes if that is steeper (the power-law factor in front of e^{-κ0 r}
+  //    steepens the profile at finite r).
+  // An unreliable annulus between enforced ones gets the value linear in x between its
+  // enforced neighbours; one before the first enforced annulus the slope s.
+  // The node values are adjusted by the fixed point φ_k += ln(F_k / I_k), I_k being the
+  // spline's integral over bin k (6-point Gauss-Legendre per half bin: the integrand
+  // exp(cubic) is smooth on a half bin), until every enforced bin's integral matches its
+  // flux to 1e-12 (each step shrinks the mismatch by ~5: the neighbours' share of a bin's
+  // integral is small), at most 60 steps.
+  const double x1 = std::log(table.r_edges[1]);
+  const double dx = std::log(table.r_edges[2] / table.r_edges[1]);
+  std::size_t K = 0, first = 0, second = 0, enforced_annuli = 0;
+  for (std::size_t b = 1; b < bins_used; ++b)
+    if (enforced_[b]) {
+      K = b;
+      if (enforced_annuli == 0) first = b;
+      if (enforced_annuli == 1) second = b;
+      ++enforced_annuli;
+    }
+  if (enforced_annuli < 2)
+    throw std::invalid_argument("mc-table: fewer than two annuli with a reliable flux at albedo " +
+                                str(c.albedo_reduced()) + ", eta " + str(eta) +
+                                " (the table's photon budget is too small)");
+  std::vector<double> phi(K + 1, 0.0), centre(K + 1);
+  for (std::size_t k = 0; k <= K; ++k) {
+    centre[k] = x1 + (static_cast<double>(k) - 0.5) * dx;
+    if (enforced_[k]) phi[k] = std::log(target_flux_[k] / dx);
+  }
+  double s = 1.5, kappa = 0.0;
+  const double kappa0 = transport_decay_rate(alpha);
+  const double rK = std::exp(centre[K]);
+  auto fill = [&] {
+    s = std::clamp((phi[second] - phi[first]) / (centre[second] - centre[first]), 1.0, 2.0);
+    std::size_t prev = bins;  // none yet
+    for (std::size_t k = 0; k <= K; ++k) {
+      if (enforced_[k]) {
+        prev = k;
+        continue;
+      }
+      if (prev == bins) {
+        phi[k] = phi[first] - s * (centre[first] - centre[k]);
+      } else {
+        std::size_t next = k + 1;
+        while (!enforced_[next]) ++next;  // K is enforced
+        const double t = (centre[k] - centre[prev]) / (centre[next] - centre[prev]);
+        phi[k] = phi[prev] + t * (phi[next] - phi[prev]);
+      }
+    }
+    std::size_t p = K - 1;
+    while (!enforced_[p]) --p;  // `first` < K is enforced
+    const double rp = std::exp(centre[p]);
+    const double k2 = ((phi[p] - 2.0 * centre[p]) - (phi[K] - 2.0 * centre[K])) / (rK - rp);
+    kappa = std::max(kappa0, k2);
+  };
+  // Segment k (c_k..c_k+1) in t ∈ [0, 1]: φ = a0 + a1 t + a2 t² + a3 t³.
+  std::vector<double> seg(4 * K);
+  auto build_segments = [&] {
+    auto tangent = [&](std::size_t k) {  // dφ/dt, t in units of Δ
+      if (k == 0) return s * dx;
+      if (k == K) return (2.0 - kappa * rK) * dx;
+      return 0.5 * (phi[k + 1] - phi[k - 1]);
+    };
+    for (std::size_t k = 0; k < K; ++k) {
+      const double p0 = phi[k], p1 = phi[k + 1], m0 = tangent(k), m1 = tangent(k + 1);
+      seg[4 * k] = p0;
+      seg[4 * k + 1] = m0;
+      seg[4 * k + 2] = 3.0 * (p1 - p0) - 2.0 * m0 - m1;
+      seg[4 * k + 3] = 2.0 * (p0 - p1) + m0 + m1;
+    }
+  };
+  const GaussLegendreRule& gl = gauss_legendre(6);
+  // ∫ exp(segment k) over t ∈ [t0, t0 + ½], in x units.
+  auto seg_integral = [&](std::size_t k, double t0) {
+    const double* a = &seg[4 * k];
+    double sum = 0.0;
+    for (std::size_t i = 0; i < gl.nodes.size(); ++i) {
+      const double t = t0 + 0.25 * (gl.nodes[i] + 1.0);
+      sum += gl.weights[i] * std::exp(a[0] + t * (a[1] + t * (a[2] + t * a[3])));
+    }
+    return 0.25 * dx * sum;
+  };
+  // ∫ exp(tail) over x ∈ [c_K, c_K + Δ/2], in closed form (the tail can fall by many
+  // orders of magnitude across a half bin, which no fixed quadrature follows):
+  // q_K/r_K² ∫ r e^{-κ(r - r_K)} dr over [r_K, r_K + d] = q_K/r_K² [(1 - E)(r_K/κ + 1/κ²) - d E/κ],
+  // E = e^{-κ d}.
+  const double r_edge = std::exp(centre[K] + 0.5 * dx), d_tail = r_edge - rK;
+  auto tail_integral = [&] {
+    const double E = std::exp(-kappa * d_tail), one_minus_E = -std::expm1(-kappa * d_tail);
+    return std::exp(phi[K]) / (rK * rK) *
+           (one_minus_E * (rK / kappa + 1.0 / (kappa * kappa)) - d_tail * E / kappa);
+  };
+  auto bin_integral = [&](std::size_t k) {
+    if (k == 0) return std::exp(phi[0]) / s + seg_integral(0, 0.0);
+    return seg_integral(k - 1, 0.5) + (k < K ? seg_integral(k, 0.0) : tail_integral());
+  };
+  for (iterations_ = 0; iterations_ < 60; ++iterations_) {
+    fill();
+    build_segments();
+    residual_ = 0.0;
+    std::vector<double> step(K + 1, 0.0);
+    for (std::size_t k = 0; k <= K; ++k) {
+      if (!enforced_[k]) continue;
+      step[k] = std::log(target_flux_[k] / bin_integral(k));
+      residual_ = std::max(residual_, std::fabs(step[k]));
+    }
+    if (residual_ < 1e-12) break;
+    for (std::size_t k = 0; k <= K; ++k) phi[k] += step[k];
+  }
+
+  // Evaluation constants in mm: u = ln r_mm = x - ln σt', ψ = ln R_mm = 2 ln σt' + φ - 2x - ln 2π.
+  const double ls = std::log(sigma_tp_);
+  const double c2 = 2.0 * ls - std::log(2.0 * std::numbers::pi);
+  u_lo_ = centre[0] - ls;
+  u_hi_ = centre[K] - ls;
+  inv_du_ = 1.0 / dx;
+  lo_a_ = c2 + phi[0] - 2.0 * centre[0];
+  lo_b_ = s - 2.0;
+  coef_.resize(4 * K);
+  for (std::size_t k = 0; k < K; ++k) {
+    coef_[4 * k] = seg[4 * k] + c2 - 2.0 * centre[k];
+    coef_[4 * k + 1] = seg[4 * k + 1] - 2.0 * dx;
+    coef_[4 * k + 2] = seg[4 * k + 2];
+    coef_[4 * k + 3] = seg[4 * k + 3];
+  }
+  r_tail_ = rK / sigma_tp_;
+  tail_k_ = kappa * sigma_tp_;
+  tail_a_ = std::exp(c2 + phi[K] - 2.0 * centre[K]);
+  r_min_mm_ = kMinRadiusMfp / sigma_tp_;
+  kappa_ = kappa;
+  tail_r_ = rK;
+
+  // Support: r R = q / (2π r) = e^{φ - x}/2π. Its peak is at a node, or in the tail at
+  // r = 1/κ if that lies past r_K (r e^{-κ r} peaks there).
+  double peak = -std::numeric_limits<double>::infinity();
+  std::size_t peak_k = 0;
+  for (std::size_t k = 0; k <= K; ++k)
+    if (phi[k] - centre[k] > peak) peak = phi[k] - centre[k], peak_k = k;
+  // ln(r R 2π) in the tail: φ_K - 2c_K + ln r - κ (r - r_K).
+  auto tail_log = [&](double r) { return phi[K] - 2.0 * centre[K] + std::log(r) - kappa * (r - rK); };
+  const double r_turn = std::max(rK, 1.0 / kappa);
+  peak = std::max(peak, tail_log(r_turn));
+  const double floor_log = peak + std::log(1e-8);
+  support_mfp_ = 0.0;
+  for (std::size_t k = peak_k + 1; k <= K && support_mfp_ == 0.0; ++k)
+    if (phi[k] - centre[k] < floor_log) support_mfp_ = std::exp(centre[k]);
+  if (support_mfp_ == 0.0) {
+    // tail_log decreases past r_turn: bracket the crossing by doubling, then bisect.
+    double lo = r_turn, hi = 2.0 * r_turn;
+    while (tail_log(hi) > floor_log) lo = hi, hi *= 2.0;
+    for (int i = 0; i < 100 && hi - lo > 1e-12 * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (tail_log(mid) > floor_log ? lo : hi) = mid;
+    }
+    support_mfp_ = hi;
+  }
+}
+
+double McTableProfile::reflectance(double r) const {
+  r = std::max(r, r_min_mm_);
+  if (r >= r_tail_) return tail_a_ * std::exp(-tail_k_ * (r - r_tail_));
+  const double u = std::log(r);
+  if (u < u_lo_) return std::exp(lo_a_ + lo_b_ * (u - u_lo_));
+  const double v = (u - u_lo_) * inv_du_;
+  const std::size_t last = coef_.size() / 4 - 1;
+  const std::size_t j = std::min(static_cast<std::size_t>(v), last);
+  const double t = v - static_cast<double>(j);
+  const double* a = &coef_[4 * j];
+  return std::exp(a[0] + t * (a[1] + t * (a[2] + t * a[3])));
+}
+
+}  // namespace sss::profiles

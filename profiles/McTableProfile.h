@@ -1,0 +1,101 @@
+// Model `mc-table`: R(r) looked up in the Monte Carlo table of profiles/McTable.h.
+//
+// One medium is one lookup, done in the constructor:
+//  1. Similarity and scale. The table is in optical units (σt' = 1, isotropic scattering
+//     at the reduced albedo α' = σs'/σt'), so R_mm(r) = σt'² R_t(σt' r) with σt', α' and η
+//     of the medium's Coefficients (a medium with g ≠ 0 is its reduced g = 0 medium).
+//  2. Interpolation across (α', η): per annulus, ln(flux) is interpolated with cubic
+//     Hermite splines whose tangents are those of the parabola through three neighbours
+//     (Catmull-Rom on a non-uniform grid), in u = √(1 - α') and in η; the total diffuse
+//     reflectance likewise, but in its own value (not its log). Below the table's first
+//     α' the first slice is scaled by α'/α'_0 (single scattering dominates there).
+//  3. Reconstruction in r: a smooth q(x) = 2π r² R(r) as a function of x = ln r whose
+//     integral over every reliable annulus reproduces that annulus' interpolated flux
+//     ("histopolation"), with a power law inside the first edge and an exponential tail at
+//     the asymptotic transport decay rate past the last reliable annulus. McTableProfile.cpp
+//     says how, and why each choice.
+//
+// Evaluation is a log, a table index computed from it, a cubic and an exp: no search.
+#pragma once
+
+#include "profiles/McTable.h"
+#include "profiles/Medium.h"
+#include "profiles/Profile.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace sss::profiles {
+
+// The root κ0 in (0, 1) of (α/κ) artanh(κ) = 1: the decay rate (per mean free path) of the
+// slowest discrete mode of one-speed transport with isotropic scattering at single-
+// scattering albedo α (Case & Zweifel, "Linear Transport Theory", 1967, §4.2: the discrete
+// eigenvalues ±ν0 of the dispersion relation 1 = (c ν0/2) ln((ν0+1)/(ν0-1)), κ0 = 1/ν0).
+// Far from the source every flux decays like e^{-κ0 r} times a power of r. κ0 → 1 as
+// α → 0 and κ0 ≈ √(3(1-α)) as α → 1 (the diffusion limit). Throws std::invalid_argument
+// for α outside (0, 1).
+double transport_decay_rate(double albedo);
+
+class McTableProfile final : public RadialProfile {
+ public:
+  // Throws std::invalid_argument naming the field: "eta: mc-table covers eta in [A, B],
+  // got X", "albedo: mc-table covers reduced albedo up to ... got X", or a coefficient
+  // error of Coefficients::validate. `table` must outlive the profile only during the
+  // constructor (nothing refers to it afterwards).
+  McTableProfile(const Coefficients& c, const McTableData& table);
+
+  double reflectance(double r_mm) const override;
+  // The interpolated tabulated total (all exits, also beyond the table's last edge), not
+  // the integral of the reconstruction (which agrees with it within the table's noise).
+  double total_reflectance() const override { return total_; }
+  // Where r R(r) has fallen below 1e-8 of its peak.
+  double support_radius() const override { return support_mfp_ / sigma_tp_; }
+  // One reduced mean free path, 1/σt' (as PBD's): the length on which the profile bends.
+  double inner_radius() const override { return 1.0 / sigma_tp_; }
+
+  // R is evaluated at max(r, min_radius()): the profile grows like 1/r towards the origin
+  // (single scattering of a pencil beam), an integrable singularity. 1e-9 mean free paths.
+  double min_radius() const { return kMinRadiusMfp / sigma_tp_; }
+  // The interpolated standard error of total_reflectance().
+  double total_stderr() const { return total_se_; }
+
+  // For tests and diagnostics, in the table's radial bins (optical units):
+  // the interpolated flux the reconstruction was made to reproduce (0 where the annulus
+  // was unreliable and not enforced), whether it was enforced, and the rate of the
+  // exponential tail (per mean free path) with the radius (mfp) where it starts.
+  const std::vector<double>& target_flux() const { return target_flux_; }
+  const std::vector<char>& enforced() const { return enforced_; }
+  double tail_rate_mfp() const { return kappa_; }
+  double tail_start_mfp() const { return tail_r_; }
+  // Fixed-point iterations the histopolation took, and its largest remaining |ln(F/I)|.
+  int iterations() const { return iterations_; }
+  double residual() const { return residual_; }
+
+  static constexpr double kMinRadiusMfp = 1e-9;
+  // An annulus whose relative standard error exceeds this at any contributing node is
+  // not enforced (its flux is too noisy to shape R): see McTableProfile.cpp.
+  static constexpr double kMaxRelativeError = 0.3;
+
+ private:
+  double sigma_tp_ = 1.0;
+  double total_ = 0.0, total_se_ = 0.0;
+  double support_mfp_ = 0.0;
+  double kappa_ = 0.0, tail_r_ = 0.0;
+  int iterations_ = 0;
+  double residual_ = 0.0;
+  std::vector<double> target_flux_;
+  std::vector<char> enforced_;
+
+  // Evaluation in mm, everything folded in: ψ(u) = ln R_mm at u = ln r_mm.
+  // Below u_lo_:   ψ = lo_a_ + lo_b_ (u - u_lo_)           (power law inside the first node)
+  // [u_lo_, u_hi_): piece j = floor((u - u_lo_) * inv_du_), t = (u - u_lo_) * inv_du_ - j,
+  //                ψ = c0 + t (c1 + t (c2 + t c3)) from coef_[4 j ..]
+  // r >= r_tail_:  R = tail_a_ exp(-tail_k_ (r - r_tail_))  (the exponential tail)
+  double r_min_mm_ = 0.0;
+  double u_lo_ = 0.0, u_hi_ = 0.0, inv_du_ = 0.0;
+  double lo_a_ = 0.0, lo_b_ = 0.0;
+  double r_tail_ = 0.0, tail_a_ = 0.0, tail_k_ = 0.0;
+  std::vector<double> coef_;
+};
+
+}  // namespace sss::profiles
