@@ -1,4 +1,4 @@
-// The four sss-fit commands. Each returns the process exit code: 0 success, 2 bad usage
+// The sss-fit commands. Each returns the process exit code: 0 success, 2 bad usage
 // or input (message on stderr), 1 a runtime failure such as an unwritable output file.
 #pragma once
 
@@ -36,10 +36,18 @@ struct FitArgs {
   std::string header_prefix = "sss_kernel";
 };
 
+struct McTableArgs {
+  std::string out;
+  std::uint64_t photons = 0;  // 0: the shipped budget
+  std::uint64_t seed = 1;
+  int threads = 0;
+};
+
 int run_presets(bool json);
 int run_profile(const ProfileArgs& a);
 int run_fit(const FitArgs& a);
 int run_validate(const CommonArgs& a);
+int run_mc_table(const McTableArgs& a);
 
 // "sss-fit: error: FIELD: message" on stderr.
 int usage_error(const FieldError& e);

@@ -1,0 +1,85 @@
+// The Monte Carlo profile table behind model `mc-table`: R(r) of a semi-infinite medium
+// under a smooth dielectric boundary, lit by a normally incident pencil beam, computed by
+// the project's own random walk once and shipped as data (profiles/data/mc_table.bin).
+//
+// Units: the table is in optical units, σt' = 1 (r in reduced mean free paths), with
+// isotropic scattering at the reduced albedo α' = σs'/σt' (the similarity relation
+// σs' = σs (1 - g): a medium with g ≠ 0 is looked up at its reduced coefficients). Any
+// medium is then a lookup plus a scale: R_mm(r) = σt'² R_table(σt' r).
+//
+// What is stored, per (η, α') node: the flux fraction that leaves through each annulus
+// [r_k, r_k+1) of the radial grid (the increments of the radial CDF C(r) = ∫0^r 2πr'R dr'),
+// the total diffuse reflectance (all exits, also beyond the last edge), and the standard
+// error of each. The CDF and not r·R(r) because a Monte Carlo tally measures exactly the
+// flux through an annulus, with no binning bias: a point value of r·R(r) does not exist
+// in the data and would have to be guessed from the bin averages, which biases it where
+// R falls steeply. The lookup (McTableProfile) rebuilds a smooth R(r) whose integral over
+// every annulus reproduces the tallied flux.
+//
+// Generation (generate_mc_table) uses one set of random walks for every node of the
+// table; McTableGenerator.cpp explains why that is unbiased and how the errors come out.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sss::profiles {
+
+struct McTableData {
+  std::uint64_t photons = 0;        // random walks behind every node
+  std::uint64_t seed = 0;
+  std::uint64_t chunk_photons = 0;  // walks per batch: standard errors are batch-means
+  double roulette_weight = 0.0;     // the run's variance-reduction settings, for the record
+  double roulette_survival = 0.0;
+  std::vector<double> eta;          // relative refractive index, ascending, >= 1
+  std::vector<double> albedo;       // reduced albedo α', ascending, in (0, 1)
+  std::vector<double> r_edges;      // annulus edges in mean free paths: 0, then ascending
+  // [eta][albedo]: total diffuse reflectance and its standard error.
+  std::vector<double> total, total_se;
+  // [eta][albedo][bin], bin in [0, bins()): the flux fraction through annulus bin.
+  std::vector<double> flux, flux_se;
+
+  std::size_t bins() const { return r_edges.empty() ? 0 : r_edges.size() - 1; }
+  std::size_t node(std::size_t e, std::size_t a) const { return e * albedo.size() + a; }
+  std::size_t slot(std::size_t e, std::size_t a, std::size_t b) const {
+    return node(e, a) * bins() + b;
+  }
+};
+
+struct McTableOptions {
+  std::vector<double> eta;
+  std::vector<double> albedo;
+  std::vector<double> r_edges;  // 0 first, then strictly ascending, in mean free paths
+  std::uint64_t photons = 1u << 16;
+  std::uint64_t seed = 1;
+  std::uint64_t chunk_photons = 4096;  // photons must be a multiple of it (>= 2 chunks)
+  int threads = 0;                     // 0: every hardware thread
+  // Russian roulette on the walk's largest weight over every (η, α') node, relative to
+  // the start: below roulette_weight it survives with probability roulette_survival.
+  double roulette_weight = 0.05;
+  double roulette_survival = 0.1;
+  // Called after each batch with the fraction done; calls never overlap.
+  std::function<void(double)> progress;
+};
+
+// The grid and budget of the shipped table (the `sss-fit mc-table` defaults).
+McTableOptions shipped_mc_table_options();
+
+// Runs the walks. Deterministic for a seed whatever `threads` is. Throws
+// std::invalid_argument naming the field for a bad grid or budget.
+McTableData generate_mc_table(const McTableOptions& opt);
+
+// The file format (little-endian, documented in profiles/data/README.md).
+std::string serialize_mc_table(const McTableData& t);
+// Throws std::invalid_argument "NAME: FIELD: why" for anything malformed.
+McTableData parse_mc_table(std::string_view bytes, std::string_view name);
+
+// The table compiled into the library from profiles/data/mc_table.bin, parsed on first
+// use (thread-safe).
+const McTableData& shipped_mc_table();
+
+}  // namespace sss::profiles

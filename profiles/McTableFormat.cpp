@@ -1,0 +1,198 @@
+// The mc-table file: serialize, parse (every field checked), and the copy compiled into
+// the library (McTableEmbed.cpp). The layout is in profiles/data/README.md.
+#include "profiles/McTable.h"
+
+#include "profiles/Medium.h"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+extern "C" {
+// Defined by McTableEmbed.cpp (.incbin of profiles/data/mc_table.bin).
+extern const char sss_mc_table_begin[];
+extern const char sss_mc_table_end[];
+}
+
+namespace sss::profiles {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "the mc-table file is little-endian; add byte swapping for this target");
+
+constexpr char kMagic[8] = {'S', 'S', 'S', 'M', 'C', 'T', 'B', 'L'};
+constexpr std::uint32_t kVersion = 1;
+
+// FNV-1a, 64 bit (Fowler, Noll & Vo; offset basis and prime as published by the authors).
+std::uint64_t fnv1a(std::string_view bytes) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+class Writer {
+ public:
+  template <class T>
+  void put(T v) {
+    char b[sizeof(T)];
+    std::memcpy(b, &v, sizeof(T));
+    s.append(b, sizeof(T));
+  }
+  void put_doubles(const std::vector<double>& v) {
+    for (double x : v) put(x);
+  }
+  void put_floats(const std::vector<double>& v) {
+    for (double x : v) put(static_cast<float>(x));
+  }
+  std::string s;
+};
+
+class Reader {
+ public:
+  Reader(std::string_view bytes, std::string_view name) : b_(bytes), name_(name) {}
+  [[noreturn]] void fail(const std::string& field, const std::string& why) const {
+    throw std::invalid_argument(std::string(name_) + ": " + field + ": " + why);
+  }
+  template <class T>
+  T get(const char* field) {
+    if (b_.size() - pos_ < sizeof(T))
+      fail(field, "the file ends early (at byte " + std::to_string(pos_) + " of " +
+                      std::to_string(b_.size()) + ")");
+    T v;
+    std::memcpy(&v, b_.data() + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return v;
+  }
+  template <class T>
+  std::vector<double> get_array(const char* field, std::size_t n) {
+    if ((b_.size() - pos_) / sizeof(T) < n)
+      fail(field, "the file ends early: " + std::to_string(n) + " values needed at byte " +
+                      std::to_string(pos_) + " of " + std::to_string(b_.size()));
+    std::vector<double> v(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      T x;
+      std::memcpy(&x, b_.data() + pos_ + i * sizeof(T), sizeof(T));
+      if (!std::isfinite(x)) fail(field, "value " + std::to_string(i) + " is not finite");
+      v[i] = static_cast<double>(x);
+    }
+    pos_ += n * sizeof(T);
+    return v;
+  }
+  std::size_t pos() const { return pos_; }
+
+ private:
+  std::string_view b_;
+  std::string_view name_;
+  std::size_t pos_ = 0;
+};
+
+void check_axis(const Reader& r, const std::vector<double>& v, const char* field, double lo,
+                double hi, bool lo_open, bool hi_open) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const bool below = lo_open ? !(v[i] > lo) : !(v[i] >= lo);
+    const bool above = hi_open ? !(v[i] < hi) : !(v[i] <= hi);
+    if (below || above)
+      r.fail(field, "value " + std::to_string(i) + " (" + message_number(v[i]) + ") outside " +
+                        (lo_open ? "(" : "[") + message_number(lo) + ", " + message_number(hi) +
+                        (hi_open ? ")" : "]"));
+    if (i > 0 && !(v[i] > v[i - 1])) r.fail(field, "values must be strictly ascending");
+  }
+}
+
+}  // namespace
+
+std::string serialize_mc_table(const McTableData& t) {
+  Writer w;
+  w.s.append(kMagic, sizeof(kMagic));
+  w.put<std::uint32_t>(kVersion);
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(t.eta.size()));
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(t.albedo.size()));
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(t.r_edges.size()));
+  w.put<std::uint64_t>(t.photons);
+  w.put<std::uint64_t>(t.seed);
+  w.put<std::uint64_t>(t.chunk_photons);
+  w.put<double>(t.roulette_weight);
+  w.put<double>(t.roulette_survival);
+  w.put_doubles(t.eta);
+  w.put_doubles(t.albedo);
+  w.put_doubles(t.r_edges);
+  w.put_doubles(t.total);
+  w.put_doubles(t.total_se);
+  // Annulus fluxes in single precision: a relative rounding of 6e-8, far below the
+  // Monte Carlo noise of any entry (the smallest relative standard error is ~1e-4).
+  w.put_floats(t.flux);
+  w.put_floats(t.flux_se);
+  w.put<std::uint64_t>(fnv1a(w.s));
+  return std::move(w.s);
+}
+
+McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
+  Reader r(bytes, name);
+  if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
+    r.fail("magic", "not an mc-table file (expected the 8 bytes SSSMCTBL)");
+  r.get<std::uint64_t>("magic");
+  if (bytes.size() < 8 + sizeof(std::uint64_t))
+    r.fail("checksum", "the file ends early");
+  {
+    std::uint64_t stored;
+    std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
+    if (stored != fnv1a(bytes.substr(0, bytes.size() - 8)))
+      r.fail("checksum", "the FNV-1a checksum of the contents does not match (file damaged)");
+  }
+  const auto version = r.get<std::uint32_t>("version");
+  if (version != kVersion)
+    r.fail("version", "format " + std::to_string(version) + " is not supported (this build reads " +
+                          std::to_string(kVersion) + ")");
+  McTableData t;
+  const std::size_t ne = r.get<std::uint32_t>("n_eta");
+  const std::size_t na = r.get<std::uint32_t>("n_albedo");
+  const std::size_t nedges = r.get<std::uint32_t>("n_edges");
+  if (ne < 1 || ne > 1024) r.fail("n_eta", "must lie in [1, 1024], got " + std::to_string(ne));
+  if (na < 2 || na > 4096) r.fail("n_albedo", "must lie in [2, 4096], got " + std::to_string(na));
+  if (nedges < 3 || nedges > 4096)
+    r.fail("n_edges", "must lie in [3, 4096], got " + std::to_string(nedges));
+  t.photons = r.get<std::uint64_t>("photons");
+  t.seed = r.get<std::uint64_t>("seed");
+  t.chunk_photons = r.get<std::uint64_t>("chunk_photons");
+  if (t.chunk_photons == 0 || t.photons % t.chunk_photons != 0 || t.photons / t.chunk_photons < 2)
+    r.fail("photons", "must be a multiple of chunk_photons, at least two chunks");
+  t.roulette_weight = r.get<double>("roulette_weight");
+  t.roulette_survival = r.get<double>("roulette_survival");
+  t.eta = r.get_array<double>("eta", ne);
+  t.albedo = r.get_array<double>("albedo", na);
+  t.r_edges = r.get_array<double>("r_edges", nedges);
+  check_axis(r, t.eta, "eta", kEtaMin, kEtaMax, false, false);
+  check_axis(r, t.albedo, "albedo", 0.0, 1.0, true, true);
+  if (t.r_edges.front() != 0.0) r.fail("r_edges", "the first edge must be 0");
+  check_axis(r, {t.r_edges.begin() + 1, t.r_edges.end()}, "r_edges", 0.0, 1e9, true, false);
+  t.total = r.get_array<double>("total", ne * na);
+  t.total_se = r.get_array<double>("total_se", ne * na);
+  t.flux = r.get_array<float>("flux", ne * na * (nedges - 1));
+  t.flux_se = r.get_array<float>("flux_se", ne * na * (nedges - 1));
+  for (std::size_t i = 0; i < t.total.size(); ++i)
+    if (!(t.total[i] >= 0.0 && t.total[i] <= 1.0) || !(t.total_se[i] >= 0.0))
+      r.fail("total", "node " + std::to_string(i) + " is outside [0, 1] or has a negative error");
+  for (std::size_t i = 0; i < t.flux.size(); ++i)
+    if (!(t.flux[i] >= 0.0) || !(t.flux_se[i] >= 0.0))
+      r.fail("flux", "entry " + std::to_string(i) + " is negative");
+  if (r.pos() + 8 != bytes.size())
+    r.fail("size", std::to_string(bytes.size() - 8 - r.pos()) + " unexpected bytes before the checksum");
+  return t;
+}
+
+const McTableData& shipped_mc_table() {
+  static const McTableData table = parse_mc_table(
+      std::string_view(sss_mc_table_begin,
+                       static_cast<std::size_t>(sss_mc_table_end - sss_mc_table_begin)),
+      "profiles/data/mc_table.bin (compiled in)");
+  return table;
+}
+
+}  // namespace sss::profiles
