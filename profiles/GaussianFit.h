@@ -29,18 +29,38 @@ struct FitTarget {
   std::vector<Rgb> R;
   std::vector<double> dr;  // quadrature weight of each sample for ∫ f(r) dr
   Rgb total_reflectance{};
+  // The fit's resolution: R holds the profile blurred by G(v, ·) with this variance (0:
+  // the profile itself). fit_gaussians fits the blurred samples and then takes v off every
+  // variance, so the kernel it returns, blurred by the same G(v, ·), matches the blurred
+  // profile to its relative_error (a blur of Gaussians adds variances).
+  double prefilter_variance_mm2 = 0.0;
 };
 
+// The default resolution of a fit, as a fraction of the profile's inner_radius() (one
+// reduced mean free path for the analytic models and mc-table): 0.25 for mc-table, 0 (the
+// profile itself) for the others. mc-table's R(r) has the true 1/r peak of single
+// scattering at the source, which no finite sum of Gaussians follows (the L2 error of r·R
+// is then dominated by radii below 0.02 mean free paths, which hold under 1% of the
+// energy); 0.25 mean free paths is where `sss-fit validate` starts comparing profiles
+// with Monte Carlo. docs/PROFILES.md has the measurements.
+double default_fit_resolution(Model model);
+
 // Samples `profile` on a log grid from 1e-3·inner_radius to support_radius. dr holds the
-// trapezoid weights in ln r times r (∫ f dr = ∫ f r d ln r). Throws std::invalid_argument
-// for samples < 2.
-FitTarget make_fit_target(const RgbProfile& profile, int samples = 96);
+// trapezoid weights in ln r times r (∫ f dr = ∫ f r d ln r). With a resolution ρ > 0
+// (a fraction of inner_radius(); < 0: default_fit_resolution(profile.model())) the samples
+// are of R blurred by a 2D Gaussian of standard deviation ρ·inner_radius (the radial
+// convolution ∫ R(s) (s/v) exp(-(r-s)²/2v) e^{-rs/v} I0(rs/v) ds, Gauss–Legendre on
+// panels). Throws std::invalid_argument for samples < 2.
+FitTarget make_fit_target(const RgbProfile& profile, int samples = 96,
+                          double resolution = -1.0);
 
 struct GaussianFit {
   std::vector<double> variances_mm2;  // ascending
   std::vector<Rgb> weights;           // one RGB weight per variance, each >= 0
   Rgb total_reflectance{};            // Σ_i weights[i] per channel (== the profile's)
-  Rgb relative_error{};               // e_c above, on the target's samples
+  Rgb relative_error{};               // e_c above, on the target's samples (blurred ones
+                                      // when the target has a prefilter variance)
+  double prefilter_variance_mm2 = 0.0;  // the target's (see FitTarget)
   int iterations = 0;                 // Levenberg–Marquardt iterations, all starts summed
 
   Rgb evaluate(double r_mm) const;

@@ -87,7 +87,11 @@ std::string kernel_to_json(const GaussianFit& fit, const KernelInfo& info,
   field("  ", "variances_mm2", json_list(fit.variances_mm2), false);
   field("  ", "weights", json_rgb_list(fit.weights, "  "), false);
   field("  ", "total_reflectance", json_rgb(fit.total_reflectance), false);
-  field("  ", "relative_error", json_rgb(fit.relative_error), separable == nullptr);
+  field("  ", "relative_error", json_rgb(fit.relative_error), false);
+  // The standard deviation (mm) of the blur under which relative_error compares the
+  // kernel with the profile (0: unblurred; FitTarget::prefilter_variance_mm2).
+  field("  ", "resolution_mm", number(std::sqrt(fit.prefilter_variance_mm2)),
+        separable == nullptr);
   if (separable) {
     out += "  \"separable\": {\n";
     field("    ", "offsets_mm", json_list(separable->offsets_mm), false);

@@ -37,7 +37,7 @@ Rgb edge_error(const profiles::RgbProfile& profile, const profiles::GaussianFit&
   return worst;
 }
 
-LogLogPlot make_plot(const FitArgs& a, const ResolvedMedium& rm,
+LogLogPlot make_plot(const FitArgs& a, const ResolvedMedium& rm, const profiles::RgbProfile& profile,
                      const profiles::FitTarget& target, const profiles::GaussianFit& fit,
                      const Rgb& edge, const profiles::ModelOptions& opt) {
   LogLogPlot plot;
@@ -59,7 +59,9 @@ LogLogPlot make_plot(const FitArgs& a, const ResolvedMedium& rm,
       // where r·R is still rising, and so spends no decades on nothing.
       if (r < 10.0 * target.r_mm.front()) continue;
       model.x.push_back(r);
-      model.y.push_back(r * target.R[i][c]);
+      // The profile itself (the target's samples are blurred when the fit has a
+      // resolution): the plot shows what the kernel leaves out below it.
+      model.y.push_back(r * profile.reflectance(r)[c]);
       fitted.x.push_back(r);
       fitted.y.push_back(r * fit.evaluate(r)[c]);
     }
@@ -107,6 +109,13 @@ LogLogPlot make_plot(const FitArgs& a, const ResolvedMedium& rm,
   std::snprintf(line, sizeof line, "%.4f %.4f %.4f", fit.total_reflectance[0],
                 fit.total_reflectance[1], fit.total_reflectance[2]);
   plot.notes.push_back(line);
+  if (fit.prefilter_variance_mm2 > 0.0) {
+    std::snprintf(line, sizeof line, "errors at resolution %.3g mm:",
+                  std::sqrt(fit.prefilter_variance_mm2));
+    plot.notes.push_back(line);
+    plot.notes.push_back("both blurred by a Gaussian of");
+    plot.notes.push_back("that standard deviation");
+  }
   plot.notes.push_back("solid: model, dashed: fit");
   return plot;
 }
@@ -129,7 +138,10 @@ int run_fit(const FitArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const profiles::RgbProfile profile(*model, rm.medium, opt);
   const auto t1 = std::chrono::steady_clock::now();
-  const auto target = profiles::make_fit_target(profile, a.samples);
+  if (!(a.resolution < 0.0) && !(a.resolution <= 10.0))
+    return usage_error("--resolution: must lie in [0, 10] mean free paths, got " +
+                       message_number(a.resolution));
+  const auto target = profiles::make_fit_target(profile, a.samples, a.resolution);
   const auto fit = profiles::fit_gaussians(target, {a.gaussians});
   const auto t2 = std::chrono::steady_clock::now();
 
@@ -148,7 +160,7 @@ int run_fit(const FitArgs& a) {
     if (!write_output(a.out, bytes)) return kExitRuntime;
   }
   if (!a.plot.empty() &&
-      !write_output(a.plot, render_svg(make_plot(a, rm, target, fit, edge, opt))))
+      !write_output(a.plot, render_svg(make_plot(a, rm, profile, target, fit, edge, opt))))
     return kExitRuntime;
 
   if (a.common.json) {
@@ -171,6 +183,10 @@ int run_fit(const FitArgs& a) {
               100 * fit.relative_error[2]);
   std::printf("edge-response error  %.3f%% %.3f%% %.3f%%   (max |M - M_fit| / total across a light edge)\n",
               100 * edge[0], 100 * edge[1], 100 * edge[2]);
+  if (fit.prefilter_variance_mm2 > 0.0)
+    std::printf("resolution           %.4g mm   (the L2 error compares model and fit both blurred by a\n"
+                "                     Gaussian of this standard deviation; --resolution 0: unblurred)\n",
+                std::sqrt(fit.prefilter_variance_mm2));
   std::printf("time: profile %.2f ms, sampling + fit %.2f ms\n", ms_profile, ms_fit);
   if (separable) {
     std::printf("\nseparable kernel, %d taps over +-%.4g mm (weights sum to 1 per channel):\n",

@@ -31,6 +31,7 @@ struct FitArgs {
   int gaussians = 6;
   int samples = 96;
   int taps = 0;  // > 0: also a separable kernel with this many taps
+  double resolution = -1.0;  // fit resolution in inner radii (mfp); < 0: the model's default
   std::string out, plot;
   bool plot_mc = false;
   std::string header_prefix = "sss_kernel";

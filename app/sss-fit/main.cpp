@@ -58,10 +58,27 @@ int main(int argc, char** argv) {
   fit->add_flag("--plot-mc", fa.plot_mc, "Add Monte Carlo points (with error bars) to the plot");
   fit->add_option("--taps", fa.taps, "Also export a separable 1D kernel with this many taps (odd)");
   fit->add_option("--prefix", fa.header_prefix, "Identifier prefix in the C header");
+  fit->add_option("--resolution", fa.resolution,
+                  "Fit R blurred by a Gaussian of this many reduced mean free paths (standard "
+                  "deviation; default 0.25 for mc-table, whose 1/r peak at the source no sum of "
+                  "Gaussians follows, 0 for the other models)");
 
   CommonArgs va;
   auto* validate = app.add_subcommand("validate", "Every model against Monte Carlo");
   add_common(*validate, va, false);
+
+  McTableArgs ta;
+  auto* mc_table = app.add_subcommand(
+      "mc-table",
+      "Regenerate the Monte Carlo profile table of model mc-table (profiles/data/mc_table.bin)");
+  mc_table->add_option("--out", ta.out, "Output file (written atomically)")->required();
+  mc_table->add_option("--photons", ta.photons,
+                       "Random walks shared by every node (default: the shipped budget; a "
+                       "multiple of 4096)")
+      ->check(CLI::Range(std::uint64_t{8192}, std::uint64_t{1} << 40));
+  mc_table->add_option("--seed", ta.seed, "Seed (default 1, the shipped table's)");
+  mc_table->add_option("--threads", ta.threads, "Threads (0: all cores); the file does not depend on it")
+      ->check(CLI::Range(0, 1024));
 
   if (const auto stop = parse_command_line(app, argc, argv, "sss-fit")) return *stop;
 
@@ -70,6 +87,7 @@ int main(int argc, char** argv) {
     if (profile->parsed()) return run_profile(pa);
     if (fit->parsed()) return run_fit(fa);
     if (validate->parsed()) return run_validate(va);
+    if (mc_table->parsed()) return run_mc_table(ta);
   } catch (const std::invalid_argument& e) {
     return usage_error(e.what());
   } catch (const std::exception& e) {

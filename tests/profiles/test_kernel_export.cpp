@@ -127,8 +127,9 @@ TEST(KernelExport, JsonParsesBackWithTheContractKeys) {
   const KernelInfo info{"better-dipole", "skin1 \"preset\"\\ with\nnewline"};
   for (const SeparableKernel* s : {static_cast<const SeparableKernel*>(nullptr), &sep}) {
     const nlohmann::json j = nlohmann::json::parse(kernel_to_json(fit, info, s));
-    std::set<std::string> expected = {"model",  "medium",          "variances_mm2",
-                                      "weights", "total_reflectance", "relative_error"};
+    std::set<std::string> expected = {"model",   "medium",           "variances_mm2",
+                                      "weights", "total_reflectance", "relative_error",
+                                      "resolution_mm"};
     if (s) expected.insert("separable");
     EXPECT_EQ(keys(j), expected);
     EXPECT_EQ(j["model"], info.model);
