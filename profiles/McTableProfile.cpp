@@ -153,43 +153,50 @@ std::size_t check_table(const McTableData& t) {
 // single scattering dominates a dark medium, R = α' R1 + O(α'²) with R1 the single-
 // scattering profile per unit albedo, so the relative error of the scaling is O(α'_0),
 // about 1%, and it vanishes at α'_0 (the extension is continuous there).
-McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) {
+namespace {
+
+struct Contribution {
+  std::size_t node;
+  double weight;
+  double alpha;  // the node's α'
+};
+struct Stencil {
+  std::array<Contribution, 16> node{};
+  std::size_t count = 0;
+};
+// Where one medium sits in the table: the α' looked up (clamped into the table), the
+// factor for α' below the first node, and the cubic and bilinear stencils.
+struct Lookup {
+  double alpha = 0.0, scale = 1.0;
+  Stencil cubic, linear;
+  double total = 0.0, total_se = 0.0;
+};
+
+Lookup lookup(const Coefficients& c, const McTableData& table) {
   if (auto e = c.validate()) throw std::invalid_argument(e->what());
-  const std::size_t bins_used = check_table(table);
-  sigma_tp_ = c.sigma_t_reduced();
   const double eta = c.eta;
-  double alpha = c.albedo_reduced();
+  Lookup l;
+  l.alpha = c.albedo_reduced();
   // Rounding: α' computed as σs'/σt' may land an ulp or so off a node; 1e-12 absorbs that.
   if (eta < table.eta.front() * (1.0 - 1e-12) || eta > table.eta.back() * (1.0 + 1e-12))
     throw std::invalid_argument("eta: mc-table covers eta in [" + str(table.eta.front()) + ", " +
                                 str(table.eta.back()) + "], got " + str(eta));
   const double alpha_max = table.albedo.back();
-  if (alpha > alpha_max + 1e-12)
+  if (l.alpha > alpha_max + 1e-12)
     throw std::invalid_argument("albedo: mc-table covers reduced albedo up to " + str(alpha_max) +
                                 " (sigma_a >= " + str(1.0 - alpha_max) +
-                                " sigma_t', absorption can be no weaker), got " + str(alpha));
-  alpha = std::min(alpha, alpha_max);
-  double scale = 1.0;
-  if (alpha < table.albedo.front()) {
-    scale = alpha / table.albedo.front();
-    alpha = table.albedo.front();
+                                " sigma_t', absorption can be no weaker), got " + str(l.alpha));
+  l.alpha = std::min(l.alpha, alpha_max);
+  if (l.alpha < table.albedo.front()) {
+    l.scale = l.alpha / table.albedo.front();
+    l.alpha = table.albedo.front();
   }
-
   // The axes as interpolated: η directly, α' as u = √(1 - α') (ascending: α' reversed).
   const std::size_t na = table.albedo.size();
   std::vector<double> us(na);
   for (std::size_t j = 0; j < na; ++j) us[j] = std::sqrt(1.0 - table.albedo[na - 1 - j]);
   const double eta_q = std::clamp(eta, table.eta.front(), table.eta.back());
-  const double u_q = std::sqrt(1.0 - alpha);
-  struct Contribution {
-    std::size_t node;
-    double weight;
-    double alpha;
-  };
-  struct Stencil {
-    std::array<Contribution, 16> node{};
-    std::size_t count = 0;
-  };
+  const double u_q = std::sqrt(1.0 - l.alpha);
   auto stencil = [&](const AxisWeights& we, const AxisWeights& wa) {
     Stencil st;
     for (int i = 0; i < we.count; ++i)
@@ -202,18 +209,39 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
       }
     return st;
   };
-  const Stencil cubic = stencil(axis_weights(table.eta, eta_q), axis_weights(us, u_q));
-  const Stencil linear = stencil(axis_weights(table.eta, eta_q, true), axis_weights(us, u_q, true));
-  total_ = total_se_ = 0.0;
-  for (std::size_t k = 0; k < cubic.count; ++k) {
-    const Contribution& n = cubic.node[k];
-    total_ += n.weight * table.total[n.node];
+  l.cubic = stencil(axis_weights(table.eta, eta_q), axis_weights(us, u_q));
+  l.linear = stencil(axis_weights(table.eta, eta_q, true), axis_weights(us, u_q, true));
+  for (std::size_t k = 0; k < l.cubic.count; ++k) {
+    const Contribution& n = l.cubic.node[k];
+    l.total += n.weight * table.total[n.node];
     // The nodes share their random walks (McTable.h), so their errors are correlated:
     // Σ|w| se bounds the interpolated error whatever the correlation.
-    total_se_ += std::fabs(n.weight) * table.total_se[n.node];
+    l.total_se += std::fabs(n.weight) * table.total_se[n.node];
   }
-  total_ = std::max(0.0, total_ * scale);
-  total_se_ *= scale;
+  l.total = std::max(0.0, l.total * l.scale);
+  l.total_se *= l.scale;
+  return l;
+}
+
+}  // namespace
+
+McTableTotal mc_table_total(const Coefficients& c, const McTableData& table) {
+  check_table(table);
+  const Lookup l = lookup(c, table);
+  return {l.total, l.total_se};
+}
+
+McTableProfile::McTableProfile(const Coefficients& c) : McTableProfile(c, shipped_mc_table()) {}
+
+McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) {
+  const std::size_t bins_used = check_table(table);
+  const Lookup l = lookup(c, table);
+  sigma_tp_ = c.sigma_t_reduced();
+  const double eta = c.eta, alpha = l.alpha, scale = l.scale;
+  const Stencil& cubic = l.cubic;
+  const Stencil& linear = l.linear;
+  total_ = l.total;
+  total_se_ = l.total_se;
 
   // Per annulus: ln(flux / α') with the cubic stencil, or, where one of its nodes is
   // unreliable, with the bilinear one (the two bracketing nodes per axis; at a node both
@@ -251,6 +279,41 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
   }
   for (std::size_t b = 0; b < bins; ++b)
     if (!enforced_[b]) target_flux_[b] = 0.0;
+  // Normalisation: the enforced fluxes are scaled so that they, with the other annuli and
+  // the exits past the last edge interpolated in value (with the total's cubic weights),
+  // add up to the interpolated total. At a node the factor is 1 (up to rounding: the
+  // walks' fluxes and beyond-edge exits add up to their total). Between nodes it removes
+  // the log interpolation's error in the flux sum: near α' = 1, where the far annuli hold
+  // much of the flux and ln(flux) bends in u (the diffusion prefactor (1 + σtr r)), the
+  // log-interpolated fluxes summed to up to 0.07% less than the interpolated total
+  // (measured at α' = 0.9998, η = 1), while the total's interpolation follows the exact
+  // η = 1 total 1 - H(1)√(1-α') within the table's noise. The price: a factor that is 1
+  // at the nodes and up to ~1.002 between the last two (α' > 0.9993), so there R near
+  // the source, which hardly changes with α', can dip by that much between the nodes.
+  // (Sharing the correction out only where value and log interpolation disagree was
+  // tried: value interpolation of the far annuli, whose fluxes differ by orders of
+  // magnitude across the stencil, is itself wrong there.)
+  {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < cubic.count; ++k) {
+      const std::size_t base = cubic.node[k].node * bins;
+      double node_sum = 0.0;
+      for (std::size_t b = 0; b < bins; ++b) {
+        node_sum += table.flux[base + b];
+        if (!enforced_[b]) sum += scale * cubic.node[k].weight * table.flux[base + b];
+      }
+      sum += scale * cubic.node[k].weight * (table.total[cubic.node[k].node] - node_sum);
+    }
+    double enforced_sum = 0.0;
+    for (std::size_t b = 0; b < bins; ++b) enforced_sum += target_flux_[b];
+    const double factor = (total_ - sum) / enforced_sum;
+    // A factor far from 1 would mean the unreliable annuli carry much of the flux: keep
+    // the fluxes as interpolated then (never seen with the shipped table).
+    if (factor > 0.99 && factor < 1.01) {
+      for (double& f : target_flux_) f *= factor;
+      flux_scale_ = factor;
+    }
+  }
 
   // Histopolation in x = ln r (optical units). q(x) = 2π r² R(r), so the flux through
   // an annulus [r_k, r_k+1) is ∫ q dx over [x_k, x_k+1]: the log-uniform annuli are equal
@@ -269,11 +332,17 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
   //    steepens the profile at finite r).
   // An unreliable annulus between enforced ones gets the value linear in x between its
   // enforced neighbours; one before the first enforced annulus the slope s.
-  // The node values are adjusted by the fixed point φ_k += ln(F_k / I_k), I_k being the
+  // The node values are adjusted by the fixed point φ_k += ω ln(F_k / I_k), I_k being the
   // spline's integral over bin k (6-point Gauss-Legendre per half bin: the integrand
-  // exp(cubic) is smooth on a half bin), until every enforced bin's integral matches its
-  // flux to 1e-12 (each step shrinks the mismatch by ~5: the neighbours' share of a bin's
-  // integral is small), at most 60 steps.
+  // exp(cubic) is smooth on a half bin; the tail's half bin in closed form), until every
+  // enforced bin's integral matches its flux to 1e-12, at most 60 steps. Convergence:
+  // linearised, ln I_k responds to the node values through the integral of the
+  // Catmull-Rom cardinal function over a bin, 0.839 for its own node, 0.094 for each
+  // neighbour, -0.013 for the next; the step's error factor 1 - ωλ then ranges over
+  // λ ∈ [0.625, 1] (alternating to smooth modes), 0.375 at worst for ω = 1 and 0.23 for
+  // ω = 1.2 (measured: ~0.19 per step, 20 steps from a flat start). s and κ are
+  // re-estimated during the first 4 steps only: fed back every step they slow the
+  // iteration (measured 0.6 per step), and 4 steps leave them within ~1% of their limit.
   const double x1 = std::log(table.r_edges[1]);
   const double dx = std::log(table.r_edges[2] / table.r_edges[1]);
   std::size_t K = 0, first = 0, second = 0, enforced_annuli = 0;
@@ -296,8 +365,9 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
   double s = 1.5, kappa = 0.0;
   const double kappa0 = transport_decay_rate(alpha);
   const double rK = std::exp(centre[K]);
-  auto fill = [&] {
-    s = std::clamp((phi[second] - phi[first]) / (centre[second] - centre[first]), 1.0, 2.0);
+  auto fill = [&](bool rates) {
+    if (rates)
+      s = std::clamp((phi[second] - phi[first]) / (centre[second] - centre[first]), 1.0, 2.0);
     std::size_t prev = bins;  // none yet
     for (std::size_t k = 0; k <= K; ++k) {
       if (enforced_[k]) {
@@ -317,7 +387,7 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
     while (!enforced_[p]) --p;  // `first` < K is enforced
     const double rp = std::exp(centre[p]);
     const double k2 = ((phi[p] - 2.0 * centre[p]) - (phi[K] - 2.0 * centre[K])) / (rK - rp);
-    kappa = std::max(kappa0, k2);
+    if (rates) kappa = std::max(kappa0, k2);
   };
   // Segment k (c_k..c_k+1) in t ∈ [0, 1]: φ = a0 + a1 t + a2 t² + a3 t³.
   std::vector<double> seg(4 * K);
@@ -360,8 +430,10 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
     if (k == 0) return std::exp(phi[0]) / s + seg_integral(0, 0.0);
     return seg_integral(k - 1, 0.5) + (k < K ? seg_integral(k, 0.0) : tail_integral());
   };
+  constexpr int kRateIterations = 4;
+  constexpr double kRelax = 1.2;
   for (iterations_ = 0; iterations_ < 60; ++iterations_) {
-    fill();
+    fill(iterations_ < kRateIterations);
     build_segments();
     residual_ = 0.0;
     std::vector<double> step(K + 1, 0.0);
@@ -371,7 +443,7 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
       residual_ = std::max(residual_, std::fabs(step[k]));
     }
     if (residual_ < 1e-12) break;
-    for (std::size_t k = 0; k <= K; ++k) phi[k] += step[k];
+    for (std::size_t k = 0; k <= K; ++k) phi[k] += kRelax * step[k];
   }
 
   // Evaluation constants in mm: u = ln r_mm = x - ln σt', ψ = ln R_mm = 2 ln σt' + φ - 2x - ln 2π.

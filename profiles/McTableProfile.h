@@ -36,8 +36,18 @@ namespace sss::profiles {
 // for α outside (0, 1).
 double transport_decay_rate(double albedo);
 
+// The interpolated total diffuse reflectance and its standard error alone (what
+// McTableProfile::total_reflectance() and total_stderr() return, without building R(r)):
+// for the artist mapping, which inverts the total. Same errors as the constructor.
+struct McTableTotal {
+  double total = 0.0, stderr_ = 0.0;
+};
+McTableTotal mc_table_total(const Coefficients& c, const McTableData& table);
+
 class McTableProfile final : public RadialProfile {
  public:
+  // With the shipped table (shipped_mc_table()).
+  explicit McTableProfile(const Coefficients& c);
   // Throws std::invalid_argument naming the field: "eta: mc-table covers eta in [A, B],
   // got X", "albedo: mc-table covers reduced albedo up to ... got X", or a coefficient
   // error of Coefficients::validate. `table` must outlive the profile only during the
@@ -67,6 +77,9 @@ class McTableProfile final : public RadialProfile {
   const std::vector<char>& enforced() const { return enforced_; }
   double tail_rate_mfp() const { return kappa_; }
   double tail_start_mfp() const { return tail_r_; }
+  // The factor that made the enforced fluxes add up to the interpolated total (1 at a
+  // node; McTableProfile.cpp). Every flux is scaled by it, so R(r) is too.
+  double flux_scale() const { return flux_scale_; }
   // Fixed-point iterations the histopolation took, and its largest remaining |ln(F/I)|.
   int iterations() const { return iterations_; }
   double residual() const { return residual_; }
@@ -81,6 +94,7 @@ class McTableProfile final : public RadialProfile {
   double total_ = 0.0, total_se_ = 0.0;
   double support_mfp_ = 0.0;
   double kappa_ = 0.0, tail_r_ = 0.0;
+  double flux_scale_ = 1.0;
   int iterations_ = 0;
   double residual_ = 0.0;
   std::vector<double> target_flux_;
