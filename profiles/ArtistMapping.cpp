@@ -1,5 +1,8 @@
 #include "profiles/ArtistMapping.h"
 
+#include "profiles/McTable.h"
+#include "profiles/McTableProfile.h"
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -16,6 +19,11 @@ Coefficients optical_units(double alpha_p, double eta, double g) {
 
 double total_at(Model model, double alpha_p, double eta, double g, double thickness_mfp,
                 const ModelOptions& opt) {
+  // mc-table: the interpolated tabulated total, exactly what its profile's
+  // total_reflectance() returns, without building R(r) (64 bisection steps per channel).
+  // The thickness is ignored as make_profile ignores it (semi-infinite).
+  if (model == Model::McTable)
+    return mc_table_total(optical_units(alpha_p, eta, g), shipped_mc_table()).total;
   return make_profile(model, optical_units(alpha_p, eta, g), thickness_mfp, opt)
       ->total_reflectance();
 }
@@ -36,7 +44,12 @@ std::variant<double, FieldError> invert_total_reflectance(Model model, double re
     return FieldError{"color", "must lie strictly between 0 and 1, got " + str(reflectance)};
   // Total reflectance rises monotonically with α'. Near α' = 1 it behaves like
   // 1 - c√(1-α'), so bisect in u = √(1-α'), where it is close to linear.
-  constexpr double u_min = 1e-5, u_max = 1.0 - 1e-9;  // α' ∈ [~0, 1 - 1e-10]
+  // α' ∈ [~0, 1 - 1e-10]; for mc-table up to the table's last α' node (0.9999), beyond
+  // which it has no data: a colour brighter than that node's total is refused below.
+  const double u_min = model == Model::McTable
+                           ? std::sqrt(1.0 - shipped_mc_table().albedo.back())
+                           : 1e-5;
+  constexpr double u_max = 1.0 - 1e-9;
   double hi_total = 0.0, lo_total = 0.0;
   try {
     hi_total = total_at(model, 1.0 - u_min * u_min, eta, g, thickness_mfp, opt);

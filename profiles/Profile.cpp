@@ -3,6 +3,7 @@
 #include "profiles/BetterDipole.h"
 #include "profiles/Burley.h"
 #include "profiles/ClassicalDipole.h"
+#include "profiles/McTableProfile.h"
 #include "profiles/MonteCarlo.h"
 #include "profiles/Multipole.h"
 #include "profiles/PhotonBeamDiffusion.h"
@@ -22,6 +23,7 @@ std::string_view model_name(Model m) {
     case Model::Burley: return "burley";
     case Model::Multipole: return "multipole";
     case Model::MonteCarlo: return "mc";
+    case Model::McTable: return "mc-table";
   }
   return "?";
 }
@@ -91,6 +93,13 @@ std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
             std::to_string(thickness_mm) + " mm");
       return std::make_unique<Multipole>(c, thickness_mm, opt.multipole_pairs);
     case Model::MonteCarlo: return make_monte_carlo(c, thickness_mm, opt);
+    // The table describes a semi-infinite medium. A finite thickness is ignored, as the
+    // dipole, better dipole, PBD and Burley ignore it, rather than refused: scenes carry a
+    // thickness for the slab model and for transmission (the viewer's builtin slab scene,
+    // glTF "thickness"), and a user who switches such a material to mc-table in the
+    // viewer's menu expects its reflectance profile, as with the other semi-infinite
+    // models, not an error. The multipole is the model for a slab's own profile.
+    case Model::McTable: return std::make_unique<McTableProfile>(c);
   }
   throw std::invalid_argument("unknown model");
 }

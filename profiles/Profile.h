@@ -17,13 +17,13 @@
 
 namespace sss::profiles {
 
-enum class Model { Dipole, BetterDipole, Pbd, Burley, Multipole, MonteCarlo };
+enum class Model { Dipole, BetterDipole, Pbd, Burley, Multipole, MonteCarlo, McTable };
 
-inline constexpr std::array<Model, 6> kAllModels = {Model::Dipole, Model::BetterDipole,
-                                                    Model::Pbd,    Model::Burley,
-                                                    Model::Multipole, Model::MonteCarlo};
+inline constexpr std::array<Model, 7> kAllModels = {
+    Model::Dipole,    Model::BetterDipole, Model::Pbd,    Model::Burley,
+    Model::Multipole, Model::MonteCarlo,   Model::McTable};
 
-// CLI names: dipole | better-dipole | pbd | burley | multipole | mc
+// CLI names: dipole | better-dipole | pbd | burley | multipole | mc | mc-table
 std::string_view model_name(Model m);
 std::optional<Model> parse_model(std::string_view name);
 // A comma-separated list of every model name, for messages.
@@ -63,7 +63,8 @@ class RadialProfile {
 };
 
 // Builds one channel's profile. `thickness_mm` matters only to Multipole (which requires
-// it finite) and MonteCarlo (slab or semi-infinite). Throws std::invalid_argument for a
+// it finite) and MonteCarlo (slab or semi-infinite); the semi-infinite models (dipole,
+// better-dipole, pbd, burley, mc-table) ignore it. Throws std::invalid_argument for a
 // model that cannot be built from these inputs (e.g. multipole without a thickness).
 std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
                                             double thickness_mm, const ModelOptions& opt);

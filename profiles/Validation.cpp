@@ -1,6 +1,7 @@
 #include "profiles/Validation.h"
 
 #include "profiles/Integrate.h"
+#include "profiles/McTable.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,8 +11,30 @@
 
 namespace sss::profiles {
 
+namespace {
+
+// Whether every channel lies inside the shipped mc-table (η on its axis, reduced albedo
+// up to its last node): outside it mc-table refuses the medium, and the default list
+// leaves it out rather than fail the whole comparison (asking for it by name still gives
+// that error).
+bool inside_mc_table(const Medium& m) {
+  const McTableData& t = shipped_mc_table();
+  for (int c = 0; c < 3; ++c) {
+    const Coefficients k = m.channel(c);
+    if (!(k.eta >= t.eta.front() && k.eta <= t.eta.back() &&
+          k.albedo_reduced() <= t.albedo.back()))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::vector<Model> default_validation_models(const Medium& m) {
   std::vector<Model> models = {Model::Dipole, Model::BetterDipole, Model::Pbd, Model::Burley};
+  // mc-table is semi-infinite like the four above (on a slab they are all compared with
+  // the slab's Monte Carlo, which is what a user choosing them for a slab gets).
+  if (inside_mc_table(m)) models.push_back(Model::McTable);
   if (m.is_slab()) models.push_back(Model::Multipole);
   return models;
 }

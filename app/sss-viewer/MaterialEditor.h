@@ -60,7 +60,7 @@ class MaterialEditor {
                  FitWorker::Compute compute = FitWorker::compute_default);
 
   // The models offered: all of profiles::kAllModels except mc (2^20 photons per channel
-  // take seconds per edit).
+  // take seconds per edit); mc-table, a lookup in the shipped Monte Carlo table, is offered.
   static const std::vector<profiles::Model>& models();
   // Indexes into profiles::presets() and models(); -1 when absent.
   static int preset_index(std::string_view name);

@@ -4,6 +4,8 @@
 #include "profiles/ArtistMapping.h"
 #include "profiles/Burley.h"
 #include "profiles/Fresnel.h"
+#include "profiles/McTable.h"
+#include "profiles/McTableProfile.h"
 #include "profiles/Medium.h"
 #include "profiles/PhotonBeamDiffusion.h"
 #include "profiles/Profile.h"
@@ -146,9 +148,13 @@ std::unique_ptr<RadialProfile> build(Model m, const Coefficients& c) {
 //  - PBD (PhotonBeamDiffusion.h): r is clamped to min_radius(), so R(0) = R(min_radius);
 //    r R(r) tends to a finite limit near 0 (single scattering ~ 1/r, multiple
 //    scattering stays finite);
-//  - Monte Carlo (TabulatedProfile): constant below the first node, R(0) = R(inner).
+//  - Monte Carlo (TabulatedProfile): constant below the first node, R(0) = R(inner);
+//  - mc-table (McTableProfile.h): r is clamped to min_radius() (1e-9 mean free paths), so
+//    R(0) = R(min_radius); only media inside the table (η on its axis, α' up to its last
+//    node) are built, the others are refused by name (test_mc_table_profile.cpp).
 TEST(ParameterRanges, NoProfileIsSingularAtZero) {
-  int checked = 0;
+  int checked = 0, mc_table_checked = 0;
+  const McTableData& table = shipped_mc_table();
   for (Model m : kAllModels) {
     for (double albedo : {1e-6, 0.01, 0.5, 0.99, 1.0 - 1e-6}) {
       for (double g : {-0.99, 0.0, 0.99}) {
@@ -158,6 +164,9 @@ TEST(ParameterRanges, NoProfileIsSingularAtZero) {
           // that with std::invalid_argument, a clear error, not a NaN).
           if (m == Model::MonteCarlo && (eta != 1.6 || g != 0.0 || albedo < 0.5)) continue;
           const Coefficients c{1.0 - albedo, albedo, g, eta};
+          if (m == Model::McTable &&
+              (eta > table.eta.back() || c.albedo_reduced() > table.albedo.back()))
+            continue;
           const auto p = build(m, c);
           const double inner = p->inner_radius();
           const double r0 = p->reflectance(0.0);
@@ -196,13 +205,22 @@ TEST(ParameterRanges, NoProfileIsSingularAtZero) {
             case Model::MonteCarlo:
               EXPECT_EQ(r0, p->reflectance(inner)) << at;
               break;
+            case Model::McTable: {
+              const auto& q = dynamic_cast<const McTableProfile&>(*p);
+              EXPECT_EQ(r0, q.reflectance(q.min_radius())) << at;
+              ++mc_table_checked;
+              break;
+            }
           }
           ++checked;
         }
       }
     }
   }
-  EXPECT_EQ(checked, 5 * (5 * 3 * 3) + 3);
+  // mc-table: every albedo but 1 - 1e-6 (α' above 0.9999), at every g and eta (the
+  // table covers eta in [1, 2.5]): 4 x 3 x 3.
+  EXPECT_EQ(mc_table_checked, 4 * 3 * 3);
+  EXPECT_EQ(checked, 5 * (5 * 3 * 3) + 3 + mc_table_checked);
 }
 
 // A dark medium gives Monte Carlo too few returning photons to tabulate: a clear error that
