@@ -107,8 +107,21 @@ std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
 RgbProfile::RgbProfile(Model model, const Medium& medium, const ModelOptions& opt)
     : model_(model) {
   if (auto e = medium.validate()) throw std::invalid_argument(e->what());
-  for (int c = 0; c < 3; ++c)
-    channels_[c] = make_profile(model, medium.channel(c), medium.thickness_mm, opt);
+  for (int c = 0; c < 3; ++c) {
+    try {
+      channels_[c] = make_profile(model, medium.channel(c), medium.thickness_mm, opt);
+    } catch (const std::invalid_argument& e) {
+      // mc-table's range errors name a field of one channel ("albedo: ...", "eta: ..."):
+      // say which channel ("albedo[R]: ...", as Medium::validate does).
+      const std::string what = e.what();
+      const auto colon = what.find(": ");
+      if (model != Model::McTable || colon == std::string::npos ||
+          what.find('[') < colon)
+        throw;
+      throw std::invalid_argument(what.substr(0, colon) + "[" + kChannelNames[c] + "]" +
+                                  what.substr(colon));
+    }
+  }
 }
 
 Rgb RgbProfile::reflectance(double r) const {
