@@ -134,18 +134,20 @@ std::string serialize_mc_table(const McTableData& t) {
 }
 
 McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
-  Reader r(bytes, name);
-  if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
-    r.fail("magic", "not an mc-table file (expected the 8 bytes SSSMCTBL)");
-  r.get<std::uint64_t>("magic");
-  if (bytes.size() < 8 + sizeof(std::uint64_t))
-    r.fail("checksum", "the file ends early");
   {
+    const Reader whole(bytes, name);
+    if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
+      whole.fail("magic", "not an mc-table file (expected the 8 bytes SSSMCTBL)");
+    if (bytes.size() < 8 + sizeof(std::uint64_t)) whole.fail("checksum", "the file ends early");
     std::uint64_t stored;
     std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
     if (stored != fnv1a(bytes.substr(0, bytes.size() - 8)))
-      r.fail("checksum", "the FNV-1a checksum of the contents does not match (file damaged)");
+      whole.fail("checksum", "the FNV-1a checksum of the contents does not match (file damaged)");
   }
+  // Everything but the checksum: a body that is short must not read the checksum as data.
+  const std::string_view body = bytes.substr(0, bytes.size() - 8);
+  Reader r(body, name);
+  r.get<std::uint64_t>("magic");
   const auto version = r.get<std::uint32_t>("version");
   if (version != kVersion)
     r.fail("version", "format " + std::to_string(version) + " is not supported (this build reads " +
@@ -180,10 +182,11 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
     if (!(t.total[i] >= 0.0 && t.total[i] <= 1.0) || !(t.total_se[i] >= 0.0))
       r.fail("total", "node " + std::to_string(i) + " is outside [0, 1] or has a negative error");
   for (std::size_t i = 0; i < t.flux.size(); ++i)
-    if (!(t.flux[i] >= 0.0) || !(t.flux_se[i] >= 0.0))
-      r.fail("flux", "entry " + std::to_string(i) + " is negative");
-  if (r.pos() + 8 != bytes.size())
-    r.fail("size", std::to_string(bytes.size() - 8 - r.pos()) + " unexpected bytes before the checksum");
+    if (!(t.flux[i] >= 0.0)) r.fail("flux", "entry " + std::to_string(i) + " is negative");
+  for (std::size_t i = 0; i < t.flux_se.size(); ++i)
+    if (!(t.flux_se[i] >= 0.0)) r.fail("flux_se", "entry " + std::to_string(i) + " is negative");
+  if (r.pos() != body.size())
+    r.fail("size", std::to_string(body.size() - r.pos()) + " unexpected bytes before the checksum");
   return t;
 }
 

@@ -208,7 +208,7 @@ McTableOptions shipped_mc_table_options() {
   // α': 64 nodes uniform in u = √(1 - α') from u(0.9999) = 0.01 to u(0.01): the total
   // reflectance is close to linear in u near α' = 1 (1 - H(1) u at η = 1) and the
   // diffusion tail decays as exp(-√3 u r), so equal steps in u are equal steps in shape.
-  // That puts 20 nodes above α' = 0.9 and 8 above 0.99.
+  // That puts 20 nodes above α' = 0.9 and 6 above 0.99.
   constexpr int kAlbedos = 64;
   const double u_lo = 0.01, u_hi = std::sqrt(1.0 - 0.01);
   for (int i = kAlbedos - 1; i >= 0; --i) {
