@@ -141,7 +141,8 @@ std::size_t check_table(const McTableData& t) {
 //
 // (α', η) interpolation. Nodes in α' are (nearly) uniform in u = √(1 - α'), and the
 // profile depends on u exponentially (the diffusion tail is ~exp(-√3 u r)), so ln(flux)
-// is close to linear in u and a cubic in u interpolates it far below the Monte Carlo noise;
+// is close to linear in u and a cubic in u interpolates it well (ln(flux/α'), see below;
+// where it does not, near α' = 1 in the far annuli, the normalisation to the total helps);
 // the total behaves like 1 - c u near α' = 1 (Rd ≈ 1 - c√(1-α'), e.g. the η = 1 exact
 // 1 - H(1)√(1-α') has H(1) ≈ 2.9), so it is interpolated in its own value.
 // An annulus is "unreliable" if its flux is 0 or its relative standard error is above

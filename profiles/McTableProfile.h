@@ -4,11 +4,12 @@
 //  1. Similarity and scale. The table is in optical units (σt' = 1, isotropic scattering
 //     at the reduced albedo α' = σs'/σt'), so R_mm(r) = σt'² R_t(σt' r) with σt', α' and η
 //     of the medium's Coefficients (a medium with g ≠ 0 is its reduced g = 0 medium).
-//  2. Interpolation across (α', η): per annulus, ln(flux) is interpolated with cubic
+//  2. Interpolation across (α', η): per annulus, ln(flux/α') is interpolated with cubic
 //     Hermite splines whose tangents are those of the parabola through three neighbours
-//     (Catmull-Rom on a non-uniform grid), in u = √(1 - α') and in η; the total diffuse
-//     reflectance likewise, but in its own value (not its log). Below the table's first
-//     α' the first slice is scaled by α'/α'_0 (single scattering dominates there).
+//     (Catmull-Rom on a non-uniform grid), in u = √(1 - α') and in η (bilinear where a
+//     node of the cubic stencil is too noisy); the total diffuse reflectance likewise, but
+//     in its own value, and the fluxes are then normalised to add up to it. Below the
+//     table's first α' the first slice is scaled by α'/α'_0 (single scattering dominates).
 //  3. Reconstruction in r: a smooth q(x) = 2π r² R(r) as a function of x = ln r whose
 //     integral over every reliable annulus reproduces that annulus' interpolated flux
 //     ("histopolation"), with a power law inside the first edge and an exponential tail at
