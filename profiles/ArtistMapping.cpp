@@ -44,11 +44,8 @@ std::variant<double, FieldError> invert_total_reflectance(Model model, double re
     return FieldError{"color", "must lie strictly between 0 and 1, got " + str(reflectance)};
   // Total reflectance rises monotonically with α'. Near α' = 1 it behaves like
   // 1 - c√(1-α'), so bisect in u = √(1-α'), where it is close to linear.
-  // α' ∈ [~0, 1 - 1e-10]; for mc-table up to the table's last α' node (0.9999), beyond
-  // which it has no data: a colour brighter than that node's total is refused below.
-  const double u_min = model == Model::McTable
-                           ? std::sqrt(1.0 - shipped_mc_table().albedo.back())
-                           : 1e-5;
+  // α' ∈ [~0, 1 - 1e-10] (mc-table extrapolates past its last node, McTableProfile.cpp).
+  constexpr double u_min = 1e-5;
   constexpr double u_max = 1.0 - 1e-9;
   double hi_total = 0.0, lo_total = 0.0;
   try {

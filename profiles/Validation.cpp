@@ -13,17 +13,15 @@ namespace sss::profiles {
 
 namespace {
 
-// Whether every channel lies inside the shipped mc-table (η on its axis, reduced albedo
-// up to its last node): outside it mc-table refuses the medium, and the default list
-// leaves it out rather than fail the whole comparison (asking for it by name still gives
-// that error).
+// Whether every channel's η lies on the shipped mc-table's axis (it covers the library's
+// whole range, [1, 2.5], and extrapolates in albedo past its last node): outside it
+// mc-table refuses the medium, and the default list leaves it out rather than fail the
+// whole comparison (asking for it by name still gives that error).
 bool inside_mc_table(const Medium& m) {
   const McTableData& t = shipped_mc_table();
   for (int c = 0; c < 3; ++c) {
     const Coefficients k = m.channel(c);
-    if (!(k.eta >= t.eta.front() && k.eta <= t.eta.back() &&
-          k.albedo_reduced() <= t.albedo.back()))
-      return false;
+    if (!(k.eta >= t.eta.front() && k.eta <= t.eta.back())) return false;
   }
   return true;
 }
