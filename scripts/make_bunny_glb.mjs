@@ -99,7 +99,7 @@ const gltf = {
   materials: [{
     name: 'skin1',
     pbrMetallicRoughness: { baseColorFactor: [1, 1, 1, 1], metallicFactor: 0, roughnessFactor: 0.45 },
-    extras: { sss: { preset: 'skin1', model: 'better-dipole', gaussians: 6 } },
+    extras: { sss: { preset: 'skin1', gaussians: 6 } },
   }],
   buffers: [{ byteLength: bin.length }],
   bufferViews,

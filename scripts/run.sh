@@ -19,8 +19,8 @@ build/app/sss-viewer/sss-viewer builtin:bunny --headless --out "$OUT/bunny.png" 
 build/app/sss-viewer/sss-viewer builtin:bunny --headless --out "$OUT/bunny.exr" "$@" >/dev/null
 echo "wrote $OUT/bunny.png (tonemapped) and $OUT/bunny.exr (linear radiance)"
 echo
-build/app/sss-fit/sss-fit fit --preset skin1 --model better-dipole --gaussians 6 --taps 17 \
+build/app/sss-fit/sss-fit fit --preset skin1 --gaussians 6 --taps 17 \
   --out "$OUT/skin1-kernel.json" --plot "$OUT/skin1-fit.svg" --plot-mc --photons 200000
-build/app/sss-fit/sss-fit fit --preset skin1 --model better-dipole --gaussians 6 --taps 17 \
+build/app/sss-fit/sss-fit fit --preset skin1 --gaussians 6 --taps 17 \
   --out "$OUT/skin1-kernel.h" --json >/dev/null
 echo "Open $OUT/bunny.png, and $OUT/skin1-fit.svg for r*R(r) of the model, the fit and Monte Carlo."

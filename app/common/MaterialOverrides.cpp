@@ -14,7 +14,9 @@ bool any_medium(const MediumArgs& m) {
 void add_material_override_options(CLI::App& app, MaterialOverrideArgs& args) {
   app.add_option("--model", args.model,
                  "Profile model for every SSS material: dipole | better-dipole | pbd | burley | "
-                 "multipole | mc");
+                 "multipole | mc | mc-table (default: each material's own; " +
+                     std::string(profiles::model_name(profiles::kDefaultModel)) +
+                     " where the scene names none)");
   app.add_option("--gaussians", args.gaussians, "Gaussians per fit, 1..8");
   app.add_option("--albedo", args.albedo,
                  "Where SSS materials apply their colour: post-scatter | pre-post (sqrt before "

@@ -9,7 +9,7 @@ namespace sss::app {
 
 int run_validate(const CommonArgs& a) {
   const auto opt = model_options(a);
-  auto resolved = resolve_medium(a.medium, profiles::Model::BetterDipole, opt);
+  auto resolved = resolve_medium(a.medium, profiles::kDefaultModel, opt);
   if (auto* e = std::get_if<FieldError>(&resolved)) return usage_error(*e);
   const auto& rm = std::get<ResolvedMedium>(resolved);
 

@@ -12,7 +12,7 @@ namespace sss::app {
 
 struct CommonArgs {
   MediumArgs medium;
-  std::string model = "better-dipole";
+  std::string model{profiles::model_name(profiles::kDefaultModel)};
   bool json = false;
   int pbd_samples = 0;  // 0: the library default
   std::uint64_t photons = 1u << 20;

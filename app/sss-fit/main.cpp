@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <string>
 
 using namespace sss::app;
 
@@ -16,7 +17,7 @@ void add_common(CLI::App& cmd, CommonArgs& a, bool with_model) {
   if (with_model)
     cmd.add_option("--model", a.model,
                    "dipole | better-dipole | pbd | burley | multipole | mc | mc-table "
-                   "(default better-dipole)");
+                   "(default " + std::string(sss::profiles::model_name(sss::profiles::kDefaultModel)) + ")");
   cmd.add_flag("--json", a.json, "Print one JSON document on stdout and nothing else");
   cmd.add_option("--pbd-samples", a.pbd_samples, "PBD depth samples per strategy (default 32)")
       ->check(CLI::Range(1, 4096));

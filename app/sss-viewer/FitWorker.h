@@ -33,7 +33,7 @@ using Clock = std::chrono::steady_clock;
 // under pbd inverts the model's total reflectance: tens of ms).
 struct SssSpec {
   scene::SssSource source;
-  profiles::Model model = profiles::Model::BetterDipole;
+  profiles::Model model = profiles::kDefaultModel;
   int gaussians = scene::kDefaultGaussians;
   double scale = 1.0;
   scene::AlbedoMode albedo_mode = scene::AlbedoMode::PostScatter;

@@ -61,7 +61,7 @@ std::string sanitized(std::string name) {
   return name.empty() ? std::string("material") : name;
 }
 
-// "skin (preset skin1, better-dipole, scale 1)": what the kernel files record.
+// "skin (preset skin1, mc-table, scale 1)": what the kernel files record.
 std::string describe(const scene::Material& m) {
   std::ostringstream out;
   out << "material '" << m.name << "': ";

@@ -45,7 +45,7 @@ struct SssMaterial {
   bool enabled = false;
   SssSource source = PresetSource{"skin1"};
   profiles::Medium medium{};  // resolved from `source` under `model`, mm^-1
-  profiles::Model model = profiles::Model::BetterDipole;
+  profiles::Model model = profiles::kDefaultModel;
   int gaussians = kDefaultGaussians;  // terms of the sum-of-Gaussians fit, 1..8
   // The object scatters as if it were `scale` times larger: a distance d (mm) on the
   // object is a distance d·scale in the medium. Equivalently σa and σs are multiplied
@@ -64,7 +64,7 @@ std::variant<profiles::Medium, FieldError> resolve_medium(const SssSource& sourc
 // An enabled SssMaterial with its medium resolved. Rejects gaussians outside [1, 8]
 // ("gaussians") and a scale that is not finite and > 0 ("scale").
 std::variant<SssMaterial, FieldError> make_sss_material(
-    SssSource source, profiles::Model model = profiles::Model::BetterDipole,
+    SssSource source, profiles::Model model = profiles::kDefaultModel,
     int gaussians = kDefaultGaussians, double scale = 1.0,
     AlbedoMode albedo_mode = AlbedoMode::PostScatter);
 

@@ -83,7 +83,7 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
     if (!o["enabled"].is_boolean()) return FieldError{"enabled", "must be true or false"};
     enabled = o["enabled"].get<bool>();
   }
-  profiles::Model model = profiles::Model::BetterDipole;
+  profiles::Model model = profiles::kDefaultModel;
   if (o.contains("model")) {
     const json& m = o["model"];
     const auto parsed = m.is_string() ? profiles::parse_model(m.get<std::string>()) : std::nullopt;

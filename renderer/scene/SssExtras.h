@@ -4,7 +4,7 @@
 //   {"sigma_a": [r,g,b], "sigma_s": [r,g,b], "g": g, "eta": e}      (mm^-1)
 //   {"color": [r,g,b], "mfp": [r,g,b]}                 (reduced mean free path, mm)
 // plus, with any of them: "model" (dipole | better-dipole | pbd | burley | multipole |
-// mc, default better-dipole), "gaussians" (1..8, default 6), "scale" (> 0, default 1),
+// mc | mc-table, default profiles::kDefaultModel = mc-table), "gaussians" (1..8, default 6), "scale" (> 0, default 1),
 // "albedo_mode" ("post-scatter" | "pre-post"), "thickness" (mm, default infinite),
 // "enabled" (default true). σa, σs, g, η, colour and mfp take a number (all channels)
 // or an array of 3. With a colour, g and η must be single numbers.

@@ -89,7 +89,7 @@ TEST(BuiltinScenes, Edge) {
   const Material& m = s.materials[0];
   EXPECT_TRUE(m.sss.enabled);
   EXPECT_EQ(std::get<PresetSource>(m.sss.source).name, "skin1");
-  EXPECT_EQ(m.sss.model, profiles::Model::BetterDipole);
+  EXPECT_EQ(m.sss.model, profiles::kDefaultModel);  // no "model" given
   EXPECT_EQ(m.sss.albedo_mode, AlbedoMode::PostScatter);
   EXPECT_EQ(m.specular, 0.0f);
   EXPECT_EQ(m.roughness, 1.0f);
@@ -158,6 +158,8 @@ TEST(BuiltinScenes, Bunny) {
   const Material& mat = s.materials[m.material];
   ASSERT_TRUE(mat.sss.enabled);
   EXPECT_EQ(std::get<PresetSource>(mat.sss.source).name, "skin1");
+  // bunny.glb names no model, so the default scene shows the default model (issue 8).
+  EXPECT_EQ(mat.sss.model, profiles::kDefaultModel);
   // At scale 0.25, so that light comes through the scan's 9-17 mm thick ears (bunny_scene()).
   EXPECT_EQ(mat.sss.scale, 0.25);
   // The key light comes from behind the bunny (+x side, it faces -x), a little from above.

@@ -99,7 +99,7 @@ void check_hierarchy_scene(const Scene& s) {
   EXPECT_EQ(m.sss.gaussians, 4);
   EXPECT_EQ(m.sss.scale, 2.0);
   EXPECT_EQ(m.sss.albedo_mode, AlbedoMode::PrePost);
-  EXPECT_EQ(m.sss.model, profiles::Model::BetterDipole);
+  EXPECT_EQ(m.sss.model, profiles::kDefaultModel);  // no "model" given
   EXPECT_NEAR(m.sss.effective_medium().sigma_a[0], 2 * m.sss.medium.sigma_a[0], 1e-15);
   EXPECT_DOUBLE_EQ(s.mm_per_unit, 1000.0);
   // The camera (child of the root scene list) sits at (0, 0, 10) looking down -z.

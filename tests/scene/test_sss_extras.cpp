@@ -29,7 +29,7 @@ FieldError parse_error(std::string_view text) {
 TEST(SssExtras, PresetWithDefaults) {
   const SssMaterial s = parse_ok(R"({"preset": "skin1"})");
   EXPECT_TRUE(s.enabled);
-  EXPECT_EQ(s.model, profiles::Model::BetterDipole);
+  EXPECT_EQ(s.model, profiles::kDefaultModel);  // no "model" given
   EXPECT_EQ(s.gaussians, 6);
   EXPECT_EQ(s.scale, 1.0);
   EXPECT_EQ(s.albedo_mode, AlbedoMode::PostScatter);

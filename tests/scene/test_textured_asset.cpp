@@ -120,7 +120,7 @@ TEST(TexturedAsset, MaterialIsTexturedAndScattersUnderneath) {
   ASSERT_TRUE(mat.sss.enabled);
   const auto* artist = std::get_if<ArtistSource>(&mat.sss.source);
   ASSERT_NE(artist, nullptr) << "extras.sss gives an artist colour and mean free path";
-  EXPECT_EQ(mat.sss.model, profiles::Model::BetterDipole);
+  EXPECT_EQ(mat.sss.model, profiles::kDefaultModel);  // no "model" given
   EXPECT_FALSE(mat.sss.medium.is_slab());
   // Cheap for the CPU reference: the SSS area is small next to mfp² × 1e5 (mm²).
   double area_mm2 = 0.0;
