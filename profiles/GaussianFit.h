@@ -36,8 +36,9 @@ struct FitTarget {
   double prefilter_variance_mm2 = 0.0;
 };
 
-// The default resolution of a fit, as a fraction of the profile's inner_radius() (one
-// reduced mean free path for the analytic models and mc-table): 0.25 for mc-table, 0 (the
+// The default resolution of a fit, as a fraction of the RgbProfile's inner_radius() (the
+// smallest over its channels; for mc-table and the dipoles one reduced mean free path
+// 1/σt', for Burley d = ℓ/s, for the tabulated mc its first node): 0.25 for mc-table, 0 (the
 // profile itself) for the others. mc-table's R(r) has the true 1/r peak of single
 // scattering at the source, which no finite sum of Gaussians follows (the L2 error of r·R
 // is then dominated by radii below 0.02 mean free paths, which hold under 1% of the

@@ -96,7 +96,11 @@ std::string kernel_to_c_header(const GaussianFit& fit, const KernelInfo& info,
   line({" * model:  ", comment_text(info.model)});
   line({" * medium: ", comment_text(info.medium)});
   line({" * fit error (R G B): ", err});
-  line({" *   relative L2 error of r*R(r) over r: ||r (R - fit)|| / ||r R||."});
+  line({" *   relative L2 error of r*R(r) over r: ||r (R - fit)|| / ||r R||", 
+        fit.prefilter_variance_mm2 > 0.0
+            ? ",\n *   with R and the fit both blurred by a 2D Gaussian of standard deviation\n"
+              " *   resolution_mm (the fit's resolution; detail below it is not fitted)."
+            : "."});
   line({" *"});
   line({" * Units: radii in mm, variances in mm^2, R(r) in mm^-2 (exitant flux per unit area"});
   line({" * per unit power entering the surface)."});
@@ -120,6 +124,7 @@ std::string kernel_to_c_header(const GaussianFit& fit, const KernelInfo& info,
   line({"static const float ", p, "_weights[", upper, "_COUNT][3] = ", c_rgb_list(fit.weights), ";"});
   line({"static const float ", p, "_total_reflectance[3] = ", c_rgb(fit.total_reflectance), ";"});
   line({"static const float ", p, "_relative_error[3] = ", c_rgb(fit.relative_error), ";"});
+  line({"static const float ", p, "_resolution_mm = ", c_float(std::sqrt(fit.prefilter_variance_mm2)), ";"});
   if (separable) {
     line({});
     line({"#define ", upper, "_SEPARABLE_TAPS ", std::to_string(separable->offsets_mm.size())});

@@ -12,15 +12,17 @@
 #include <string>
 
 extern "C" {
-// Defined by McTableEmbed.cpp (.incbin of profiles/data/mc_table.bin).
+// Defined by McTableEmbed.cpp (.incbin of profiles/data/mc_table.bin): the bytes, and
+// their count computed by the assembler (no pointer subtraction across two objects).
 extern const char sss_mc_table_begin[];
-extern const char sss_mc_table_end[];
+extern const unsigned long long sss_mc_table_size;
 }
 
 namespace sss::profiles {
 
 namespace {
 
+static_assert(sizeof(std::size_t) >= 8, "table sizes are computed in size_t");
 static_assert(std::endian::native == std::endian::little,
               "the mc-table file is little-endian; add byte swapping for this target");
 
@@ -163,17 +165,23 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
   t.photons = r.get<std::uint64_t>("photons");
   t.seed = r.get<std::uint64_t>("seed");
   t.chunk_photons = r.get<std::uint64_t>("chunk_photons");
-  if (t.chunk_photons == 0 || t.photons % t.chunk_photons != 0 || t.photons / t.chunk_photons < 2)
+  if (t.chunk_photons == 0) r.fail("chunk_photons", "must be > 0");
+  if (t.photons % t.chunk_photons != 0 || t.photons / t.chunk_photons < 2)
     r.fail("photons", "must be a multiple of chunk_photons, at least two chunks");
   t.roulette_weight = r.get<double>("roulette_weight");
   t.roulette_survival = r.get<double>("roulette_survival");
+  if (!(t.roulette_weight > 0.0 && t.roulette_weight < 1.0))
+    r.fail("roulette_weight", "must lie in (0, 1)");
+  if (!(t.roulette_survival > 0.0 && t.roulette_survival < 1.0))
+    r.fail("roulette_survival", "must lie in (0, 1)");
   t.eta = r.get_array<double>("eta", ne);
   t.albedo = r.get_array<double>("albedo", na);
   t.r_edges = r.get_array<double>("r_edges", nedges);
   check_axis(r, t.eta, "eta", kEtaMin, kEtaMax, false, false);
   check_axis(r, t.albedo, "albedo", 0.0, 1.0, true, true);
   if (t.r_edges.front() != 0.0) r.fail("r_edges", "the first edge must be 0");
-  check_axis(r, {t.r_edges.begin() + 1, t.r_edges.end()}, "r_edges", 0.0, 1e9, true, false);
+  check_axis(r, {t.r_edges.begin() + 1, t.r_edges.end()}, "r_edges", 0.0, 1e15,
+             true, false);
   t.total = r.get_array<double>("total", ne * na);
   t.total_se = r.get_array<double>("total_se", ne * na);
   t.flux = r.get_array<float>("flux", ne * na * (nedges - 1));
@@ -192,8 +200,7 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
 
 const McTableData& shipped_mc_table() {
   static const McTableData table = parse_mc_table(
-      std::string_view(sss_mc_table_begin,
-                       static_cast<std::size_t>(sss_mc_table_end - sss_mc_table_begin)),
+      std::string_view(sss_mc_table_begin, static_cast<std::size_t>(sss_mc_table_size)),
       "profiles/data/mc_table.bin (compiled in)");
   return table;
 }

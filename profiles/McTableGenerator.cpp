@@ -75,11 +75,17 @@ void check_ascending(const std::vector<double>& v, const char* field, double lo,
 
 void validate(const McTableOptions& o) {
   check_ascending(o.eta, "eta", kEtaMin, kEtaMax, false, false);
-  check_ascending(o.albedo, "albedo", 0.0, 1.0, true, true);
+  // Up to 1 - 1e-6: the walks end by roulette once α'max^n is small, after ~ln(20)/(1-α'max)
+  // scattering events (3e6 at this bound; at 1 - 1e-12 a walk would practically never end).
+  check_ascending(o.albedo, "albedo", 0.0, 1.0 - 1e-6, true, false);
   if (o.r_edges.size() < 2) fail("r_edges", "needs at least two edges (one annulus)");
   if (o.r_edges.front() != 0.0) fail("r_edges", "the first edge must be 0");
   check_ascending({o.r_edges.begin() + 1, o.r_edges.end()}, "r_edges", 0.0,
-                  std::numeric_limits<double>::max(), true, false);
+                  1e15, true, false);
+  // What the file format can hold (parse_mc_table's limits).
+  if (o.eta.size() > 1024) fail("eta", "at most 1024 values");
+  if (o.albedo.size() > 4096) fail("albedo", "at most 4096 values");
+  if (o.r_edges.size() > 4096) fail("r_edges", "at most 4096 edges");
   if (o.chunk_photons == 0) fail("chunk_photons", "must be > 0");
   if (o.photons == 0 || o.photons % o.chunk_photons != 0 || o.photons / o.chunk_photons < 2)
     fail("photons", "must be a multiple of chunk_photons (" + std::to_string(o.chunk_photons) +

@@ -201,13 +201,13 @@ Lookup lookup(const Coefficients& c, const McTableData& table) {
     throw std::invalid_argument("eta: mc-table covers eta in [" + str(table.eta.front()) + ", " +
                                 str(table.eta.back()) + "], got " + str(eta));
   // Above the table's last α' (0.9999; Coefficients::validate keeps α' below 1 - 1e-12)
-  // the axis extrapolates linearly in u = √(1 - α') from the last two nodes (u = 0.01 and
-  // 0.0256): in the diffusion limit the total is 1 - c u + O(u²) (at η = 1 exactly
-  // 1 - H(1) u, with H(1) varying by 0.3% over that range) and ln flux is linear in u
-  // through the tail factor exp(-√3 u r). At η = 1 this extrapolated total is within
-  // 0.05% of the exact one at α' = 0.99997 (the preset cream) and within 0.02% as α' -> 1
-  // (tests/profiles/test_mc_table_profile.cpp); the far profile past the table's last
-  // edge (1024 mfp) is the exponential tail.
+  // axis_weights extrapolates in u = √(1 - α') with the parabola through the last three
+  // nodes (u = 0.01, 0.0256, 0.0413): in the diffusion limit the total is 1 - a u + b u²
+  // + O(u³) and ln flux is smooth in u through the tail factor exp(-√3 u r). At η = 1
+  // the extrapolated total is within 2.7e-5 relative of the exact 1 - H(1)u at α' =
+  // 0.99997 (the preset cream's red) and 5.3e-5 as α' -> 1 - 1e-11
+  // (ShippedExtrapolationPastTheLastAlbedoFollowsTheExactTotal); the far profile past the
+  // table's last edge (1024 mfp) is the exponential tail.
   l.alpha = std::min(l.alpha, 1.0 - 1e-12);
   if (l.alpha < table.albedo.front()) {
     l.scale = l.alpha / table.albedo.front();
@@ -264,6 +264,17 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
   const Stencil& linear = l.linear;
   total_ = l.total;
   total_se_ = l.total_se;
+  r_min_mm_ = kMinRadiusMfp / sigma_tp_;
+  // A medium that does not scatter (σs' = 0: α' = 0) reflects nothing: R ≡ 0, as the
+  // diffusion models give. (Without this, ln(0) flux made every R(r) NaN.)
+  if (!(scale > 0.0)) {
+    zero_ = true;
+    total_ = total_se_ = 0.0;
+    support_mfp_ = 1.0;
+    target_flux_.assign(table.bins(), 0.0);
+    enforced_.assign(table.bins(), 0);
+    return;
+  }
 
   // Per annulus: ln(flux / α') with the cubic stencil, or, where one of its nodes is
   // unreliable, with the bilinear one (the two bracketing nodes per axis; at a node both
@@ -462,10 +473,20 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
     for (std::size_t k = 0; k <= K; ++k) {
       if (!enforced_[k]) continue;
       step[k] = std::log(target_flux_[k] / bin_integral(k));
-      residual_ = std::max(residual_, std::fabs(step[k]));
+      // Written so that a NaN step raises the residual (std::max would drop it).
+      if (!(std::fabs(step[k]) <= residual_)) residual_ = std::fabs(step[k]);
     }
+    if (!std::isfinite(residual_))
+      throw std::runtime_error("mc-table: the R(r) reconstruction diverged at albedo " +
+                               str(c.albedo_reduced()) + ", eta " + str(eta));
     if (residual_ < 1e-12) break;
     for (std::size_t k = 0; k <= K; ++k) phi[k] += kRelax * step[k];
+  }
+  // Not converged in 60 iterations (never seen): the segments must still describe the
+  // φ the evaluation constants below are taken from.
+  if (!(residual_ < 1e-12)) {
+    fill(false);
+    build_segments();
   }
 
   // Evaluation constants in mm: u = ln r_mm = x - ln σt', ψ = ln R_mm = 2 ln σt' + φ - 2x - ln 2π.
@@ -517,7 +538,8 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
 }
 
 double McTableProfile::reflectance(double r) const {
-  r = std::max(r, r_min_mm_);
+  if (zero_) return 0.0;
+  if (!(r >= r_min_mm_)) r = r_min_mm_;  // also a NaN r: no undefined index below
   if (r >= r_tail_) return tail_a_ * std::exp(-tail_k_ * (r - r_tail_));
   const double u = std::log(r);
   if (u < u_lo_) return std::exp(lo_a_ + lo_b_ * (u - u_lo_));

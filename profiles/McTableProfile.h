@@ -9,7 +9,9 @@
 //     (Catmull-Rom on a non-uniform grid), in u = √(1 - α') and in η (bilinear where a
 //     node of the cubic stencil is too noisy); the total diffuse reflectance likewise, but
 //     in its own value, and the fluxes are then normalised to add up to it. Below the
-//     table's first α' the first slice is scaled by α'/α'_0 (single scattering dominates).
+//     table's first α' the first slice is scaled by α'/α'_0 (single scattering dominates);
+//     above its last (0.9999) the α' axis extrapolates with the parabola through the last
+//     three nodes. A medium that does not scatter (α' = 0) has R ≡ 0.
 //  3. Reconstruction in r: a smooth q(x) = 2π r² R(r) as a function of x = ln r whose
 //     integral over every reliable annulus reproduces that annulus' interpolated flux
 //     ("histopolation"), with a power law inside the first edge and an exponential tail at
@@ -50,8 +52,7 @@ class McTableProfile final : public RadialProfile {
   // With the shipped table (shipped_mc_table()).
   explicit McTableProfile(const Coefficients& c);
   // Throws std::invalid_argument naming the field: "eta: mc-table covers eta in [A, B],
-  // got X", "albedo: mc-table covers reduced albedo up to ... got X", or a coefficient
-  // error of Coefficients::validate. `table` must outlive the profile only during the
+  // got X", or a coefficient error of Coefficients::validate. `table` must outlive the profile only during the
   // constructor (nothing refers to it afterwards).
   McTableProfile(const Coefficients& c, const McTableData& table);
 
@@ -96,6 +97,7 @@ class McTableProfile final : public RadialProfile {
   double support_mfp_ = 0.0;
   double kappa_ = 0.0, tail_r_ = 0.0;
   double flux_scale_ = 1.0;
+  bool zero_ = false;  // α' = 0: R ≡ 0
   int iterations_ = 0;
   double residual_ = 0.0;
   std::vector<double> target_flux_;

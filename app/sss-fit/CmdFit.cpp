@@ -139,7 +139,7 @@ int run_fit(const FitArgs& a) {
   const profiles::RgbProfile profile(*model, rm.medium, opt);
   const auto t1 = std::chrono::steady_clock::now();
   if (!(a.resolution < 0.0) && !(a.resolution <= 10.0))
-    return usage_error("--resolution: must lie in [0, 10] mean free paths, got " +
+    return usage_error("--resolution: must lie in [0, 10] inner radii (reduced mean free paths for mc-table and the dipoles), got " +
                        message_number(a.resolution));
   const auto target = profiles::make_fit_target(profile, a.samples, a.resolution);
   const auto fit = profiles::fit_gaussians(target, {a.gaussians});

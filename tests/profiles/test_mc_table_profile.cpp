@@ -223,6 +223,12 @@ TEST(McTableProfile, OutOfRangeMediaAreRefusedByName) {
   };
   EXPECT_EQ(message(optical(0.5, 1.5)), "eta: mc-table covers eta in [1, 1.4], got 1.5");
   EXPECT_EQ(message(optical(0.995, 1.2)), "accepted");
+  // A medium that does not scatter reflects nothing (it was NaN before: ln of a zero flux).
+  {
+    const McTableProfile dark({1.0, 0.0, 0.0, 1.3}, t);
+    EXPECT_EQ(dark.total_reflectance(), 0.0);
+    for (double r : {0.0, 1e-3, 1.0, 10.0, std::nan("")}) EXPECT_EQ(dark.reflectance(r), 0.0) << r;
+  }
   EXPECT_EQ(message(optical(1.0 - 1e-11, 1.2)), "accepted");
   // Coefficients::validate still comes first (a NaN is named as itself).
   EXPECT_EQ(message({std::nan(""), 1.0, 0.0, 1.2}).rfind("sigma_a", 0), 0u);
