@@ -36,18 +36,15 @@
 
 #include "profiles/Fresnel.h"
 #include "profiles/Medium.h"
+#include "profiles/OrderedChunks.h"
 #include "profiles/Random.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <map>
-#include <mutex>
+#include <memory>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 namespace sss::profiles {
 
@@ -243,65 +240,28 @@ McTableData generate_mc_table(const McTableOptions& opt) {
   validate(opt);
   const std::size_t ne = opt.eta.size(), na = opt.albedo.size(), nb = opt.r_edges.size() - 1;
   const std::uint64_t chunks = opt.photons / opt.chunk_photons;
-  std::uint64_t threads = opt.threads > 0 ? static_cast<std::uint64_t>(opt.threads)
-                                          : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min(threads, chunks);
-
-  // Running sums over chunks of the chunk sums and of their squares, in chunk order.
+  // Running sums over chunks of the chunk sums and of their squares, in chunk order
+  // (OrderedChunks.h: the result does not depend on the thread count).
   std::vector<double> flux_sum(nb * ne * na, 0.0), flux_sq(nb * ne * na, 0.0);
   std::vector<double> total_sum(ne * na, 0.0), total_sq(ne * na, 0.0);
-  std::map<std::uint64_t, Chunk> pending;
-  std::vector<Chunk> spare;  // finished buffers, reused
-  std::uint64_t next_to_add = 0;
-  std::atomic<std::uint64_t> next_chunk{0};
-  std::atomic<bool> stop{false};
-  std::exception_ptr error;
-  std::mutex mutex;
-
   auto add = [](std::vector<double>& sum, std::vector<double>& sq, const std::vector<double>& v) {
     for (std::size_t i = 0; i < v.size(); ++i) {
       sum[i] += v[i];
       sq[i] += v[i] * v[i];
     }
   };
-  auto worker = [&] {
-    try {
-      TableWalker walker(opt);
-      for (;;) {
-        const std::uint64_t k = next_chunk.fetch_add(1);
-        if (k >= chunks || stop.load()) return;
-        Chunk c;
-        {
-          std::lock_guard lock(mutex);
-          if (!spare.empty()) {
-            c = std::move(spare.back());
-            spare.pop_back();
-          }
-        }
-        walker.run(k, c);
-        std::lock_guard lock(mutex);
-        pending.emplace(k, std::move(c));
-        for (auto it = pending.find(next_to_add); it != pending.end();
-             it = pending.find(next_to_add)) {
-          add(flux_sum, flux_sq, it->second.flux);
-          add(total_sum, total_sq, it->second.total);
-          spare.push_back(std::move(it->second));
-          pending.erase(it);
-          ++next_to_add;
-          if (opt.progress) opt.progress(static_cast<double>(next_to_add) / chunks);
-        }
-      }
-    } catch (...) {
-      std::lock_guard lock(mutex);
-      if (!error) error = std::current_exception();
-      stop = true;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::uint64_t t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  detail::run_ordered_chunks<Chunk>(
+      chunks, opt.threads,
+      [&] {
+        return [walker = std::make_shared<TableWalker>(opt)](std::uint64_t k, Chunk& c) {
+          walker->run(k, c);
+        };
+      },
+      [&](const Chunk& c, std::uint64_t done) {
+        add(flux_sum, flux_sq, c.flux);
+        add(total_sum, total_sq, c.total);
+        if (opt.progress) opt.progress(static_cast<double>(done) / chunks);
+      });
 
   McTableData t;
   t.photons = opt.photons;

@@ -1,19 +1,16 @@
 #include "profiles/MonteCarlo.h"
 
 #include "profiles/MonteCarloWalker.h"
+#include "profiles/OrderedChunks.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <map>
-#include <mutex>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 namespace sss::profiles {
 
@@ -67,51 +64,23 @@ MonteCarloResult run_monte_carlo(const Coefficients& c, const MonteCarloOptions&
   const std::size_t nb = opt.bin_edges_mm.empty() ? 0 : opt.bin_edges_mm.size() - 1;
   const std::uint64_t chunks =
       (opt.photons + kMonteCarloChunkPhotons - 1) / kMonteCarloChunkPhotons;
-  std::uint64_t threads = opt.threads > 0 ? static_cast<std::uint64_t>(opt.threads)
-                                          : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min(threads, chunks);
-
-  // Chunks are claimed in any order but summed strictly in chunk order: a finished chunk
-  // waits in `pending` until every earlier one has been added.
+  // Chunk sums are added strictly in chunk order (OrderedChunks.h): the result does not
+  // depend on the thread count.
   ChunkSums total(2 * nb);
-  std::map<std::uint64_t, ChunkSums> pending;
-  std::uint64_t next_to_add = 0;
-  std::atomic<std::uint64_t> next_chunk{0};
-  std::atomic<bool> stop{false};
-  std::exception_ptr error;
-  std::mutex mutex;
-
-  auto worker = [&] {
-    try {
-      Walker walker(c, opt);
-      for (;;) {
-        const std::uint64_t k = next_chunk.fetch_add(1);
-        if (k >= chunks || stop.load()) return;
-        const std::uint64_t count =
-            std::min(kMonteCarloChunkPhotons, opt.photons - k * kMonteCarloChunkPhotons);
-        ChunkSums sums(2 * nb);
-        walker.run_chunk(k, count, sums);
-        std::lock_guard lock(mutex);
-        pending.emplace(k, std::move(sums));
-        for (auto it = pending.find(next_to_add); it != pending.end();
-             it = pending.find(next_to_add)) {
-          total.add(it->second);
-          pending.erase(it);
-          ++next_to_add;
-          if (opt.progress) opt.progress(static_cast<double>(next_to_add) / chunks);
-        }
-      }
-    } catch (...) {
-      std::lock_guard lock(mutex);
-      if (!error) error = std::current_exception();
-      stop = true;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::uint64_t t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  detail::run_ordered_chunks<ChunkSums>(
+      chunks, opt.threads,
+      [&] {
+        return [&, walker = std::make_shared<Walker>(c, opt)](std::uint64_t k, ChunkSums& sums) {
+          const std::uint64_t count =
+              std::min(kMonteCarloChunkPhotons, opt.photons - k * kMonteCarloChunkPhotons);
+          sums = ChunkSums(2 * nb);
+          walker->run_chunk(k, count, sums);
+        };
+      },
+      [&](const ChunkSums& sums, std::uint64_t done) {
+        total.add(sums);
+        if (opt.progress) opt.progress(static_cast<double>(done) / chunks);
+      });
 
   MonteCarloResult r;
   r.bin_edges_mm = opt.bin_edges_mm;

@@ -21,7 +21,7 @@ struct ChunkSums {
   std::uint64_t events = 0;
   std::uint64_t truncated = 0;
 
-  explicit ChunkSums(std::size_t slots) : sum(slots, 0.0), sum_sq(slots, 0.0) {}
+  explicit ChunkSums(std::size_t slots = 0) : sum(slots, 0.0), sum_sq(slots, 0.0) {}
   void add(const ChunkSums& o) {
     for (std::size_t i = 0; i < sum.size(); ++i) {
       sum[i] += o.sum[i];

@@ -27,6 +27,8 @@
 #include "profiles/Profile.h"
 #include "profiles/Validation.h"
 
+#include "McTableTestSupport.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -46,33 +48,17 @@
 namespace sss::profiles {
 namespace {
 
+using test::annuli_covering;
+using test::chi2_over_k_quantile;
+using test::EdgeRange;
+using test::z_family;
+using test::z_one_sided;
+
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kFamilyP = 1e-4;  // family-wise false-failure probability of each test
 
 // ---------------------------------------------------------------------------------------
 // Statistics.
-
-// The z with one-sided tail probability p: P(Z > z) = erfc(z/√2)/2 = p (bisection).
-double z_one_sided(double p) {
-  double lo = 0.0, hi = 40.0;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (0.5 * std::erfc(mid / std::numbers::sqrt2) > p ? lo : hi) = mid;
-  }
-  return hi;
-}
-
-// Two-sided, Bonferroni over n checks (valid however the checks are correlated).
-double z_family(double p, std::size_t n) { return z_one_sided(p / (2.0 * static_cast<double>(n))); }
-
-// The upper p-quantile of χ²_k / k by the Wilson–Hilferty cube-root normal approximation
-// (Wilson & Hilferty 1931, PNAS 17:684): (1 - 2/(9k) + z_p √(2/(9k)))³, within ~1% above
-// the exact quantile for k >= 10 and p >= 1e-5 (test_mc_table_data.cpp checks two values
-// against the inverted regularized gamma function), far less than the margins used.
-double chi2_over_k_quantile(double k, double p) {
-  const double a = 2.0 / (9.0 * k), z = z_one_sided(p);
-  return std::pow(1.0 - a + z * std::sqrt(a), 3);
-}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -140,19 +126,6 @@ double interpolated_flux_rel_se(const McTableData& t, const Coefficients& c, std
     rel[n] = t.flux[s] > 0.0 ? t.flux_se[s] / t.flux[s] : 1.0;
   }
   return stencil_weighted(c, rel);
-}
-
-// The table's annuli covering r in [lo, hi] mfp: from the last edge <= lo to the first
-// edge >= hi (for [0.25, 8] with 16 annuli per decade: 0.237 .. 8.66, 25 annuli).
-struct EdgeRange {
-  std::size_t first = 0, last = 0;  // edge indices; annuli first .. last - 1
-};
-EdgeRange annuli_covering(const std::vector<double>& edges, double lo, double hi) {
-  EdgeRange e;
-  while (e.first + 1 < edges.size() && edges[e.first + 1] <= lo) ++e.first;
-  e.last = e.first;
-  while (e.last + 1 < edges.size() && edges[e.last] < hi) ++e.last;
-  return e;
 }
 
 // The model's flux through [r0, r1] (optical units, so mm are mean free paths).
