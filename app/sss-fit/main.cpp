@@ -61,9 +61,10 @@ int main(int argc, char** argv) {
   fit->add_option("--taps", fa.taps, "Also export a separable 1D kernel with this many taps (odd)");
   fit->add_option("--prefix", fa.header_prefix, "Identifier prefix in the C header");
   fit->add_option("--resolution", fa.resolution,
-                  "Fit R blurred by a Gaussian of this many reduced mean free paths (standard "
-                  "deviation; default 0.25 for mc-table, whose 1/r peak at the source no sum of "
-                  "Gaussians follows, 0 for the other models)");
+                  "Fit R blurred by a Gaussian whose standard deviation is this many inner radii "
+                  "(reduced mean free paths for mc-table and the dipoles; default 0.25 for "
+                  "mc-table, whose 1/r peak at the source no sum of Gaussians follows, 0 for the "
+                  "other models)");
 
   CommonArgs va;
   auto* validate = app.add_subcommand("validate", "Every model against Monte Carlo");
