@@ -493,7 +493,6 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
   const double ls = std::log(sigma_tp_);
   const double c2 = 2.0 * ls - std::log(2.0 * std::numbers::pi);
   u_lo_ = centre[0] - ls;
-  u_hi_ = centre[K] - ls;
   inv_du_ = 1.0 / dx;
   lo_a_ = c2 + phi[0] - 2.0 * centre[0];
   lo_b_ = s - 2.0;

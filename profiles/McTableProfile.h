@@ -105,11 +105,11 @@ class McTableProfile final : public RadialProfile {
 
   // Evaluation in mm, everything folded in: ψ(u) = ln R_mm at u = ln r_mm.
   // Below u_lo_:   ψ = lo_a_ + lo_b_ (u - u_lo_)           (power law inside the first node)
-  // [u_lo_, u_hi_): piece j = floor((u - u_lo_) * inv_du_), t = (u - u_lo_) * inv_du_ - j,
+  // u >= u_lo_:    piece j = floor((u - u_lo_) * inv_du_), t = (u - u_lo_) * inv_du_ - j,
   //                ψ = c0 + t (c1 + t (c2 + t c3)) from coef_[4 j ..]
   // r >= r_tail_:  R = tail_a_ exp(-tail_k_ (r - r_tail_))  (the exponential tail)
   double r_min_mm_ = 0.0;
-  double u_lo_ = 0.0, u_hi_ = 0.0, inv_du_ = 0.0;
+  double u_lo_ = 0.0, inv_du_ = 0.0;
   double lo_a_ = 0.0, lo_b_ = 0.0;
   double r_tail_ = 0.0, tail_a_ = 0.0, tail_k_ = 0.0;
   std::vector<double> coef_;
