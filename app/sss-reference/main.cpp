@@ -1,5 +1,10 @@
-// sss-reference: the offline CPU reference renderer (DESIGN.md §4, §6).
-//   sss-reference SCENE --out FILE.exr [--width W] [--height H] [--model M] [MEDIUM] ...
+// sss-reference: the offline CPU renderers (DESIGN.md §4, §6).
+//   sss-reference SCENE --out FILE.exr [--method diffusion|random-walk] ...
+//   sss-reference merge TILE.exr... --out FILE.exr [--variance FILE.exr]
+// --method diffusion (default): the Jensen–Buhler reference with the exact diffusion
+// profile. --method random-walk: the ground truth, volumetric transport through the
+// scene's meshes (renderer/reference/GroundTruth.h), with its variance, a sample count or
+// a target error, and tiles that `merge` puts together.
 // Errors exit 2 (usage, input) or 1 (runtime); Ctrl-C (SIGTERM) stops the render, writes
 // nothing and exits 130 (143).
 #include "CliSupport.h"
@@ -7,7 +12,10 @@
 
 #include "renderer/image/AtomicFile.h"
 #include "renderer/image/Image.h"
+#include "renderer/image/Tonemap.h"
+#include "renderer/reference/GroundTruth.h"
 #include "renderer/reference/ReferenceRenderer.h"
+#include "renderer/reference/TileMerge.h"
 #include "renderer/scene/BuiltinScenes.h"
 
 #include <CLI/CLI.hpp>
@@ -21,9 +29,11 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <thread>
 
 using namespace sss;
 using namespace sss::app;
@@ -45,33 +55,57 @@ extern "C" void on_interrupt(int sig) {
 
 int usage(const std::string& message) { return usage_error("sss-reference", message); }
 
-// A one-line bar redrawn in place on a terminal; on a pipe or file, one line per stage.
+std::string duration(double seconds) {
+  char buf[32];
+  const long s = long(std::lround(std::max(seconds, 0.0)));
+  if (s >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
+  else if (s >= 60) std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+  else std::snprintf(buf, sizeof buf, "%lds", s);
+  return buf;
+}
+
+// A one-line bar redrawn in place on a terminal, with the time left once a stage has run a
+// second; on a pipe or file, a line per stage done and, for long stages, one every 10%.
 class ProgressBar {
  public:
   explicit ProgressBar(bool enabled) : enabled_(enabled), tty_(isatty(STDERR_FILENO) == 1) {}
   void operator()(const char* stage, double fraction) {
     if (!enabled_) return;
     const std::string name(stage);
-    const int percent = int(std::clamp(fraction, 0.0, 1.0) * 100.0);
+    const auto now = std::chrono::steady_clock::now();
+    if (name != stage_) {
+      stage_start_ = now;
+      last_tenth_ = 0;
+    }
+    const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
+    fraction = std::clamp(fraction, 0.0, 1.0);
+    const int percent = int(fraction * 100.0);
+    std::string eta;
+    if (elapsed > 1.0 && fraction > 0.0 && fraction < 1.0) eta = "  ETA " + duration(elapsed * (1.0 - fraction) / fraction);
     if (tty_) {
-      if (name == stage_ && percent == percent_) return;
+      if (name == stage_ && percent == percent_ && eta == eta_) return;
       const int width = 30, filled = percent * width / 100;
-      std::fprintf(stderr, "\r%-10s [%s%s] %3d%%", stage, std::string(std::size_t(filled), '#').c_str(),
-                   std::string(std::size_t(width - filled), '.').c_str(), percent);
+      std::fprintf(stderr, "\r%-10s [%s%s] %3d%%%-14s", stage, std::string(std::size_t(filled), '#').c_str(),
+                   std::string(std::size_t(width - filled), '.').c_str(), percent, eta.c_str());
       if (percent == 100) std::fputc('\n', stderr);
       std::fflush(stderr);
     } else if (percent == 100 && name != stage_done_) {
-      std::fprintf(stderr, "sss-reference: %s done\n", stage);
+      std::fprintf(stderr, "sss-reference: %s done (%s)\n", stage, duration(elapsed).c_str());
       stage_done_ = name;
+    } else if (elapsed > 10.0 && percent / 10 > last_tenth_) {
+      last_tenth_ = percent / 10;
+      std::fprintf(stderr, "sss-reference: %s %d%%%s\n", stage, percent, eta.c_str());
     }
     stage_ = name;
     percent_ = percent;
+    eta_ = eta;
   }
 
  private:
   bool enabled_, tty_;
-  std::string stage_, stage_done_;
-  int percent_ = -1;
+  std::string stage_, stage_done_, eta_;
+  int percent_ = -1, last_tenth_ = 0;
+  std::chrono::steady_clock::time_point stage_start_;
 };
 
 void print_stats(const reference::ReferenceStats& s) {
@@ -85,55 +119,178 @@ void print_stats(const reference::ReferenceStats& s) {
                s.profile_ms, s.sampling_ms, s.irradiance_ms, s.octree_ms, s.render_ms, s.total_ms);
 }
 
+void print_stats(const reference::GroundTruthStats& s, int threads) {
+  const reference::WalkStats& w = s.walk;
+  const double walk_s = std::max(s.seconds - s.setup_seconds, 1e-9);
+  std::fprintf(stderr,
+               "sss-reference: random walk, %llu samples per pixel over %llu subsurface pixels (%d passes), "
+               "relative standard error %.4g\n",
+               (unsigned long long)s.spp, (unsigned long long)s.subsurface_pixels, s.passes, s.relative_standard_error);
+  std::fprintf(stderr,
+               "  %llu paths, %llu scattering events (%.1f per path), %llu boundary reflections, %llu direct beams\n",
+               (unsigned long long)w.paths, (unsigned long long)w.scattering_events,
+               w.paths ? double(w.scattering_events) / double(w.paths) : 0.0, (unsigned long long)w.boundary_hits,
+               (unsigned long long)w.beams);
+  std::fprintf(stderr, "  %.4g paths/s, %.4g events/s on %d threads; escaped %llu, truncated %llu; beam BVH %zu chunks\n",
+               double(w.paths) / walk_s, double(w.scattering_events) / walk_s, threads,
+               (unsigned long long)w.escaped, (unsigned long long)w.truncated, s.beam_chunks);
+  std::fprintf(stderr, "  time: setup %.2f s, walk %.2f s, total %.2f s\n", s.setup_seconds, walk_s, s.seconds);
+}
+
+// An output folder that is not there fails now rather than after a long render (the
+// write itself still reports every other failure).
+bool folders_exist(const std::vector<const std::string*>& files) {
+  for (const std::string* file : files) {
+    if (file->empty()) continue;
+    const std::filesystem::path parent = std::filesystem::path(*file).parent_path();
+    std::error_code ec;
+    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+      std::cerr << "sss-reference: error: " << *file << ": the folder " << parent.string()
+                << " does not exist or is not a folder\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+// The command line without what does not change the pixels: the tile's settings
+// fingerprint (TileMerge.h), equal for every tile of one render.
+std::string pixel_settings(int argc, char** argv) {
+  static const char* const kWithValue[] = {"--out", "--png", "--variance", "--tile", "--threads", "--exposure"};
+  static const char* const kFlags[] = {"--quiet", "--stats"};
+  std::string out;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    bool skip = false;
+    for (const char* o : kWithValue) {
+      if (a == o) {
+        ++i;
+        skip = true;
+      } else if (a.rfind(std::string(o) + "=", 0) == 0) {
+        skip = true;
+      }
+    }
+    for (const char* f : kFlags) skip = skip || a == f;
+    if (skip) continue;
+    out += (out.empty() ? "" : " ") + a;
+  }
+  return out;
+}
+
+int merge_main(int argc, char** argv) {
+  CLI::App app{"sss-reference merge: put the tiles of one random-walk render (--tile K/N) back together into the "
+               "frame and its variance, bit for bit what one process renders",
+               "sss-reference merge"};
+  std::vector<std::string> tiles;
+  std::string out, variance, png;
+  float exposure = 1.0f;
+  app.add_option("tiles", tiles, "The mean and variance EXRs of every tile, in any order")->required();
+  app.add_option("--out", out, "The frame: FILE.exr")->required();
+  app.add_option("--variance", variance, "Its variance of the mean: FILE.exr");
+  app.add_option("--png", png, "Also the tonemapped frame as a PNG");
+  app.add_option("--exposure", exposure, "Exposure of the PNG (default 1)");
+  if (const auto stop = parse_command_line(app, argc, argv, "sss-reference merge")) return *stop;
+  if (lower_extension(out) != ".exr") return usage("merge --out: expected a .exr file name, got '" + out + "'");
+  if (!variance.empty() && lower_extension(variance) != ".exr")
+    return usage("merge --variance: expected a .exr file name, got '" + variance + "'");
+  if (!png.empty() && lower_extension(png) != ".png") return usage("merge --png: expected a .png file name, got '" + png + "'");
+  if (!(std::isfinite(exposure) && exposure > 0.0f))
+    return usage("merge --exposure: expected a finite number > 0, got " + message_number(exposure));
+  for (const std::string& t : tiles)
+    for (const std::string* o : {&out, &variance, &png})
+      if (!o->empty() && std::filesystem::weakly_canonical(t) == std::filesystem::weakly_canonical(*o))
+        return usage("merge: " + *o + " is one of the tiles; write the frame elsewhere");
+  if (!folders_exist({&out, &variance, &png})) return kExitRuntime;
+  auto merged = reference::merge_tiles(tiles);
+  if (auto* e = std::get_if<std::string>(&merged)) return usage("merge: " + *e);
+  const reference::MergedFrame& f = std::get<reference::MergedFrame>(merged);
+  try {
+    image::write_exr(out, f.mean);
+    if (!variance.empty()) image::write_exr(variance, f.variance);
+    if (!png.empty()) image::write_png(png, image::tonemap(f.mean, exposure));
+  } catch (const std::exception& e) {
+    std::cerr << "sss-reference: error: " << e.what() << '\n';
+    return kExitRuntime;
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::strcmp(argv[1], "merge") == 0) return merge_main(argc - 1, argv + 1);
   CLI::App app{
-      "sss-reference: offline CPU reference for subsurface scattering (Jensen & Buhler 2002): "
-      "irradiance points, an octree, and the exact diffusion profile (no Gaussian fit)",
+      "sss-reference: offline CPU references for subsurface scattering. --method diffusion (default): Jensen & "
+      "Buhler 2002's irradiance points and octree with the exact diffusion profile (no Gaussian fit). --method "
+      "random-walk: the ground truth, volumetric light transport through the scene's meshes (σa, σs, g, η; "
+      "smooth dielectric boundary). 'sss-reference merge --help' puts tiles together.",
       "sss-reference"};
   std::string scene_name = std::string(scene::kDefaultScene);
-  std::string out, png;
+  std::string out, png, method = "diffusion", variance, tile_text;
   int width = 640, height = 360, threads = 0;
-  double spacing = 0.5, error_bound = 0.3;
+  double spacing = 0.5, error_bound = 0.3, target_error = 0.0;
   std::size_t max_points = 8'000'000;
-  std::uint64_t seed = 1;
+  std::uint64_t seed = 1, spp = 0;
   float exposure = 1.0f;
-  bool brute = false, diffuse_only = false, quiet = false, stats = false;
+  bool brute = false, diffuse_only = false, quiet = false, stats = false, exitance = false;
   MaterialOverrideArgs material;
   app.add_option("scene", scene_name, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
   app.add_option("--out", out, "Output: FILE.exr (linear radiance) or FILE.png (tonemapped)")->required();
   app.add_option("--png", png, "Also write the tonemapped image to this PNG");
   app.add_option("--width", width, "Image width (default 640)")->check(CLI::Range(1, 16384));
   app.add_option("--height", height, "Image height (default 360)")->check(CLI::Range(1, 16384));
+  app.add_option("--method", method,
+                 "diffusion (default): the exact diffusion profile over irradiance points; random-walk: the ground "
+                 "truth, true transport through the meshes");
   add_material_override_options(app, material);
   app.add_option("--spacing", spacing,
-                 "Irradiance point spacing in reduced mean free paths (default 0.5; lower it for "
+                 "diffusion: irradiance point spacing in reduced mean free paths (default 0.5; lower it for "
                  "more points and a more accurate sum)");
-  app.add_option("--max-points", max_points, "Refuse to spread more points than this (default 8000000)");
+  app.add_option("--max-points", max_points, "diffusion: refuse to spread more points than this (default 8000000)");
   app.add_option("--error-bound", error_bound,
-                 "Jensen-Buhler maximum solid angle (sr) of an octree node used whole (default 0.3; "
+                 "diffusion: Jensen-Buhler maximum solid angle (sr) of an octree node used whole (default 0.3; "
                  "0 descends to every point)");
-  app.add_flag("--brute-force", brute, "Sum every irradiance point at every pixel (no octree)");
+  app.add_flag("--brute-force", brute, "diffusion: sum every irradiance point at every pixel (no octree)");
+  app.add_option("--spp", spp,
+                 "random-walk: samples per pixel (with --target-error: the most a pixel gets)");
+  app.add_option("--target-error", target_error,
+                 "random-walk: add samples until the frame's relative standard error is at most this (default 0.02 "
+                 "when --spp is not given)");
+  app.add_option("--variance", variance, "random-walk: also write the per-pixel variance of the mean (FILE.exr)");
+  app.add_option("--tile", tile_text,
+                 "random-walk: render tile K of N (rows y with y mod N = K-1) for 'sss-reference merge'; needs "
+                 "--spp and --variance");
+  app.add_flag("--exitance", exitance,
+               "random-walk: write M/pi, the cosine-weighted mean radiance leaving each visible point (the "
+               "quantity --diffuse-only writes with --method diffusion), instead of the radiance towards the eye");
   app.add_flag("--diffuse-only", diffuse_only,
-               "Write only the scattered diffuse term M/pi (no albedo, no specular, opaque surfaces black)");
+               "Write only the light that crossed a medium, before the albedo (diffusion: M/pi; no specular, "
+               "opaque surfaces black)");
   app.add_option("--threads", threads, "Worker threads (default 0: all cores)")->check(CLI::Range(0, 1024));
-  app.add_option("--seed", seed, "Seed of the point sets (default 1)");
+  app.add_option("--seed", seed, "Seed of the point sets or of the walks (default 1)");
   app.add_option("--exposure", exposure, "Exposure of the PNG (default 1)");
   app.add_flag("--quiet", quiet, "No progress bar");
-  app.add_flag("--stats", stats, "Print point counts and stage times on stderr");
+  app.add_flag("--stats", stats, "Print counts, rates and stage times on stderr");
   // CLI11 wraps "-1" to 2^64 - 1 for an unsigned option.
-  app.get_option("--seed")->check(CLI::Validator(
-      [](std::string& v) {
-        return v.find('-') == std::string::npos ? std::string() : "expected a number >= 0, got '" + v + "'";
-      },
-      "UINT"));
+  for (const char* name : {"--seed", "--spp"})
+    app.get_option(name)->check(CLI::Validator(
+        [](std::string& v) {
+          return v.find('-') == std::string::npos ? std::string() : "expected a number >= 0, got '" + v + "'";
+        },
+        "UINT"));
   if (const auto stop = parse_command_line(app, argc, argv, "sss-reference")) return *stop;
   // Each side is capped at 16384 by its check; the product at what image files are read
   // back with (image::kMaxImagePixels).
   if (std::uint64_t(width) * std::uint64_t(height) > image::kMaxImagePixels)
     return usage("--width x --height: at most " + std::to_string(image::kMaxImagePixels) +
                  " pixels, got " + std::to_string(width) + " x " + std::to_string(height));
+  if (method != "diffusion" && method != "random-walk")
+    return usage("--method: expected diffusion or random-walk, got '" + method + "'");
+  const bool walk = method == "random-walk";
+  for (const char* name : walk ? std::vector<const char*>{"--spacing", "--max-points", "--error-bound", "--brute-force"}
+                               : std::vector<const char*>{"--spp", "--target-error", "--variance", "--tile", "--exitance"})
+    if (app.count(name) > 0)
+      return usage(std::string(name) + ": applies to --method " + (walk ? "diffusion" : "random-walk") + " only");
   if (!(std::isfinite(spacing) && spacing > 0.0))
     return usage("--spacing: expected a finite number > 0 (mean free paths), got " + message_number(spacing));
   if (max_points == 0) return usage("--max-points: expected a number >= 1, got 0");
@@ -141,22 +298,34 @@ int main(int argc, char** argv) {
     return usage("--error-bound: expected a finite number >= 0 (sr), got " + message_number(error_bound));
   if (!(std::isfinite(exposure) && exposure > 0.0f))
     return usage("--exposure: expected a finite number > 0, got " + message_number(exposure));
+  if (app.count("--spp") > 0 && spp == 0) return usage("--spp: expected a number of samples per pixel >= 1, got 0");
+  if (app.count("--target-error") > 0 && !(std::isfinite(target_error) && target_error > 0.0 && target_error < 1.0))
+    return usage("--target-error: expected a relative standard error in (0, 1), got " + message_number(target_error));
+  if (walk && spp == 0 && target_error == 0.0) target_error = 0.02;
+  if (app.count("--target-error") > 0 && spp == 1)
+    return usage("--spp: a target error needs at least 2 samples per pixel to measure the noise, got 1");
+  reference::TileSpec tile;
+  if (!tile_text.empty()) {
+    std::string why;
+    const auto parsed = reference::parse_tile(tile_text, why);
+    if (!parsed) return usage("--tile: " + why);
+    tile = *parsed;
+    if (app.count("--spp") == 0 || app.count("--target-error") > 0)
+      return usage("--tile: tiles need a fixed --spp (a target error is a property of the whole frame)");
+    if (variance.empty()) return usage("--tile: a tile needs --variance FILE.exr too (merge puts both together)");
+    if (tile.count > std::uint32_t(height))
+      return usage("--tile: " + std::to_string(tile.count) + " tiles of interleaved rows need --height >= " +
+                   std::to_string(tile.count) + ", got " + std::to_string(height));
+  }
   const std::string ext = lower_extension(out);
   if (ext != ".exr" && ext != ".png") return usage("--out: expected a .exr or .png file name, got '" + out + "'");
+  if (!tile.whole() && ext != ".exr") return usage("--out: a tile is written as .exr (merge reads linear values), got '" + out + "'");
   if (!png.empty() && lower_extension(png) != ".png") return usage("--png: expected a .png file name, got '" + png + "'");
-
-  // An output folder that is not there fails now rather than after a long render (the
-  // write itself still reports every other failure).
-  for (const std::string* file : {&out, &png}) {
-    if (file->empty()) continue;
-    const std::filesystem::path parent = std::filesystem::path(*file).parent_path();
-    std::error_code ec;
-    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
-      std::cerr << "sss-reference: error: " << *file << ": the folder " << parent.string()
-                << " does not exist or is not a folder\n";
-      return kExitRuntime;
-    }
-  }
+  if (!variance.empty() && lower_extension(variance) != ".exr")
+    return usage("--variance: expected a .exr file name, got '" + variance + "'");
+  if (!variance.empty() && std::filesystem::weakly_canonical(variance) == std::filesystem::weakly_canonical(out))
+    return usage("--variance: the same file as --out");
+  if (!folders_exist({&out, &png, &variance})) return kExitRuntime;
 
   auto loaded = scene::load_scene(scene_name);
   if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what());
@@ -167,31 +336,55 @@ int main(int argc, char** argv) {
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
   for (const std::string& w : s.warnings) std::cerr << "sss-reference: warning: " << w << '\n';
 
-  reference::ReferenceOptions o;
-  o.width = std::uint32_t(width);
-  o.height = std::uint32_t(height);
-  o.spacing_mfp = spacing;
-  o.max_points = max_points;
-  o.max_solid_angle = error_bound;
-  o.brute_force = brute;
-  o.diffuse_only = diffuse_only;
-  o.threads = threads;
-  o.seed = seed;
-  o.exposure = exposure;
-
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
   ProgressBar bar(!quiet);
+  auto progress = [&](const char* stage, double f) { bar(stage, f); };
   try {
-    const reference::ReferenceImage r = reference::render_reference(
-        s, o, [&](const char* stage, double f) { bar(stage, f); }, &g_cancel);
-    if (g_cancel.load()) throw reference::Cancelled();
-    if (ext == ".exr")
-      image::write_exr(out, r.hdr);
-    else
-      image::write_png(out, r.display);
-    if (!png.empty()) image::write_png(png, r.display);
-    if (stats) print_stats(r.stats);
+    if (!walk) {
+      reference::ReferenceOptions o;
+      o.width = std::uint32_t(width);
+      o.height = std::uint32_t(height);
+      o.spacing_mfp = spacing;
+      o.max_points = max_points;
+      o.max_solid_angle = error_bound;
+      o.brute_force = brute;
+      o.diffuse_only = diffuse_only;
+      o.threads = threads;
+      o.seed = seed;
+      o.exposure = exposure;
+      const reference::ReferenceImage r = reference::render_reference(s, o, progress, &g_cancel);
+      if (g_cancel.load()) throw reference::Cancelled();
+      if (ext == ".exr") image::write_exr(out, r.hdr);
+      else image::write_png(out, r.display);
+      if (!png.empty()) image::write_png(png, r.display);
+      if (stats) print_stats(r.stats);
+    } else {
+      reference::GroundTruthOptions o;
+      o.width = std::uint32_t(width);
+      o.height = std::uint32_t(height);
+      o.spp = spp;
+      o.target_error = target_error;
+      o.diffuse_only = diffuse_only;
+      o.exitance = exitance;
+      o.threads = threads;
+      o.seed = seed;
+      o.exposure = exposure;
+      o.tile = tile;
+      o.on_warning = [](const std::string& w) { std::cerr << "sss-reference: warning: " << w << '\n'; };
+      reference::GroundTruthImage r = reference::render_ground_truth(s, o, progress, &g_cancel);
+      if (g_cancel.load()) throw reference::Cancelled();
+      const std::string settings = pixel_settings(argc, argv);
+      const std::string tile_name = tile.whole() ? "" : tile_text;
+      const double error = r.stats.relative_standard_error;
+      r.hdr.attributes = reference::ground_truth_attributes("mean", tile_name, settings, r.stats.spp, error);
+      r.variance.attributes = reference::ground_truth_attributes("variance", tile_name, settings, r.stats.spp, error);
+      if (ext == ".exr") image::write_exr(out, r.hdr);
+      else image::write_png(out, r.display);
+      if (!variance.empty()) image::write_exr(variance, r.variance);
+      if (!png.empty()) image::write_png(png, r.display);
+      if (stats) print_stats(r.stats, threads > 0 ? threads : int(std::thread::hardware_concurrency()));
+    }
   } catch (const reference::Cancelled&) {
     const int sig = g_signal.load();
     std::cerr << "\nsss-reference: interrupted" << (sig == SIGTERM ? " (SIGTERM)" : "")

@@ -264,6 +264,14 @@ std::variant<Image, ImageError> read_image(const std::string& path) {
       for (int k = 0; k < 3; ++k) img.rgba[4 * i + k] = sample(gray ? 0 : idx[k], i);
       img.rgba[4 * i + 3] = gray || idx[3] < 0 ? 1.0f : sample(idx[3], i);  // no alpha: opaque
     }
+    for (int a = 0; a < header.num_custom_attributes; ++a) {
+      const EXRAttribute& attr = header.custom_attributes[a];
+      if (std::strcmp(attr.type, "string") != 0 || attr.size < 0 || !attr.value) continue;
+      // A string attribute is its bytes (OpenEXR writes no terminator; some writers do).
+      std::string value(reinterpret_cast<const char*>(attr.value), std::size_t(attr.size));
+      if (const auto nul = value.find('\0'); nul != std::string::npos) value.resize(nul);
+      img.attributes.emplace_back(attr.name, value);
+    }
     return img;
   }
   return ImageError{path, "not a PNG or OpenEXR file"};
@@ -316,6 +324,21 @@ void write_exr(const std::string& path, const Image& img) {
   header.pixel_types = pixel_types;
   header.requested_pixel_types = requested;
   header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+  if (img.attributes.size() > TINYEXR_MAX_CUSTOM_ATTRIBUTES)
+    throw WriteError(path + ": more than " + std::to_string(TINYEXR_MAX_CUSTOM_ATTRIBUTES) + " attributes");
+  std::vector<EXRAttribute> attributes(img.attributes.size());
+  for (std::size_t a = 0; a < img.attributes.size(); ++a) {
+    const auto& [name, value] = img.attributes[a];
+    if (name.empty() || name.size() > 255 || value.size() > (std::size_t{1} << 20))
+      throw WriteError(path + ": attribute '" + name + "': name must be 1-255 bytes and value at most 1 MiB");
+    std::memset(&attributes[a], 0, sizeof(EXRAttribute));
+    std::strncpy(attributes[a].name, name.c_str(), 255);
+    std::strncpy(attributes[a].type, "string", 255);
+    attributes[a].value = reinterpret_cast<unsigned char*>(const_cast<char*>(value.data()));
+    attributes[a].size = int(value.size());
+  }
+  header.num_custom_attributes = int(attributes.size());
+  header.custom_attributes = attributes.empty() ? nullptr : attributes.data();
   unsigned char* memory = nullptr;
   const char* err = nullptr;
   const std::size_t size = SaveEXRImageToMemory(&image, &header, &memory, &err);

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <span>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -18,6 +19,10 @@ struct Image {
   int width = 0;
   int height = 0;
   std::vector<float> rgba;  // row-major, top row first, 4 floats per pixel
+  // Named text fields: written into an EXR header as string attributes (in this order)
+  // and read back from one (every string attribute that is not OpenEXR's own); PNG
+  // files carry none.
+  std::vector<std::pair<std::string, std::string>> attributes;
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), rgba(static_cast<std::size_t>(w) * h * 4, 0.0f) {}

@@ -1,13 +1,12 @@
 #include "renderer/reference/ReferenceRenderer.h"
 
 #include "renderer/image/Tonemap.h"
+#include "renderer/reference/PixelShading.h"
 #include "renderer/reference/RayScene.h"
 #include "renderer/reference/Shading.h"
 #include "renderer/reference/SurfaceSampling.h"
 
 #include <glm/geometric.hpp>
-#include <glm/mat4x4.hpp>
-#include <glm/matrix.hpp>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -273,10 +272,7 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
 
   // One primary ray per pixel centre.
   t0 = Clock::now();
-  const scene::Camera& cam = s.cameras[0];
-  const glm::mat4 inv_view_proj = glm::inverse(scene::clip_from_view(cam, o.width, o.height) * cam.view());
-  const float mm = float(s.mm_per_unit);
-  const bool ortho = cam.projection == scene::Projection::Orthographic;
+  const CameraRays camera(s.cameras[0], o.width, o.height, s.mm_per_unit);
   std::vector<int> group_of(s.materials.size(), -1);
   for (std::size_t k = 0; k < groups.size(); ++k) group_of[groups[k].material] = int(k);
   out.hdr = image::Image(int(o.width), int(o.height));
@@ -285,47 +281,22 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
     tbb::parallel_for(std::uint32_t(0), o.height, [&](std::uint32_t y) {
       if (reporter.cancelled()) return;
       for (std::uint32_t x = 0; x < o.width; ++x) {
-        const glm::vec2 ndc((float(x) + 0.5f) / float(o.width) * 2.0f - 1.0f,
-                            (float(y) + 0.5f) / float(o.height) * 2.0f - 1.0f);
-        glm::vec4 a = inv_view_proj * glm::vec4(ndc, 0.0f, 1.0f);
-        glm::vec4 b = inv_view_proj * glm::vec4(ndc, 1.0f, 1.0f);
-        const glm::vec3 near = glm::vec3(a) / a.w * mm, far = glm::vec3(b) / b.w * mm;
-        const glm::vec3 dir = glm::normalize(far - near);
-        const std::optional<Hit> hit = rays.intersect(near, dir, 0.0f, glm::length(far - near));
+        const CameraRays::Ray ray = camera.pixel(x, y);
+        const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
         float* px = out.hdr.pixel(int(x), int(y));
         if (!hit) continue;
-        const SurfacePoint p = surface_at(s, rays, hit->instance, hit->triangle, hit->barycentric);
-        const scene::Material& m = s.materials[p.material];
-        const glm::vec3 to_eye = ortho ? -cam.forward() : -dir;
-        const glm::vec3 n = shading_normal(s, p, to_eye);
-        const glm::vec3 albedo = base_colour(s, p);
-        const int gi = group_of[p.material];
-        SpecularInputs spec;
-        spec.to_eye = to_eye;
-        spec.f0 = glm::mix(glm::vec3(0.04f * m.specular), albedo, m.metallic);
-        spec.roughness = m.roughness;
-        const bool want_specular = !o.diffuse_only && std::max({spec.f0.x, spec.f0.y, spec.f0.z}) > 0.0f;
-        glm::dvec3 diffuse(0.0);
-        glm::dvec3 specular(0.0);
+        const VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only);
+        const int gi = group_of[v.point.material];
+        glm::dvec3 L;
         if (gi >= 0) {
           const Group& g = groups[std::size_t(gi)];
           // The points carry the mesh's interpolated normals: so does x_o here (not the
           // viewer-facing, normal-mapped one), or the far-side rule would misfire.
-          diffuse = o.brute_force ? g.octree->gather_brute_force(p.position_mm, p.normal, *g.kernel)
-                                  : g.octree->gather(p.position_mm, p.normal, *g.kernel);
-          if (want_specular) specular = direct_light(s, rays, p, n, &spec).specular;
-        } else if (!o.diffuse_only) {
-          const DirectLight d = direct_light(s, rays, p, n, want_specular ? &spec : nullptr);
-          diffuse = d.irradiance;
-          specular = d.specular;
-        }
-        glm::dvec3 L;
-        if (o.diffuse_only) {
-          L = diffuse / kPi;
+          const glm::dvec3 diffuse = o.brute_force ? g.octree->gather_brute_force(v.point.position_mm, v.point.normal, *g.kernel)
+                                                   : g.octree->gather(v.point.position_mm, v.point.normal, *g.kernel);
+          L = o.diffuse_only ? diffuse / kPi : v.scatter_factor * diffuse / kPi + v.specular;
         } else {
-          const bool pre_post = gi >= 0 && m.sss.albedo_mode == scene::AlbedoMode::PrePost;
-          const glm::dvec3 out_albedo = pre_post ? glm::sqrt(glm::dvec3(albedo)) : glm::dvec3(albedo);
-          L = out_albedo * (1.0 - double(m.metallic)) * diffuse / kPi + specular;
+          L = o.diffuse_only ? glm::dvec3(0.0) : v.opaque_radiance();
         }
         px[0] = float(L.x);
         px[1] = float(L.y);

@@ -1,0 +1,266 @@
+#include "renderer/reference/GroundTruth.h"
+
+#include "renderer/image/Tonemap.h"
+#include "renderer/reference/PixelShading.h"
+
+#include <glm/geometric.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cmath>
+#include <mutex>
+
+namespace sss::reference {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// What a pixel needs for its samples, fixed before the first one.
+struct PixelPlan {
+  std::uint32_t index = 0;           // y * width + x
+  const WalkMedium* medium = nullptr;
+  glm::dvec3 base{0.0};              // deterministic radiance: opaque shading or specular
+  glm::dvec3 factor{1.0};            // multiplies the light that crossed the medium
+  glm::dvec3 x_o{0.0};               // the visible face point (world mm)
+  glm::dvec3 outward{0.0};           // its geometric normal on the eye's side
+  glm::dvec3 eye_travel{0.0};        // the eye ray's direction
+};
+
+// Welford's running mean and sum of squared deviations of a pixel's samples.
+struct Accumulator {
+  glm::dvec3 mean{0.0}, m2{0.0};
+  std::uint64_t n = 0;
+  void add(const glm::dvec3& x) {
+    ++n;
+    const glm::dvec3 delta = x - mean;
+    mean += delta / double(n);
+    m2 += delta * (x - mean);
+  }
+  glm::dvec3 variance_of_mean() const { return n > 1 ? m2 / (double(n) * double(n - 1)) : glm::dvec3(0.0); }
+};
+
+void check_options(const GroundTruthOptions& o) {
+  if (o.width == 0 || o.height == 0)
+    throw std::invalid_argument("width/height: the image must be at least 1x1, got " + std::to_string(o.width) + "x" +
+                                std::to_string(o.height));
+  if (o.width > 16384 || o.height > 16384) throw std::invalid_argument("width/height: at most 16384 pixels a side");
+  if (std::uint64_t(o.width) * o.height > image::kMaxImagePixels)
+    throw std::invalid_argument("width/height: at most " + std::to_string(image::kMaxImagePixels) + " pixels");
+  if (!(std::isfinite(o.target_error) && o.target_error >= 0.0 && o.target_error < 1.0))
+    throw std::invalid_argument("target error: expected a relative standard error in (0, 1), got " +
+                                message_number(o.target_error));
+  if (o.spp == 0 && o.target_error == 0.0)
+    throw std::invalid_argument("spp: give a number of samples per pixel >= 1, or a target error");
+  if (o.target_error > 0.0 && o.spp == 1)
+    throw std::invalid_argument("spp: a target error needs at least 2 samples per pixel to measure the noise");
+  if (!(std::isfinite(o.exposure) && o.exposure >= 0.0f))
+    throw std::invalid_argument("exposure: must be finite and >= 0, got " + message_number(o.exposure));
+  if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
+  if (o.tile.count == 0 || o.tile.index == 0 || o.tile.index > o.tile.count)
+    throw std::invalid_argument("tile: expected K/N with 1 <= K <= N, got " + std::to_string(o.tile.index) + "/" +
+                                std::to_string(o.tile.count));
+  if (o.tile.count > o.height)
+    throw std::invalid_argument("tile: " + std::to_string(o.tile.count) + " tiles of interleaved rows need at least " +
+                                std::to_string(o.tile.count) + " rows, the image has " + std::to_string(o.height));
+  if (!o.tile.whole() && o.target_error > 0.0)
+    throw std::invalid_argument(
+        "tile: a target error is a property of the whole frame, so tiles need a fixed --spp (render one tile with "
+        "--target-error to learn it)");
+}
+
+// A cosine-weighted direction about n (unit), away from the surface.
+glm::dvec3 cosine_direction(const glm::dvec3& n, double u1, double u2) {
+  glm::dvec3 t, b;
+  walk::basis(n, t, b);
+  const double r = std::sqrt(u1), phi = 2.0 * walk::kPi * u2;
+  return glm::normalize(t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1.0 - u1)));
+}
+
+// One sample of the light that crossed the medium and leaves the pixel's point towards the
+// eye (or, with `exitance`, towards a cosine-distributed direction: the mean over those
+// is M/π), before `factor`.
+glm::dvec3 sample_pixel(const WalkScene& walk, const PixelPlan& px, bool exitance, walk::WalkRng& rng, WalkStats& stats) {
+  const glm::dvec3 travel =
+      exitance ? -cosine_direction(px.outward, rng.uniform(), rng.uniform()) : px.eye_travel;
+  return walk.sample_exitant(*px.medium, px.x_o, px.outward, travel, rng, stats);
+}
+
+}  // namespace
+
+std::optional<TileSpec> parse_tile(const std::string& text, std::string& error) {
+  const auto slash = text.find('/');
+  auto number = [](const std::string& s, std::uint32_t& out) {
+    if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return false;
+    out = std::uint32_t(std::stoul(s));
+    return true;
+  };
+  TileSpec t;
+  if (slash == std::string::npos || !number(text.substr(0, slash), t.index) || !number(text.substr(slash + 1), t.count)) {
+    error = "expected K/N (tile K of N, e.g. 3/8), got '" + text + "'";
+    return std::nullopt;
+  }
+  if (t.count == 0 || t.index == 0 || t.index > t.count) {
+    error = "expected K/N with 1 <= K <= N, got '" + text + "'";
+    return std::nullopt;
+  }
+  return t;
+}
+
+double relative_standard_error(const image::Image& mean, const image::Image& variance) {
+  double var = 0.0, sq = 0.0;
+  const std::size_t n = std::size_t(mean.width) * std::size_t(mean.height);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(mean.rgba[4 * i + 3] > 0.5f)) continue;
+    for (int c = 0; c < 3; ++c) {
+      sq += double(mean.rgba[4 * i + std::size_t(c)]) * mean.rgba[4 * i + std::size_t(c)];
+      var += variance.rgba[4 * i + std::size_t(c)];
+    }
+  }
+  return sq > 0.0 ? std::sqrt(var / sq) : 0.0;
+}
+
+GroundTruthImage render_ground_truth(const scene::Scene& s, const GroundTruthOptions& o, const ProgressFn& progress,
+                                     const std::atomic<bool>* cancel) {
+  check_options(o);
+  if (s.cameras.empty()) throw std::invalid_argument("scene '" + s.name + "' has no camera");
+  for (const scene::Instance& inst : s.instances)
+    if (inst.mesh >= s.meshes.size()) throw std::invalid_argument("instance '" + inst.node + "': mesh index out of range");
+  for (const scene::Mesh& mesh : s.meshes) {
+    if (auto broken = scene::check_mesh(mesh)) throw std::invalid_argument("mesh '" + mesh.name + "': " + *broken);
+    if (mesh.material >= s.materials.size())
+      throw std::invalid_argument("mesh '" + mesh.name + "': material index out of range");
+  }
+  const auto t_start = Clock::now();
+  auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
+  std::mutex progress_mutex;
+  auto report = [&](const char* stage, double f) {
+    if (!progress) return;
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    progress(stage, std::min(f, 1.0));
+  };
+  tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
+  GroundTruthImage out;
+  GroundTruthStats& stats = out.stats;
+
+  const RayScene rays(s, o.threads);
+  std::unique_ptr<WalkScene> walk;
+  arena.execute([&] { walk = std::make_unique<WalkScene>(s, rays, &stats.warnings); });
+  if (o.on_warning)
+    for (const std::string& w : stats.warnings) o.on_warning(w);
+  for (const WalkMedium& m : walk->media())
+    for (const WalkMedium::Band& b : m.bands) stats.beam_chunks += b.beams->chunk_count();
+  report("setup", 0.5);
+  if (cancelled()) throw Cancelled();
+
+  // Every pixel of the tile: its visible surface and what is deterministic about it.
+  const CameraRays camera(s.cameras[0], o.width, o.height, s.mm_per_unit);
+  out.hdr = image::Image(int(o.width), int(o.height));
+  out.variance = image::Image(int(o.width), int(o.height));
+  std::vector<PixelPlan> plans;  // subsurface pixels only, in pixel order
+  std::vector<std::vector<PixelPlan>> rows(o.height);
+  arena.execute([&] {
+    tbb::parallel_for(std::uint32_t(0), o.height, [&](std::uint32_t y) {
+      if (!o.tile.owns_row(y) || cancelled()) return;
+      for (std::uint32_t x = 0; x < o.width; ++x) {
+        const CameraRays::Ray ray = camera.pixel(x, y);
+        const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
+        if (!hit) continue;
+        const VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only);
+        float* px = out.hdr.pixel(int(x), int(y));
+        px[3] = 1.0f;
+        out.variance.pixel(int(x), int(y))[3] = 1.0f;
+        const WalkMedium* medium = v.subsurface ? walk->medium(v.point.material) : nullptr;
+        if (!medium) {
+          const glm::dvec3 L = o.diffuse_only ? glm::dvec3(0.0) : v.opaque_radiance();
+          for (int c = 0; c < 3; ++c) px[c] = float(L[c]);
+          continue;
+        }
+        PixelPlan p;
+        p.index = y * o.width + x;
+        p.medium = medium;
+        p.base = o.diffuse_only ? glm::dvec3(0.0) : v.specular;
+        p.factor = o.diffuse_only ? glm::dvec3(1.0) : v.scatter_factor;
+        p.x_o = glm::dvec3(v.point.position_mm);
+        p.eye_travel = glm::dvec3(ray.direction);
+        const glm::dvec3 ng = face_normal(s, rays, hit->instance, hit->triangle);
+        p.outward = glm::dot(ng, p.eye_travel) < 0.0 ? ng : -ng;
+        // M/π includes the light that leaves without scattering (a delta in direction).
+        if (o.exitance) p.base += p.factor * walk->unscattered_exitance(*medium, p.x_o, p.outward) / walk::kPi;
+        rows[y].push_back(p);
+      }
+    });
+  });
+  if (cancelled()) throw Cancelled();
+  for (std::vector<PixelPlan>& r : rows)
+    for (const PixelPlan& p : r) plans.push_back(p);
+  rows.clear();
+  stats.subsurface_pixels = plans.size();
+  stats.setup_seconds = seconds_since(t_start);
+  report("setup", 1.0);
+
+  // Passes of samples over every subsurface pixel.
+  std::vector<Accumulator> acc(plans.size());
+  tbb::enumerable_thread_specific<WalkStats> walk_stats;
+  const std::uint64_t cap = o.spp;
+  std::uint64_t done = 0;
+  std::uint64_t next = o.target_error > 0.0 ? (cap > 0 ? std::min<std::uint64_t>(cap, 16) : 16) : cap;
+  std::atomic<std::uint64_t> samples_done{0};
+  const double per_sample = 1.0 / double(std::max<std::size_t>(plans.size(), 1));
+  auto write_pixels = [&] {
+    for (std::size_t i = 0; i < plans.size(); ++i) {
+      const PixelPlan& p = plans[i];
+      float* px = &out.hdr.rgba[std::size_t(p.index) * 4];
+      float* pv = &out.variance.rgba[std::size_t(p.index) * 4];
+      const glm::dvec3 mean = p.base + p.factor * acc[i].mean;
+      const glm::dvec3 var = p.factor * p.factor * acc[i].variance_of_mean();
+      for (int c = 0; c < 3; ++c) {
+        px[c] = float(mean[c]);
+        pv[c] = float(var[c]);
+      }
+    }
+  };
+  while (!plans.empty()) {
+    const std::uint64_t from = done, to = next;
+    double planned = double(to);  // samples per pixel this run is heading for
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, plans.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+        WalkStats& ws = walk_stats.local();
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          if (cancelled()) return;
+          const PixelPlan& p = plans[i];
+          for (std::uint64_t k = from; k < to; ++k) {
+            if ((k & 255u) == 255u && cancelled()) return;
+            walk::WalkRng rng(o.seed, p.index, k);
+            acc[i].add(sample_pixel(*walk, p, o.exitance, rng, ws));
+          }
+          const std::uint64_t n = samples_done.fetch_add(to - from) + (to - from);
+          report("walk", double(n) * per_sample / planned);
+        }
+      });
+    });
+    if (cancelled()) throw Cancelled();
+    done = to;
+    ++stats.passes;
+    write_pixels();
+    stats.relative_standard_error = relative_standard_error(out.hdr, out.variance);
+    if (o.target_error == 0.0 || stats.relative_standard_error <= o.target_error || (cap > 0 && done >= cap)) break;
+    const double e = stats.relative_standard_error / o.target_error;
+    std::uint64_t want = std::uint64_t(std::ceil(double(done) * e * e * 1.05));
+    want = std::clamp<std::uint64_t>(want, done + 1, 4 * done);
+    next = cap > 0 ? std::min(cap, want) : want;
+  }
+  stats.spp = done;
+  for (const WalkStats& ws : walk_stats) stats.walk.add(ws);
+  stats.relative_standard_error = relative_standard_error(out.hdr, out.variance);
+  out.display = image::tonemap(out.hdr, o.exposure);
+  stats.seconds = seconds_since(t_start);
+  return out;
+}
+
+}  // namespace sss::reference

@@ -1,0 +1,51 @@
+// Ground-truth frames in pieces (issue 16): a tile is a pair of EXRs (mean and variance) of
+// the whole frame's size that hold the rows it rendered (GroundTruth.h: rows y with
+// y mod N = K - 1; the other rows are 0 with alpha 0). Every ground-truth EXR says what it
+// is in string attributes of its header:
+//   sssContent   "mean" or "variance"
+//   sssTile      "K/N" (absent on a whole frame)
+//   sssSettings  every option that changes the pixels (the tool's command line without the
+//                output names, --tile, --threads and the display options)
+//   sssSpp       samples per pixel
+//   sssRelativeStandardError  of the pixels it holds (GroundTruth.h)
+// merge_tiles() checks that the files are the mean and variance tiles of one render, each
+// once, and copies each row from the tile that owns it: the frame and its variance are bit
+// for bit what one process renders with the same settings, and get the same attributes,
+// so the merged files are byte-identical to a single render's.
+#pragma once
+
+#include "renderer/image/Image.h"
+
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace sss::reference {
+
+inline constexpr const char* kAttrContent = "sssContent";
+inline constexpr const char* kAttrTile = "sssTile";
+inline constexpr const char* kAttrSettings = "sssSettings";
+inline constexpr const char* kAttrSpp = "sssSpp";
+inline constexpr const char* kAttrRelativeError = "sssRelativeStandardError";
+
+// The value of an attribute, if the image has it.
+std::optional<std::string> attribute(const image::Image& image, const std::string& name);
+
+// The attributes of a ground-truth output (mean or variance image).
+std::vector<std::pair<std::string, std::string>> ground_truth_attributes(const std::string& content,
+                                                                         const std::string& tile,
+                                                                         const std::string& settings,
+                                                                         std::uint64_t spp, double relative_error);
+
+struct MergedFrame {
+  image::Image mean, variance;
+  std::uint32_t tiles = 0;
+};
+
+// The files may be given in any order, mean and variance tiles mixed; every one of the N
+// of each must be there. Errors name the file and what does not fit ("b.exr: tile 2/4 again (also a.exr)", "tile 3/4 is missing",
+// "c.exr: rendered with other settings than a.exr: ...").
+std::variant<MergedFrame, std::string> merge_tiles(const std::vector<std::string>& files);
+
+}  // namespace sss::reference
