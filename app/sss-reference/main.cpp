@@ -19,6 +19,7 @@
 #include "renderer/scene/BuiltinScenes.h"
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <unistd.h>
 
@@ -73,12 +74,16 @@ class ProgressBar {
     if (!enabled_) return;
     const std::string name(stage);
     const auto now = std::chrono::steady_clock::now();
-    if (name != stage_) {
+    fraction = std::clamp(fraction, 0.0, 1.0);
+    // A stage that starts over (the random walk's next pass towards a target error) is
+    // timed and reported afresh.
+    if (name != stage_ || fraction + 0.01 < fraction_) {
       stage_start_ = now;
       last_tenth_ = 0;
+      if (name == stage_done_) stage_done_.clear();
     }
+    fraction_ = fraction;
     const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
-    fraction = std::clamp(fraction, 0.0, 1.0);
     const int percent = int(fraction * 100.0);
     std::string eta;
     if (elapsed > 1.0 && fraction > 0.0 && fraction < 1.0) eta = "  ETA " + duration(elapsed * (1.0 - fraction) / fraction);
@@ -105,6 +110,7 @@ class ProgressBar {
   bool enabled_, tty_;
   std::string stage_, stage_done_, eta_;
   int percent_ = -1, last_tenth_ = 0;
+  double fraction_ = 0.0;
   std::chrono::steady_clock::time_point stage_start_;
 };
 
@@ -156,7 +162,7 @@ bool folders_exist(const std::vector<const std::string*>& files) {
 // The command line without what does not change the pixels: the tile's settings
 // fingerprint (TileMerge.h), equal for every tile of one render.
 std::string pixel_settings(int argc, char** argv) {
-  static const char* const kWithValue[] = {"--out", "--png", "--variance", "--tile", "--threads", "--exposure"};
+  static const char* const kWithValue[] = {"--out", "--png", "--variance", "--tile", "--threads", "--exposure", "--summary"};
   static const char* const kFlags[] = {"--quiet", "--stats"};
   std::string out;
   for (int i = 1; i < argc; ++i) {
@@ -226,7 +232,7 @@ int main(int argc, char** argv) {
       "smooth dielectric boundary). 'sss-reference merge --help' puts tiles together.",
       "sss-reference"};
   std::string scene_name = std::string(scene::kDefaultScene);
-  std::string out, png, method = "diffusion", variance, tile_text;
+  std::string out, png, method = "diffusion", variance, tile_text, summary;
   int width = 640, height = 360, threads = 0;
   double spacing = 0.5, error_bound = 0.3, target_error = 0.0;
   std::size_t max_points = 8'000'000;
@@ -260,6 +266,9 @@ int main(int argc, char** argv) {
   app.add_option("--tile", tile_text,
                  "random-walk: render tile K of N (rows y with y mod N = K-1) for 'sss-reference merge'; needs "
                  "--spp and --variance");
+  app.add_option("--summary", summary,
+                 "random-walk: also write what the render did as JSON (command, samples per pixel, relative standard "
+                 "error, paths, events, times)");
   app.add_flag("--exitance", exitance,
                "random-walk: write M/pi, the cosine-weighted mean radiance leaving each visible point (the "
                "quantity --diffuse-only writes with --method diffusion), instead of the radiance towards the eye");
@@ -288,7 +297,8 @@ int main(int argc, char** argv) {
     return usage("--method: expected diffusion or random-walk, got '" + method + "'");
   const bool walk = method == "random-walk";
   for (const char* name : walk ? std::vector<const char*>{"--spacing", "--max-points", "--error-bound", "--brute-force"}
-                               : std::vector<const char*>{"--spp", "--target-error", "--variance", "--tile", "--exitance"})
+                               : std::vector<const char*>{"--spp", "--target-error", "--variance", "--tile", "--exitance",
+                                                          "--summary"})
     if (app.count(name) > 0)
       return usage(std::string(name) + ": applies to --method " + (walk ? "diffusion" : "random-walk") + " only");
   if (!(std::isfinite(spacing) && spacing > 0.0))
@@ -323,9 +333,17 @@ int main(int argc, char** argv) {
   if (!png.empty() && lower_extension(png) != ".png") return usage("--png: expected a .png file name, got '" + png + "'");
   if (!variance.empty() && lower_extension(variance) != ".exr")
     return usage("--variance: expected a .exr file name, got '" + variance + "'");
-  if (!variance.empty() && std::filesystem::weakly_canonical(variance) == std::filesystem::weakly_canonical(out))
-    return usage("--variance: the same file as --out");
-  if (!folders_exist({&out, &png, &variance})) return kExitRuntime;
+  if (!summary.empty() && lower_extension(summary) != ".json")
+    return usage("--summary: expected a .json file name, got '" + summary + "'");
+  {
+    const std::vector<const std::string*> files = {&out, &png, &variance, &summary};
+    for (std::size_t i = 0; i < files.size(); ++i)
+      for (std::size_t j = i + 1; j < files.size(); ++j)
+        if (!files[i]->empty() && !files[j]->empty() &&
+            std::filesystem::weakly_canonical(*files[i]) == std::filesystem::weakly_canonical(*files[j]))
+          return usage("'" + *files[j] + "' is given as two outputs");
+  }
+  if (!folders_exist({&out, &png, &variance, &summary})) return kExitRuntime;
 
   auto loaded = scene::load_scene(scene_name);
   if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what());
@@ -383,7 +401,32 @@ int main(int argc, char** argv) {
       else image::write_png(out, r.display);
       if (!variance.empty()) image::write_exr(variance, r.variance);
       if (!png.empty()) image::write_png(png, r.display);
-      if (stats) print_stats(r.stats, threads > 0 ? threads : int(std::thread::hardware_concurrency()));
+      const int used_threads = threads > 0 ? threads : int(std::thread::hardware_concurrency());
+      if (!summary.empty()) {
+        std::string command = "sss-reference";
+        for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+        const reference::WalkStats& w = r.stats.walk;
+        nlohmann::json j = {{"command", command},
+                            {"settings", settings},
+                            {"width", width},
+                            {"height", height},
+                            {"spp", r.stats.spp},
+                            {"passes", r.stats.passes},
+                            {"relative_standard_error", r.stats.relative_standard_error},
+                            {"subsurface_pixels", r.stats.subsurface_pixels},
+                            {"paths", w.paths},
+                            {"scattering_events", w.scattering_events},
+                            {"boundary_reflections", w.boundary_hits},
+                            {"direct_beams", w.beams},
+                            {"escaped", w.escaped},
+                            {"truncated", w.truncated},
+                            {"threads", used_threads},
+                            {"setup_seconds", r.stats.setup_seconds},
+                            {"seconds", r.stats.seconds},
+                            {"warnings", r.stats.warnings}};
+        image::write_file_atomically(summary, j.dump(2) + "\n");
+      }
+      if (stats) print_stats(r.stats, used_threads);
     }
   } catch (const reference::Cancelled&) {
     const int sig = g_signal.load();

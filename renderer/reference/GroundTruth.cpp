@@ -240,7 +240,9 @@ GroundTruthImage render_ground_truth(const scene::Scene& s, const GroundTruthOpt
             acc[i].add(sample_pixel(*walk, p, o.exitance, rng, ws));
           }
           const std::uint64_t n = samples_done.fetch_add(to - from) + (to - from);
-          report("walk", double(n) * per_sample / planned);
+          // With a target error the first pass measures the noise; each later one heads
+          // for the samples that noise says are needed.
+          report(o.target_error > 0.0 && from == 0 ? "noise" : "walk", double(n) * per_sample / planned);
         }
       });
     });

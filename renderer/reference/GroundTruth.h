@@ -87,7 +87,8 @@ double relative_standard_error(const image::Image& mean, const image::Image& var
 
 // Throws std::invalid_argument for unusable options (the message names the option:
 // "spp", "target error", "tile", ...) or scenes, Cancelled when *cancel becomes true.
-// Progress: ("setup", f) then ("walk", f), f the fraction of the planned samples done.
+// Progress: ("setup", f) then ("walk", f), f the fraction of the planned samples done;
+// with a target error the first pass is ("noise", f), and each later pass plans anew.
 GroundTruthImage render_ground_truth(const scene::Scene& scene, const GroundTruthOptions& options,
                                      const ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
 
