@@ -50,7 +50,12 @@ std::vector<Check> evaluate(const image::Metrics& m, const Limits& limits) {
     const bool pass = at_least ? value >= limit : value <= limit;
     checks.push_back({metric, label, value, limit, at_least, pass});
   };
-  add("relative_rmse", "relative RMSE", m.relative_rmse, limits.tolerance, false);
+  // With the reference's noise known, the tolerance judges the error against its expectation.
+  if (m.has_reference_noise)
+    add("relative_rmse_noise_subtracted", "relative RMSE, noise subtracted", m.relative_rmse_noise_subtracted,
+        limits.tolerance, false);
+  else
+    add("relative_rmse", "relative RMSE", m.relative_rmse, limits.tolerance, false);
   if (limits.max_abs) add("max_abs_error", "max abs error", m.max_abs_error, *limits.max_abs, false);
   if (limits.max_fraction)
     add("fraction_over_threshold", "over threshold", m.fraction_over_threshold,
@@ -94,7 +99,10 @@ nlohmann::ordered_json to_json(const Report& r) {
         {"max_abs_error_at", {m.max_abs_x, m.max_abs_y}},
         {"pixels_over_threshold", m.pixels_over_threshold},
         {"fraction_over_threshold", number(m.fraction_over_threshold)},
-        {"ssim", number(m.ssim)}}},
+        {"ssim", number(m.ssim)},
+        {"reference_noise", m.has_reference_noise ? number(m.reference_noise) : nlohmann::ordered_json()},
+        {"relative_rmse_noise_subtracted",
+         m.has_reference_noise ? number(m.relative_rmse_noise_subtracted) : nlohmann::ordered_json()}}},
       {"threshold", m.threshold},
       {"tolerance", r.limits.tolerance},
       {"limits", limits},
@@ -129,6 +137,11 @@ std::string to_table(const Report& r) {
   };
   out += format("%-24s %-14s %s\n", "metric", "value", "limit");
   row("relative RMSE", g(m.relative_rmse), "", "relative_rmse");
+  if (m.has_reference_noise) {
+    row("reference noise", g(m.reference_noise), "B's relative RMS noise (--variance)", nullptr);
+    row("rel. RMSE - noise", g(m.relative_rmse_noise_subtracted), "against B's expectation",
+        "relative_rmse_noise_subtracted");
+  }
   row("RMSE", g(m.rmse), "", nullptr);
   row("PSNR (dB)", g(m.psnr_db), "", nullptr);
   row("max abs error", g(m.max_abs_error), format("at (%d, %d)", m.max_abs_x, m.max_abs_y), "max_abs_error");

@@ -1,6 +1,7 @@
 // sss-compare: error metrics between two renders, an optional heat map, and a verdict.
 //   sss-compare A B [--heatmap FILE.png] [--json] [--tolerance T] [--max-abs E]
 //               [--max-fraction F] [--min-ssim S] [--threshold T] [--exposure X]
+//               [--variance B.var.exr]
 // B is the reference. The metrics are defined in renderer/image/Metrics.h. The command-line
 // contract is DESIGN.md §4. Exit codes: 0 the images agree within the limits, 3 they do
 // not, 2 bad usage or input, 1 a runtime failure (e.g. the heat map cannot be written).
@@ -61,7 +62,7 @@ std::size_t geometry_pixels(const image::Image& img) {
 }
 
 struct Args {
-  std::string a, b, heatmap;
+  std::string a, b, heatmap, variance;
   double heatmap_max = 0.0;
   bool json = false;
   double tolerance = 0.01, threshold = 0.05, max_abs = 0.0, max_fraction = 0.0, min_ssim = 0.0;
@@ -97,6 +98,9 @@ int main(int argc, char** argv) {
   auto* max_fraction = app.add_option("--max-fraction", a.max_fraction,
                                       "Also require the fraction over --threshold <= F");
   auto* min_ssim = app.add_option("--min-ssim", a.min_ssim, "Also require SSIM >= S");
+  app.add_option("--variance", a.variance,
+                 "B's variance of the mean (an EXR, e.g. sss-reference --method random-walk --variance): report "
+                 "B's noise and judge --tolerance on the relative RMSE with that noise subtracted");
   app.add_option("--threshold", a.threshold,
                  "Per-pixel error threshold, a fraction of the peak (default 0.05)");
   app.add_option("--exposure", a.exposure, "Exposure when tonemapping an EXR (default 1)");
@@ -161,6 +165,19 @@ int main(int argc, char** argv) {
     space = info[0].encoding;
   }
 
+  image::Image variance;
+  if (!a.variance.empty()) {
+    if (space != image::Encoding::Linear || info[1].encoding != image::Encoding::Linear)
+      return usage("--variance: needs A and B as EXR (linear) images");
+    auto read = image::read_image(a.variance);
+    if (auto* e = std::get_if<image::ImageError>(&read)) return input_error(e->what());
+    variance = std::move(std::get<image::Image>(read));
+    if (encoding_of(a.variance) != image::Encoding::Linear)
+      return input_error(a.variance + ": --variance must be an EXR");
+    if (variance.width != img[1].width || variance.height != img[1].height)
+      return input_error(a.variance + " is " + size_text(variance) + ", " + a.b + " is " + size_text(img[1]));
+  }
+
   Report report;
   report.a = info[0];
   report.b = info[1];
@@ -176,6 +193,7 @@ int main(int argc, char** argv) {
     options.encoding = space;
     options.threshold = a.threshold;
     options.exposure = a.exposure;
+    if (!a.variance.empty()) options.reference_variance = &variance;
     report.metrics = image::compare(img[0], img[1], options);
     report.checks = evaluate(report.metrics, report.limits);
     if (heatmap->count()) {

@@ -203,6 +203,26 @@ Metrics compare(const Image& a, const Image& b, const CompareOptions& options) {
     }
     if (e > limit) ++m.pixels_over_threshold;
   }
+  if (const Image* v = options.reference_variance) {
+    if (options.encoding != Encoding::Linear)
+      throw std::invalid_argument("a reference variance applies to linear (EXR) images only");
+    require_same_size(b, *v);
+    double sv = 0.0;
+    for (std::size_t i = 0; i < mask.size(); ++i)
+      if (mask[i])
+        for (int c = 0; c < 3; ++c) {
+          const double var = v->rgba[i * 4 + c];
+          if (!(std::isfinite(var) && var >= 0.0))
+            throw std::invalid_argument("reference variance at pixel (" + std::to_string(i % w) + ", " +
+                                        std::to_string(i / w) + ") is not a finite number >= 0");
+          sv += var;
+        }
+    m.has_reference_noise = true;
+    const double signal = sb - sv;
+    m.reference_noise = signal > 0.0 ? std::sqrt(sv / signal) : std::numeric_limits<double>::infinity();
+    m.relative_rmse_noise_subtracted =
+        signal > 0.0 ? std::sqrt(std::max(0.0, se - sv) / signal) : std::numeric_limits<double>::infinity();
+  }
   const double n3 = 3.0 * static_cast<double>(m.compared_pixels);
   const double mse = se / n3;
   m.rmse = std::sqrt(mse);

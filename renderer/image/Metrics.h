@@ -21,6 +21,16 @@
 //   SSIM            the mean structural similarity (below) of the luma of the display
 //                   images, over M.
 //
+// When B is a Monte Carlo estimate with a known variance of its mean v per pixel and
+// channel (sss-reference --method random-walk --variance), its own noise inflates the
+// squared error in expectation: E[Σ (a − b̂)²] = Σ (a − b)² + Σ v, and E[Σ b̂²] = Σ b² + Σ v.
+// So (CompareOptions::reference_variance):
+//   reference noise        sqrt( Σ v / (Σ b² − Σ v) ), B's relative RMS noise
+//   noise-subtracted relative RMSE
+//                          sqrt( max(0, Σ (a − b)² − Σ v) / (Σ b² − Σ v) ), an unbiased
+//                          estimate of the squared error against B's expectation (the
+//                          relative RMSE A would have against a noiseless B)
+//
 // Why SSIM as the perceptual metric (and not ꟻLIP, Andersson et al. 2020, "ꟻLIP: A
 // Difference Evaluator for Alternating Images", Proc. ACM CGIT 3(2)): SSIM is the standard
 // one, its behaviour is well understood (1 for identical images, symmetric, closed forms
@@ -70,6 +80,9 @@ struct CompareOptions {
   Encoding encoding = Encoding::Display;  // of both images; convert a mixed pair first
   double threshold = 0.05;                // of the peak, for the "over threshold" fraction
   float exposure = 1.0f;                  // tonemap exposure before SSIM (linear images)
+  // B's variance of the mean per pixel and channel (linear images only, B's size): the
+  // metrics then state B's noise and subtract it (above). Not owned.
+  const Image* reference_variance = nullptr;
 };
 
 struct Metrics {
@@ -85,6 +98,9 @@ struct Metrics {
   std::size_t pixels_over_threshold = 0;
   double fraction_over_threshold = 0.0;
   double ssim = 1.0;
+  bool has_reference_noise = false;  // a reference variance was given
+  double reference_noise = 0.0;
+  double relative_rmse_noise_subtracted = 0.0;
 };
 
 // 1 where both images have geometry (alpha > kGeometryAlpha), else 0; row-major. Throws
