@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Builds in Release and runs the benchmarks. Arguments go to Google Benchmark, e.g.
 #   scripts/bench.sh --benchmark_filter=Fit
-# (each program runs the filter over its own benchmarks: bench_profiles, bench_reference)
+# (each program runs the filter over its own benchmarks: bench_profiles, bench_reference,
+# bench_random_walk)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SSS_BUILD_DIR=build-release SSS_BUILD_TYPE=Release scripts/build.sh >/dev/null
 build-release/bench/bench_profiles "$@"
 if [ -x build-release/bench/bench_reference ]; then build-release/bench/bench_reference "$@"; fi
+if [ -x build-release/bench/bench_random_walk ]; then build-release/bench/bench_random_walk "$@"; fi

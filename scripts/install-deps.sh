@@ -15,6 +15,9 @@ PACKAGES=(
   libembree-dev libtbb-dev
   assimp-testmodels
   libglfw3-dev libimgui-dev xvfb xauth
+  # GNU parallel: the scale-out test runs the README's tile recipe with it
+  # (tests/apps/test_sss_reference_random_walk.cpp, GnuParallelSpreadsTilesThatMergeBitIdentically).
+  parallel
 )
 if [ "${1:-}" = "--fuzz" ]; then
   PACKAGES+=(clang-14 libclang-rt-14-dev zlib1g-dev)

@@ -183,6 +183,8 @@ std::string pixel_settings(int argc, char** argv) {
   return out;
 }
 
+int merge_usage(const std::string& message) { return usage_error("sss-reference merge", message); }
+
 int merge_main(int argc, char** argv) {
   CLI::App app{"sss-reference merge: put the tiles of one random-walk render (--tile K/N) back together into the "
                "frame and its variance, bit for bit what one process renders",
@@ -196,19 +198,23 @@ int merge_main(int argc, char** argv) {
   app.add_option("--png", png, "Also the tonemapped frame as a PNG");
   app.add_option("--exposure", exposure, "Exposure of the PNG (default 1)");
   if (const auto stop = parse_command_line(app, argc, argv, "sss-reference merge")) return *stop;
-  if (lower_extension(out) != ".exr") return usage("merge --out: expected a .exr file name, got '" + out + "'");
+  if (lower_extension(out) != ".exr") return merge_usage("--out: expected a .exr file name, got '" + out + "'");
   if (!variance.empty() && lower_extension(variance) != ".exr")
-    return usage("merge --variance: expected a .exr file name, got '" + variance + "'");
-  if (!png.empty() && lower_extension(png) != ".png") return usage("merge --png: expected a .png file name, got '" + png + "'");
+    return merge_usage("--variance: expected a .exr file name, got '" + variance + "'");
+  if (!png.empty() && lower_extension(png) != ".png") return merge_usage("--png: expected a .png file name, got '" + png + "'");
   if (!(std::isfinite(exposure) && exposure > 0.0f))
-    return usage("merge --exposure: expected a finite number > 0, got " + message_number(exposure));
+    return merge_usage("--exposure: expected a finite number > 0, got " + message_number(exposure));
   for (const std::string& t : tiles)
     for (const std::string* o : {&out, &variance, &png})
       if (!o->empty() && std::filesystem::weakly_canonical(t) == std::filesystem::weakly_canonical(*o))
-        return usage("merge: " + *o + " is one of the tiles; write the frame elsewhere");
+        return merge_usage(*o + " is one of the tiles; write the frame elsewhere");
+  if (!variance.empty() && std::filesystem::weakly_canonical(variance) == std::filesystem::weakly_canonical(out))
+    return merge_usage("--variance: the same file as --out");
+  if (!png.empty() && std::filesystem::weakly_canonical(png) == std::filesystem::weakly_canonical(out))
+    return merge_usage("--png: the same file as --out");
   if (!folders_exist({&out, &variance, &png})) return kExitRuntime;
   auto merged = reference::merge_tiles(tiles);
-  if (auto* e = std::get_if<std::string>(&merged)) return usage("merge: " + *e);
+  if (auto* e = std::get_if<std::string>(&merged)) return merge_usage(*e);
   const reference::MergedFrame& f = std::get<reference::MergedFrame>(merged);
   try {
     image::write_exr(out, f.mean);
@@ -336,12 +342,14 @@ int main(int argc, char** argv) {
   if (!summary.empty() && lower_extension(summary) != ".json")
     return usage("--summary: expected a .json file name, got '" + summary + "'");
   {
-    const std::vector<const std::string*> files = {&out, &png, &variance, &summary};
-    for (std::size_t i = 0; i < files.size(); ++i)
-      for (std::size_t j = i + 1; j < files.size(); ++j)
-        if (!files[i]->empty() && !files[j]->empty() &&
-            std::filesystem::weakly_canonical(*files[i]) == std::filesystem::weakly_canonical(*files[j]))
-          return usage("'" + *files[j] + "' is given as two outputs");
+    const std::pair<const char*, const std::string*> files[] = {
+        {"--out", &out}, {"--png", &png}, {"--variance", &variance}, {"--summary", &summary}};
+    for (std::size_t i = 0; i < std::size(files); ++i)
+      for (std::size_t j = i + 1; j < std::size(files); ++j)
+        if (!files[i].second->empty() && !files[j].second->empty() &&
+            std::filesystem::weakly_canonical(*files[i].second) == std::filesystem::weakly_canonical(*files[j].second))
+          return usage(std::string(files[j].first) + ": '" + *files[j].second + "' is the same file as " +
+                       files[i].first);
   }
   if (!folders_exist({&out, &png, &variance, &summary})) return kExitRuntime;
 
@@ -390,6 +398,9 @@ int main(int argc, char** argv) {
       o.exposure = exposure;
       o.tile = tile;
       o.on_warning = [](const std::string& w) { std::cerr << "sss-reference: warning: " << w << '\n'; };
+      if (spp == 1)
+        std::cerr << "sss-reference: warning: --spp 1: one sample per pixel says nothing of the noise; the "
+                     "variance is written as 0 and the relative standard error is unknown (nan)\n";
       reference::GroundTruthImage r = reference::render_ground_truth(s, o, progress, &g_cancel);
       if (g_cancel.load()) throw reference::Cancelled();
       const std::string settings = pixel_settings(argc, argv);

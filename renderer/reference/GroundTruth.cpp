@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <mutex>
 
 namespace sss::reference {
@@ -257,9 +258,13 @@ GroundTruthImage render_ground_truth(const scene::Scene& s, const GroundTruthOpt
     want = std::clamp<std::uint64_t>(want, done + 1, 4 * done);
     next = cap > 0 ? std::min(cap, want) : want;
   }
-  stats.spp = done;
+  // A tile (or frame) without a subsurface pixel still took the samples it was asked for:
+  // its tiles must agree on the count to merge.
+  stats.spp = plans.empty() ? o.spp : done;
   for (const WalkStats& ws : walk_stats) stats.walk.add(ws);
-  stats.relative_standard_error = relative_standard_error(out.hdr, out.variance);
+  // One sample per pixel says nothing of the noise: the error is unknown, not 0.
+  stats.relative_standard_error = stats.spp >= 2 ? relative_standard_error(out.hdr, out.variance)
+                                                 : std::numeric_limits<double>::quiet_NaN();
   out.display = image::tonemap(out.hdr, o.exposure);
   stats.seconds = seconds_since(t_start);
   return out;

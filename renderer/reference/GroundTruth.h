@@ -67,7 +67,7 @@ struct GroundTruthStats {
   std::uint64_t spp = 0;                  // samples per subsurface pixel
   std::uint64_t subsurface_pixels = 0;    // that were sampled (in the tile)
   int passes = 0;
-  double relative_standard_error = 0.0;   // of the rendered pixels
+  double relative_standard_error = 0.0;   // of the rendered pixels; NaN with 1 sample per pixel
   double seconds = 0.0, setup_seconds = 0.0;
   std::size_t beam_chunks = 0;            // DirectBeams BVH primitives
   std::vector<std::string> warnings;      // e.g. meshes that are not closed

@@ -1,0 +1,285 @@
+// The ground-truth renderer as a renderer (issue 16): reproducible for its seed whatever the
+// thread count or tiling, stopping at a target error, refusing what it cannot do, warning
+// about open meshes, dispersive media, and the statistical regression test against a
+// stored ground truth (a per-pixel Z-test, as Mitsuba 3 tests its renders).
+#include "GroundTruthTestSupport.h"
+
+#include "renderer/reference/TileMerge.h"
+
+#include "profiles/Presets.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+
+#ifndef SSS_SOURCE_DIR
+#error "SSS_SOURCE_DIR must name the source folder"
+#endif
+
+namespace sss::reference::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+scene::Scene builtin(const char* name) {
+  auto loaded = scene::load_scene(name);
+  if (auto* e = std::get_if<scene::LoadError>(&loaded)) throw std::runtime_error(e->what());
+  return std::get<scene::Scene>(std::move(loaded));
+}
+
+GroundTruthImage render(const scene::Scene& s, std::uint32_t w, std::uint32_t h, std::uint64_t spp, int threads,
+                        TileSpec tile = {}, std::uint64_t seed = 1) {
+  GroundTruthOptions o;
+  o.width = w;
+  o.height = h;
+  o.spp = spp;
+  o.threads = threads;
+  o.tile = tile;
+  o.seed = seed;
+  return render_ground_truth(s, o);
+}
+
+bool same_bits(const image::Image& a, const image::Image& b) {
+  return a.width == b.width && a.height == b.height &&
+         std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)) == 0;
+}
+
+TEST(GroundTruthRender, TheImageDependsOnTheSeedAloneNotOnThreadsOrTiles) {
+  const scene::Scene s = builtin("builtin:sphere");
+  const GroundTruthImage one = render(s, 24, 14, 8, 1), two = render(s, 24, 14, 8, 2);
+  EXPECT_TRUE(same_bits(one.hdr, two.hdr));
+  EXPECT_TRUE(same_bits(one.variance, two.variance));
+  // Three tiles of interleaved rows, put together row by row, are the whole frame.
+  image::Image merged(24, 14), merged_var(24, 14);
+  for (std::uint32_t k = 1; k <= 3; ++k) {
+    const GroundTruthImage t = render(s, 24, 14, 8, 2, {k, 3});
+    for (int y = 0; y < 14; ++y) {
+      const bool own = std::uint32_t(y) % 3 == k - 1;
+      for (int x = 0; x < 24; ++x)
+        for (int c = 0; c < 4; ++c) {
+          if (own) {
+            merged.pixel(x, y)[c] = t.hdr.pixel(x, y)[c];
+            merged_var.pixel(x, y)[c] = t.variance.pixel(x, y)[c];
+          } else {
+            EXPECT_EQ(t.hdr.pixel(x, y)[c], 0.0f) << "tile " << k << " wrote row " << y;
+          }
+        }
+    }
+  }
+  EXPECT_TRUE(same_bits(merged, one.hdr));
+  EXPECT_TRUE(same_bits(merged_var, one.variance));
+  // Another seed is another estimate.
+  EXPECT_FALSE(same_bits(render(s, 24, 14, 8, 2, {}, 2).hdr, one.hdr));
+}
+
+TEST(GroundTruthRender, MergeTilesGivesTheSingleRenderBitForBit) {
+  const scene::Scene s = builtin("builtin:sphere");
+  const fs::path dir = fs::temp_directory_path() / "sss-ground-truth-merge";
+  fs::create_directories(dir);
+  const GroundTruthImage whole = render(s, 20, 9, 4, 2);
+  std::vector<std::string> files;
+  for (std::uint32_t k = 1; k <= 2; ++k) {
+    GroundTruthImage t = render(s, 20, 9, 4, 2, {k, 2});
+    const std::string tile = std::to_string(k) + "/2";
+    t.hdr.attributes = ground_truth_attributes("mean", tile, "test", t.stats.spp, t.stats.relative_standard_error);
+    t.variance.attributes = ground_truth_attributes("variance", tile, "test", t.stats.spp, 0.0);
+    files.push_back((dir / ("t" + std::to_string(k) + ".exr")).string());
+    files.push_back((dir / ("t" + std::to_string(k) + ".var.exr")).string());
+    image::write_exr(files[files.size() - 2], t.hdr);
+    image::write_exr(files.back(), t.variance);
+  }
+  auto merged = merge_tiles(files);
+  ASSERT_TRUE(std::holds_alternative<MergedFrame>(merged)) << std::get<std::string>(merged);
+  const MergedFrame& m = std::get<MergedFrame>(merged);
+  EXPECT_TRUE(same_bits(m.mean, whole.hdr));
+  EXPECT_TRUE(same_bits(m.variance, whole.variance));
+  // Its attributes are a whole render's: no tile, the frame's error recomputed.
+  image::Image expected_attributes;
+  expected_attributes.attributes = ground_truth_attributes("mean", "", "test", 4, whole.stats.relative_standard_error);
+  EXPECT_EQ(m.mean.attributes, expected_attributes.attributes);
+  // A tile short: refused, naming it.
+  files.pop_back();
+  auto short_one = merge_tiles(files);
+  ASSERT_TRUE(std::holds_alternative<std::string>(short_one));
+  EXPECT_NE(std::get<std::string>(short_one).find("variance tile 2/2 is missing"), std::string::npos)
+      << std::get<std::string>(short_one);
+  fs::remove_all(dir);
+}
+
+TEST(GroundTruthRender, TargetErrorStopsWhenTheFrameIsThatGood) {
+  const scene::Scene s = builtin("builtin:sphere");
+  GroundTruthOptions o;
+  o.width = 16;
+  o.height = 9;
+  o.target_error = 0.05;
+  const GroundTruthImage r = render_ground_truth(s, o);
+  EXPECT_LE(r.stats.relative_standard_error, 0.05);
+  EXPECT_GT(r.stats.passes, 1);
+  EXPECT_DOUBLE_EQ(r.stats.relative_standard_error, relative_standard_error(r.hdr, r.variance));
+  // The frame's error falls as 1/√spp: the sample count it stopped at is about what the
+  // first pass's noise projected, not a multiple of it (passes grow at most 4x).
+  o.target_error = 0.0;
+  o.spp = 16;
+  const double first = render_ground_truth(s, o).stats.relative_standard_error;
+  const double projected = 16.0 * (first / 0.05) * (first / 0.05);
+  EXPECT_GT(double(r.stats.spp), 0.5 * projected);
+  EXPECT_LT(double(r.stats.spp), 2.0 * projected);
+  // --spp caps it.
+  o.target_error = 1e-4;
+  o.spp = 32;
+  EXPECT_EQ(render_ground_truth(s, o).stats.spp, 32u);
+}
+
+TEST(GroundTruthRender, RefusesWhatItCannotDoNamingTheOption) {
+  const scene::Scene s = builtin("builtin:sphere");
+  struct Case {
+    GroundTruthOptions o;
+    const char* field;
+  };
+  auto with = [](auto change) {
+    GroundTruthOptions o;
+    o.width = 8;
+    o.height = 8;
+    o.spp = 4;
+    change(o);
+    return o;
+  };
+  const Case cases[] = {
+      {with([](GroundTruthOptions& o) { o.spp = 0; }), "spp"},
+      {with([](GroundTruthOptions& o) { o.target_error = -1; }), "target error"},
+      {with([](GroundTruthOptions& o) { o.target_error = std::nan(""); }), "target error"},
+      {with([](GroundTruthOptions& o) { o.target_error = 0.1, o.spp = 1; }), "spp"},
+      {with([](GroundTruthOptions& o) { o.tile = {0, 2}; }), "tile"},
+      {with([](GroundTruthOptions& o) { o.tile = {3, 2}; }), "tile"},
+      {with([](GroundTruthOptions& o) { o.tile = {1, 9}; }), "tile"},
+      {with([](GroundTruthOptions& o) { o.tile = {1, 2}, o.target_error = 0.1; }), "tile"},
+      {with([](GroundTruthOptions& o) { o.width = 0; }), "width"},
+      {with([](GroundTruthOptions& o) { o.threads = -1; }), "threads"},
+  };
+  for (const Case& c : cases) {
+    try {
+      render_ground_truth(s, c.o);
+      ADD_FAILURE() << "accepted, expected an error naming " << c.field;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(c.field, 0), 0u) << e.what();
+    }
+  }
+  std::string why;
+  EXPECT_FALSE(parse_tile("2/", why));
+  EXPECT_FALSE(parse_tile("-1/3", why));
+  EXPECT_FALSE(parse_tile("4/3", why));
+  EXPECT_TRUE(parse_tile("3/3", why));
+}
+
+// A mesh with a hole: the warning names it and says what a hole does; the render still
+// runs (nothing escapes into the void unaccounted: escaped walks are counted).
+TEST(GroundTruthRender, AnOpenMeshIsNamedAndItsHolesExplained) {
+  scene::Scene s = builtin("builtin:sphere");
+  scene::Mesh& m = s.meshes[0];
+  m.name = "leaky sphere";
+  m.indices.resize(m.indices.size() - 3 * 200);  // the last 200 triangles: a cap at the south pole
+  GroundTruthOptions o;
+  o.width = 16;
+  o.height = 9;
+  o.spp = 16;
+  std::vector<std::string> warned;
+  o.on_warning = [&](const std::string& w) { warned.push_back(w); };
+  const GroundTruthImage r = render_ground_truth(s, o);
+  ASSERT_EQ(warned.size(), 1u);
+  EXPECT_EQ(warned, r.stats.warnings);
+  EXPECT_NE(warned[0].find("'leaky sphere'"), std::string::npos) << warned[0];
+  EXPECT_NE(warned[0].find("holes"), std::string::npos) << warned[0];
+  EXPECT_NE(warned[0].find("lost"), std::string::npos) << warned[0];
+  EXPECT_GT(r.stats.walk.escaped, 0u);
+  // The closed sphere warns of nothing.
+  o.on_warning = {};
+  EXPECT_TRUE(render_ground_truth(builtin("builtin:sphere"), o).stats.warnings.empty());
+}
+
+// A dispersive medium (η per channel) walks each index separately: its red and green,
+// at η 1.3, are the η = 1.3 medium's red and green; its blue at 1.5 the η = 1.5 one's.
+// Frame totals compared in standard errors.
+TEST(GroundTruthRender, ADispersiveMediumWalksEachIndexOnItsOwn) {
+  profiles::Medium m = profiles::preset_medium(*profiles::find_preset("skin1"));
+  auto total = [&](const Rgb& eta, std::uint64_t seed) {
+    scene::Scene s = builtin("builtin:sphere");
+    profiles::Medium d = m;
+    d.eta = eta;
+    set_medium(s, d);
+    GroundTruthOptions o;
+    o.width = 16;
+    o.height = 9;
+    o.spp = 256;
+    o.seed = seed;
+    o.diffuse_only = true;
+    const GroundTruthImage r = render_ground_truth(s, o);
+    Estimate e;
+    for (int y = 0; y < 9; ++y)
+      for (int x = 0; x < 16; ++x)
+        for (int c = 0; c < 3; ++c) {
+          e.mean[c] += r.hdr.pixel(x, y)[c];
+          e.se[c] += r.variance.pixel(x, y)[c];
+        }
+    e.se = glm::sqrt(e.se);
+    return e;
+  };
+  const Estimate mixed = total({1.3, 1.3, 1.5}, 1), low = total({1.3, 1.3, 1.3}, 2), high = total({1.5, 1.5, 1.5}, 3);
+  for (int c = 0; c < 3; ++c) {
+    const Estimate& same = c < 2 ? low : high;
+    const double z = (mixed.mean[c] - same.mean[c]) / std::hypot(mixed.se[c], same.se[c]);
+    EXPECT_LT(std::abs(z), 4.0) << kChannelNames[c];
+  }
+  // And the index matters enough to be seen: 1.3 against 1.5 in blue.
+  EXPECT_GT(std::abs(low.mean.z - high.mean.z) / std::hypot(low.se.z, high.se.z), 4.0);
+}
+
+// The statistical regression test (Mitsuba 3's test_renders.py): a fresh 256-sample render
+// of builtin:sphere at 32 x 18 with another seed against the stored ground truth
+// (tests/golden/ground-truth/zsphere: 16384 samples, its variance beside it). Per pixel and
+// channel z = (fresh - stored) / sqrt(var_fresh + var_stored), two-sided p-values, and a
+// Šidák correction over all of them for a family-wise false-alarm rate of 1e-3: any change
+// to the walk that moves a pixel's expectation by a few of its standard errors fails,
+// without a tolerance to tune.
+TEST(GroundTruthRender, AFreshRenderAgreesWithTheStoredGroundTruthPixelByPixel) {
+  const std::string base = std::string(SSS_SOURCE_DIR) + "/tests/golden/ground-truth/zsphere";
+  auto stored = image::read_image(base + ".exr"), stored_var = image::read_image(base + ".var.exr");
+  ASSERT_TRUE(std::holds_alternative<image::Image>(stored) && std::holds_alternative<image::Image>(stored_var))
+      << base << ".exr: run tests/golden/ground-truth/render.sh";
+  const image::Image& ref = std::get<image::Image>(stored);
+  const image::Image& ref_var = std::get<image::Image>(stored_var);
+  const GroundTruthImage fresh = render(builtin("builtin:sphere"), std::uint32_t(ref.width), std::uint32_t(ref.height),
+                                        256, 0, {}, 20261201);
+  int tests = 0, exact = 0;
+  double worst_p = 1.0, chi = 0.0;
+  std::vector<double> p_values;
+  for (int y = 0; y < ref.height; ++y)
+    for (int x = 0; x < ref.width; ++x) {
+      ASSERT_EQ(fresh.hdr.pixel(x, y)[3], ref.pixel(x, y)[3]) << "geometry differs at " << x << ", " << y;
+      for (int c = 0; c < 3; ++c) {
+        const double a = fresh.hdr.pixel(x, y)[c], b = ref.pixel(x, y)[c];
+        const double var = double(fresh.variance.pixel(x, y)[c]) + ref_var.pixel(x, y)[c];
+        if (var == 0.0) {  // deterministic pixels (background, opaque): equal, bit for bit
+          EXPECT_EQ(a, b) << x << ", " << y;
+          ++exact;
+          continue;
+        }
+        const double z = (a - b) / std::sqrt(var);
+        chi += z * z;
+        const double p = std::erfc(std::abs(z) / std::sqrt(2.0));
+        worst_p = std::min(worst_p, p);
+        p_values.push_back(p);
+        ++tests;
+      }
+    }
+  const double alpha = 1.0 - std::pow(1.0 - 1e-3, 1.0 / tests);
+  std::printf("Z-test: %d channel-pixels (%d exact), smallest p %.3g (Sidak threshold %.3g), mean z^2 %.3f\n", tests,
+              exact, worst_p, alpha, chi / tests);
+  EXPECT_GT(worst_p, alpha);
+  // The z scores are standard normal as a whole too: mean z² within 4 of its standard
+  // error (sqrt(2/n)) of 1.
+  EXPECT_LT(std::abs(chi / tests - 1.0), 4.0 * std::sqrt(2.0 / tests));
+}
+
+}  // namespace
+}  // namespace sss::reference::testing
