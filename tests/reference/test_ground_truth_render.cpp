@@ -234,7 +234,7 @@ TEST(GroundTruthRender, ADispersiveMediumWalksEachIndexOnItsOwn) {
   EXPECT_GT(std::abs(low.mean.z - high.mean.z) / std::hypot(low.se.z, high.se.z), 4.0);
 }
 
-// The statistical regression test (Mitsuba 3's test_renders.py): a fresh 256-sample render
+// The statistical regression test (Mitsuba 3's test_renders.py): a fresh 1024-sample render
 // of builtin:sphere at 32 x 18 with another seed against the stored ground truth
 // (tests/golden/ground-truth/zsphere: 16384 samples, its variance beside it). Per pixel and
 // channel z = (fresh - stored) / sqrt(var_fresh + var_stored), two-sided p-values, and a
@@ -248,9 +248,12 @@ TEST(GroundTruthRender, AFreshRenderAgreesWithTheStoredGroundTruthPixelByPixel) 
       << base << ".exr: run tests/golden/ground-truth/render.sh";
   const image::Image& ref = std::get<image::Image>(stored);
   const image::Image& ref_var = std::get<image::Image>(stored_var);
+  const std::uint64_t stored_spp = std::stoull(attribute(ref, kAttrSpp).value_or("0"));
+  ASSERT_GT(stored_spp, 1000u);
+  constexpr std::uint64_t kFreshSpp = 1024;
   const GroundTruthImage fresh = render(builtin("builtin:sphere"), std::uint32_t(ref.width), std::uint32_t(ref.height),
-                                        256, 0, {}, 20261201);
-  int tests = 0, exact = 0;
+                                        kFreshSpp, 0, {}, 20261201);
+  int tests = 0, exact = 0, skipped = 0;
   double worst_p = 1.0, chi = 0.0;
   std::vector<double> p_values;
   for (int y = 0; y < ref.height; ++y)
@@ -258,10 +261,24 @@ TEST(GroundTruthRender, AFreshRenderAgreesWithTheStoredGroundTruthPixelByPixel) 
       ASSERT_EQ(fresh.hdr.pixel(x, y)[3], ref.pixel(x, y)[3]) << "geometry differs at " << x << ", " << y;
       for (int c = 0; c < 3; ++c) {
         const double a = fresh.hdr.pixel(x, y)[c], b = ref.pixel(x, y)[c];
-        const double var = double(fresh.variance.pixel(x, y)[c]) + ref_var.pixel(x, y)[c];
+        // The fresh mean's variance from the stored per-sample variance (16384 samples,
+        // precise), as Mitsuba 3 does: the fresh render's own estimate comes from the same
+        // samples as its mean, and for skewed samples a low mean comes with a low variance
+        // estimate, which would inflate |z|.
+        const double per_sample = double(ref_var.pixel(x, y)[c]) * double(stored_spp);
+        const double var = per_sample / double(kFreshSpp) + ref_var.pixel(x, y)[c];
         if (var == 0.0) {  // deterministic pixels (background, opaque): equal, bit for bit
           EXPECT_EQ(a, b) << x << ", " << y;
           ++exact;
+          continue;
+        }
+        // Pixels the walk reaches the light from only rarely (the far side, the shadow)
+        // have heavy-tailed samples: their means are not yet normal and their variance
+        // estimates run low, so a Z-test would flag noise, not change. Only channel-pixels
+        // whose stored estimate is within 1% (a per-sample relative deviation below 1.3
+        // over its 16384 samples) are tested; the choice uses the stored side alone.
+        if (!(std::sqrt(double(ref_var.pixel(x, y)[c])) <= 0.01 * b)) {
+          ++skipped;
           continue;
         }
         const double z = (a - b) / std::sqrt(var);
@@ -273,12 +290,16 @@ TEST(GroundTruthRender, AFreshRenderAgreesWithTheStoredGroundTruthPixelByPixel) 
       }
     }
   const double alpha = 1.0 - std::pow(1.0 - 1e-3, 1.0 / tests);
-  std::printf("Z-test: %d channel-pixels (%d exact), smallest p %.3g (Sidak threshold %.3g), mean z^2 %.3f\n", tests,
-              exact, worst_p, alpha, chi / tests);
+  std::printf("Z-test: %d channel-pixels (%d exact, %d too noisy to test), smallest p %.3g (Sidak threshold %.3g), "
+              "mean z^2 %.3f\n",
+              tests, exact, skipped, worst_p, alpha, chi / tests);
+  EXPECT_GT(tests, 100);
   EXPECT_GT(worst_p, alpha);
-  // The z scores are standard normal as a whole too: mean z² within 4 of its standard
-  // error (sqrt(2/n)) of 1.
-  EXPECT_LT(std::abs(chi / tests - 1.0), 4.0 * std::sqrt(2.0 / tests));
+  // The z scores are standard normal as a whole too: mean z² within 4 standard errors of 1.
+  // A pixel's three channels come from the same walks and move together, so the standard
+  // error of mean z² is sqrt(2 / pixels), not sqrt(2 / channel-pixels) (measured: two fresh
+  // 16384-sample renders against each other give mean z² 1.02-1.22 over these pixels).
+  EXPECT_LT(std::abs(chi / tests - 1.0), 4.0 * std::sqrt(2.0 / (tests / 3.0)));
 }
 
 }  // namespace
