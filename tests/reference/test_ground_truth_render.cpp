@@ -254,8 +254,7 @@ TEST(GroundTruthRender, AFreshRenderAgreesWithTheStoredGroundTruthPixelByPixel) 
   const GroundTruthImage fresh = render(builtin("builtin:sphere"), std::uint32_t(ref.width), std::uint32_t(ref.height),
                                         kFreshSpp, 0, {}, 20261201);
   int tests = 0, exact = 0, skipped = 0;
-  double worst_p = 1.0, chi = 0.0;
-  std::vector<double> p_values;
+  double worst_p = 1.0, chi = 0.0, worst_p_shifted = 1.0;
   for (int y = 0; y < ref.height; ++y)
     for (int x = 0; x < ref.width; ++x) {
       ASSERT_EQ(fresh.hdr.pixel(x, y)[3], ref.pixel(x, y)[3]) << "geometry differs at " << x << ", " << y;
@@ -285,7 +284,8 @@ TEST(GroundTruthRender, AFreshRenderAgreesWithTheStoredGroundTruthPixelByPixel) 
         chi += z * z;
         const double p = std::erfc(std::abs(z) / std::sqrt(2.0));
         worst_p = std::min(worst_p, p);
-        p_values.push_back(p);
+        // The test's power: the same render against a stored truth 3% brighter must fail.
+        worst_p_shifted = std::min(worst_p_shifted, std::erfc(std::abs(a - 1.03 * b) / std::sqrt(var) / std::sqrt(2.0)));
         ++tests;
       }
     }
@@ -295,6 +295,7 @@ TEST(GroundTruthRender, AFreshRenderAgreesWithTheStoredGroundTruthPixelByPixel) 
               tests, exact, skipped, worst_p, alpha, chi / tests);
   EXPECT_GT(tests, 100);
   EXPECT_GT(worst_p, alpha);
+  EXPECT_LT(worst_p_shifted, alpha) << "a 3% change would go unnoticed";
   // The z scores are standard normal as a whole too: mean z² within 4 standard errors of 1.
   // A pixel's three channels come from the same walks and move together, so the standard
   // error of mean z² is sqrt(2 / pixels), not sqrt(2 / channel-pixels) (measured: two fresh
