@@ -178,9 +178,10 @@ std::string medium_warning(const scene::Scene& s, const MediumSurface& surface) 
   add(t.unorientable_edges, "edges where the surface cannot be oriented");
   return "material '" + s.materials[surface.material].name + "' (mesh " + meshes +
          ") is not a closed surface: " + what +
-         ". The random walk treats a hole as open air: a path that leaves the medium through it "
-         "is lost and no light enters through it, so the medium near a hole is darker than the "
-         "closed object would be (renderer/reference/README.md, \"Ground truth\")";
+         ". The random walk treats a hole as an open window: no light enters through it, and a walk "
+         "that leaves the object's bounds through it is lost, so the medium near a hole is darker "
+         "than the closed object would be (within about two diffusion lengths of its rim; "
+         "renderer/reference/README.md, \"Holes\")";
 }
 
 }  // namespace sss::reference

@@ -55,6 +55,13 @@ WalkScene::WalkScene(const scene::Scene& s, const RayScene& rays, std::vector<st
       m.g[c] = eff.g[std::size_t(c)];
     }
     m.pre_post = s.materials[surface.material].sss.albedo_mode == scene::AlbedoMode::PrePost;
+    m.lo = glm::dvec3(std::numeric_limits<double>::infinity());
+    m.hi = -m.lo;
+    for (std::uint32_t i : surface.instances)
+      for (const glm::vec3& q : rays.world_positions(i)) {
+        m.lo = glm::min(m.lo, glm::dvec3(q));
+        m.hi = glm::max(m.hi, glm::dvec3(q));
+      }
     for (int c = 0; c < 3; ++c) {
       const double eta = eff.eta[std::size_t(c)];
       auto band = std::find_if(m.bands.begin(), m.bands.end(), [&](const WalkMedium::Band& b) { return b.eta == eta; });
@@ -135,11 +142,20 @@ glm::dvec3 WalkScene::sample_radiance(const WalkMedium& medium, const WalkMedium
     const int c = pick_channel(beta, sum, rng.uniform());
     const double flight = -std::log1p(-rng.uniform()) / medium.sigma_t[c];
     const std::optional<Hit> hit = rays_->intersect(glm::vec3(p), glm::vec3(w));
-    if (!hit) {  // out through a hole (or a numerical leak): lost
-      ++stats.escaped;
-      break;
+    if (!hit) {
+      // No face ahead: a hole. Scatter as sampled if that is still within the medium's
+      // bounds, else the walk has left through the hole and is lost.
+      double exit = std::numeric_limits<double>::infinity();
+      for (int a = 0; a < 3; ++a) {
+        if (w[a] > 0.0) exit = std::min(exit, (medium.hi[a] - p[a]) / w[a]);
+        if (w[a] < 0.0) exit = std::min(exit, (medium.lo[a] - p[a]) / w[a]);
+      }
+      if (!(flight < exit)) {
+        ++stats.escaped;
+        break;
+      }
     }
-    if (double(hit->t) <= flight) {
+    if (hit && double(hit->t) <= flight) {
       // The face: transmittance over the flight, balance-heuristic weight over channels.
       const double t = hit->t;
       const glm::dvec3 tr = glm::exp(-medium.sigma_t * t);

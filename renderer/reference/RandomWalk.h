@@ -21,6 +21,11 @@
 //     meets no light (lights are points or directions), and the frame computes direct light
 //     only, like the other renderers: no interreflection between surfaces. So it is not
 //     followed, which is the same estimate with less noise;
+//   * a flight that meets no face (the surface has a hole in that direction) runs on as if
+//     the medium continued: it scatters where it was sampled, and only a flight that would
+//     leave the medium's bounds is lost (counted in WalkStats::escaped). Ending every walk
+//     whose straight line ahead passes a hole would darken the whole object (a 16 mm hole
+//     in builtin:sphere's cap cut 12% of the walks from a point 25 mm away);
 //   * Russian roulette on the largest channel weight after two events (survival
 //     probability min(1, max β)), never a bounce cap; a walk is only cut at 2^28 events as
 //     a guard against an endless loop, and counted (WalkStats::truncated).
@@ -53,7 +58,7 @@ struct WalkStats {
   std::uint64_t scattering_events = 0;
   std::uint64_t boundary_hits = 0;  // faces met from inside (Fresnel reflections)
   std::uint64_t beams = 0;          // direct beams found by next-event estimation
-  std::uint64_t escaped = 0;        // walks that left the medium without meeting a face (holes)
+  std::uint64_t escaped = 0;        // walks that left the medium's bounds through a hole
   std::uint64_t truncated = 0;      // walks cut by the event guard
   void add(const WalkStats& o) {
     paths += o.paths;
@@ -70,6 +75,7 @@ struct WalkMedium {
   std::uint32_t material = 0;
   glm::dvec3 sigma_a{0.0}, sigma_s{0.0}, sigma_t{0.0}, g{0.0};
   bool pre_post = false;  // √albedo at entry and exit
+  glm::dvec3 lo{0.0}, hi{0.0};  // the bounds of its surface (world mm)
   // Channels that share a refractive index share a walk (all three, unless the medium is
   // dispersive); each set has its own direct beams.
   struct Band {

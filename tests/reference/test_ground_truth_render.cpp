@@ -178,7 +178,8 @@ TEST(GroundTruthRender, AnOpenMeshIsNamedAndItsHolesExplained) {
   scene::Scene s = builtin("builtin:sphere");
   scene::Mesh& m = s.meshes[0];
   m.name = "leaky sphere";
-  m.indices.resize(m.indices.size() - 3 * 200);  // the last 200 triangles: a cap at the south pole
+  m.indices.resize(m.indices.size() - 3 * (96 + 3 * 192));  // the last four rings: a cap at the south pole
+  s.cameras[0] = scene::frame_bounds(s.bounds(), {0.0f, 1.0f, -0.3f});     // seen from below
   GroundTruthOptions o;
   o.width = 16;
   o.height = 9;
@@ -190,6 +191,7 @@ TEST(GroundTruthRender, AnOpenMeshIsNamedAndItsHolesExplained) {
   EXPECT_EQ(warned, r.stats.warnings);
   EXPECT_NE(warned[0].find("'leaky sphere'"), std::string::npos) << warned[0];
   EXPECT_NE(warned[0].find("holes"), std::string::npos) << warned[0];
+  EXPECT_NE(warned[0].find("darker"), std::string::npos) << warned[0];
   EXPECT_NE(warned[0].find("lost"), std::string::npos) << warned[0];
   EXPECT_GT(r.stats.walk.escaped, 0u);
   // The closed sphere warns of nothing.
@@ -303,5 +305,61 @@ TEST(GroundTruthRender, AFreshRenderAgreesWithTheStoredGroundTruthPixelByPixel) 
   EXPECT_LT(std::abs(chi / tests - 1.0), 4.0 * std::sqrt(2.0 / (tests / 3.0)));
 }
 
+}  // namespace
+}  // namespace sss::reference::testing
+namespace sss::reference::testing {
+namespace {
+// What a hole costs (renderer/reference/README.md, "Holes"): builtin:sphere (30 mm skin1)
+// with a cap of its four last rings cut out around the pole that faces the light and the
+// camera, against the closed sphere, red channel, by distance from the hole's rim in the
+// image (head-on there, so about the distance on the surface).
+//   test_reference --gtest_also_run_disabled_tests --gtest_filter='*WhatAHoleCosts'
+TEST(GroundTruthStudy, DISABLED_WhatAHoleCosts) {
+  scene::Scene closed = builtin("builtin:sphere");
+  closed.cameras[0] = scene::frame_bounds(closed.bounds(), {0.0f, 1.0f, -0.3f});
+  closed.lights[0] = scene::directional_light("from below", {0.0f, 1.0f, -0.3f}, 3.0f);
+  scene::Scene open = closed;
+  open.meshes[0].indices.resize(open.meshes[0].indices.size() - 3 * (96 + 3 * 192));
+  GroundTruthOptions o;
+  o.width = 48;
+  o.height = 27;
+  o.spp = 4096;
+  o.diffuse_only = true;
+  const GroundTruthImage a = render_ground_truth(closed, o);
+  o.seed = 2;  // independent of the closed render
+  const GroundTruthImage b = render_ground_truth(open, o);
+  // The sphere's and the hole's centres and radii in the image.
+  double gx = 0, gy = 0, gn = 0, hx = 0, hy = 0, hn = 0;
+  for (int y = 0; y < int(o.height); ++y)
+    for (int x = 0; x < int(o.width); ++x) {
+      if (!(a.hdr.pixel(x, y)[3] > 0.5f)) continue;
+      gx += x, gy += y, ++gn;
+      if (b.hdr.pixel(x, y)[0] < 1e-4f && a.hdr.pixel(x, y)[0] > 0.01f) hx += x, hy += y, ++hn;
+    }
+  ASSERT_GT(hn, 10.0);
+  const double mm_per_px = 30.0 / std::sqrt(gn / kPi), hole_r = std::sqrt(hn / kPi);
+  hx /= hn, hy /= hn;
+  std::printf("hole radius %.1f mm in the image; escaped walks %.1f%%\n", hole_r * mm_per_px,
+              100.0 * double(b.stats.walk.escaped) / double(b.stats.walk.paths));
+  for (int ring = 0; ring < 12; ++ring) {  // rings 2 mm wide
+    glm::dvec3 sa(0.0), sb(0.0), va(0.0), vb(0.0);
+    for (int y = 0; y < int(o.height); ++y)
+      for (int x = 0; x < int(o.width); ++x) {
+        const double d = (std::hypot(x - hx, y - hy) - hole_r) * mm_per_px;
+        if (d < 2.0 * ring || d >= 2.0 * ring + 2.0 || !(a.hdr.pixel(x, y)[0] > 0.01f) || !(b.hdr.pixel(x, y)[0] > 0.0f))
+          continue;
+        for (int c = 0; c < 3; ++c) {
+          sa[c] += a.hdr.pixel(x, y)[c], sb[c] += b.hdr.pixel(x, y)[c];
+          va[c] += a.variance.pixel(x, y)[c], vb[c] += b.variance.pixel(x, y)[c];
+        }
+      }
+    if (!(sa.x > 0)) continue;
+    std::printf("%2d-%2d mm from the rim: open / closed", 2 * ring, 2 * ring + 2);
+    for (int c = 0; c < 3; ++c)
+      std::printf("  %s %.3f +- %.3f", kChannelNames[c], sb[c] / sa[c],
+                  sb[c] / sa[c] * std::hypot(std::sqrt(va[c]) / sa[c], std::sqrt(vb[c]) / sb[c]));
+    std::printf("\n");
+  }
+}
 }  // namespace
 }  // namespace sss::reference::testing
