@@ -132,12 +132,16 @@ std::map<int, Row> read_csv(const std::string& path) {
 // coefficient edit: a cycle of 2 steps = 200 frames, which is the warm-up (each step's
 // first fit, upload and pipelines happen in it). Criteria, the full soak's applied to the
 // 300 frames after warm-up:
-//   - RSS(500) - RSS(200) < 1 MB (1024 kB), and the program's own peak-to-peak verdict.
-//     Nothing in a frame or a material change should keep memory, so the expected growth
-//     is 0; the allocator's swing here is at most the 225 kB frame read back per sample
-//     (160x90 RGBA floats), so single samples suffice. 1 MB is the bound for the
-//     10,000-frame soak and catches any per-frame leak of 3.5 kB or more here
-//     (1 MB / 300 frames) and any per-change leak of 350 kB or more (3 changes);
+//   - RSS(500) - RSS(300) < 1 MB (1024 kB), and the program's own peak-to-peak verdict.
+//     Frames 300 and 500 are the same point of the cycle (both just after the preset is
+//     applied), after warm-up. Comparing points of different phase is not a leak test:
+//     the two steps keep different amounts of memory alive (a CI run measured 200
+//     'coefficients' 1.7 MB under 300 'apple', then 300, 400 and 500 within 4 kB, live
+//     heap likewise). Nothing in a frame or a material change should keep memory, so the
+//     expected growth is 0; the allocator's swing here is at most the 225 kB frame read
+//     back per sample (160x90 RGBA floats), so single samples suffice. 1 MB is the issue's
+//     bound for the 10,000-frame soak and catches any per-frame leak of 5.2 kB or more
+//     here (1 MB / 200 frames) and any per-change leak of 512 kB or more (2 changes);
 //   - the live Vulkan objects at frames 400 and 500 equal those at 200 and 300 (the same
 //     point of the cycle): one leaked object per change fails it.
 TEST(Soak, FiveHundredFramesKeepMemoryAndVulkanObjects) {
@@ -158,7 +162,7 @@ TEST(Soak, FiveHundredFramesKeepMemoryAndVulkanObjects) {
   EXPECT_EQ(rows.at(300).material, "apple");
   EXPECT_GT(rows.at(200).objects, 0);
 #if !defined(__SANITIZE_ADDRESS__)  // ASan's quarantine keeps freed memory resident
-  EXPECT_LT(rows.at(500).rss_kb - rows.at(200).rss_kb, 1024) << r.out;
+  EXPECT_LT(rows.at(500).rss_kb - rows.at(300).rss_kb, 1024) << r.out;
 #endif
   EXPECT_EQ(rows.at(400).objects, rows.at(200).objects) << r.out;
   EXPECT_EQ(rows.at(500).objects, rows.at(300).objects) << r.out;
