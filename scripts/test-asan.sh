@@ -1,8 +1,16 @@
 #!/usr/bin/env bash
-# Builds the `asan` preset (ASan + UBSan + -D_GLIBCXX_ASSERTIONS, in build-asan/) and runs
-# every test under it, then renders one headless lavapipe frame of the default scene with
-# the sanitized sss-viewer. Any sanitizer report fails the run (halt_on_error, UBSan
-# without recover). Extra arguments go to ctest (.ci/run passes none: every test).
+# Builds the `asan` preset (ASan + UBSan + -D_GLIBCXX_ASSERTIONS, -O1, in build-asan/) and
+# runs every test under it but the long statistical ones below, then renders one headless
+# lavapipe frame of the default scene with the sanitized sss-viewer. Any sanitizer report
+# fails the run (halt_on_error, UBSan without recover). Extra arguments go to ctest
+# (.ci/run passes none).
+#
+# Left out here, run in full by scripts/test.sh: the tests whose cost is statistical power,
+# millions of random walks or probes through code that the other tests run under the
+# sanitizers too (the walk, the direct beams and the probe estimator by GroundTruthRender.*,
+# GroundTruthSampling's other tests, ProbeReference.*, RadialSampler.* and the sss-reference
+# CLI tests). They took 439 s of the 1374 s that every test took under ASan (2026-12-02);
+# set SSS_ASAN_ALL=1 to run them too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 "$(dirname "$0")/install-deps.sh"
@@ -19,7 +27,10 @@ export LD_PRELOAD="$PWD/$BUILD_DIR/asan-nodlclose.so${LD_PRELOAD:+:$LD_PRELOAD}"
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:strict_init_order=1:verify_asan_link_order=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
-ctest --test-dir "$BUILD_DIR" --output-on-failure -j"$(nproc)" --timeout 1800 "$@"
+STATISTICAL='^(GroundTruthPhysics\.|GroundTruthSampling\.DirectBeams|Models/ProbeEdgeTest\.)'
+exclude=()
+[ "${SSS_ASAN_ALL:-0}" = 1 ] || exclude=(-E "$STATISTICAL")
+ctest --test-dir "$BUILD_DIR" --output-on-failure -j"$(nproc)" --timeout 1800 "${exclude[@]}" "$@"
 
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
