@@ -2,6 +2,7 @@
 
 #include "renderer/image/Tonemap.h"
 #include "renderer/reference/PixelShading.h"
+#include "renderer/reference/SamplePasses.h"
 
 #include <glm/geometric.hpp>
 
@@ -31,19 +32,6 @@ struct PixelPlan {
   glm::dvec3 x_o{0.0};               // the visible face point (world mm)
   glm::dvec3 outward{0.0};           // its geometric normal on the eye's side
   glm::dvec3 eye_travel{0.0};        // the eye ray's direction
-};
-
-// Welford's running mean and sum of squared deviations of a pixel's samples.
-struct Accumulator {
-  glm::dvec3 mean{0.0}, m2{0.0};
-  std::uint64_t n = 0;
-  void add(const glm::dvec3& x) {
-    ++n;
-    const glm::dvec3 delta = x - mean;
-    mean += delta / double(n);
-    m2 += delta * (x - mean);
-  }
-  glm::dvec3 variance_of_mean() const { return n > 1 ? m2 / (double(n) * double(n - 1)) : glm::dvec3(0.0); }
 };
 
 void check_options(const GroundTruthOptions& o) {
@@ -206,58 +194,32 @@ GroundTruthImage render_ground_truth(const scene::Scene& s, const GroundTruthOpt
   report("setup", 1.0);
 
   // Passes of samples over every subsurface pixel.
-  std::vector<Accumulator> acc(plans.size());
+  std::vector<PixelAccumulator> acc;
   tbb::enumerable_thread_specific<WalkStats> walk_stats;
-  const std::uint64_t cap = o.spp;
-  std::uint64_t done = 0;
-  std::uint64_t next = o.target_error > 0.0 ? (cap > 0 ? std::min<std::uint64_t>(cap, 16) : 16) : cap;
-  std::atomic<std::uint64_t> samples_done{0};
-  const double per_sample = 1.0 / double(std::max<std::size_t>(plans.size(), 1));
-  auto write_pixels = [&] {
+  auto write_pixels = [&](const std::vector<PixelAccumulator>& a) {
     for (std::size_t i = 0; i < plans.size(); ++i) {
       const PixelPlan& p = plans[i];
       float* px = &out.hdr.rgba[std::size_t(p.index) * 4];
       float* pv = &out.variance.rgba[std::size_t(p.index) * 4];
-      const glm::dvec3 mean = p.base + p.factor * acc[i].mean;
-      const glm::dvec3 var = p.factor * p.factor * acc[i].variance_of_mean();
+      const glm::dvec3 mean = p.base + p.factor * a[i].mean;
+      const glm::dvec3 var = p.factor * p.factor * a[i].variance_of_mean();
       for (int c = 0; c < 3; ++c) {
         px[c] = float(mean[c]);
         pv[c] = float(var[c]);
       }
     }
+    return relative_standard_error(out.hdr, out.variance);
   };
-  while (!plans.empty()) {
-    const std::uint64_t from = done, to = next;
-    double planned = double(to);  // samples per pixel this run is heading for
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, plans.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
-        WalkStats& ws = walk_stats.local();
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          if (cancelled()) return;
-          const PixelPlan& p = plans[i];
-          for (std::uint64_t k = from; k < to; ++k) {
-            if ((k & 255u) == 255u && cancelled()) return;
-            walk::WalkRng rng(o.seed, p.index, k);
-            acc[i].add(sample_pixel(*walk, p, o.exitance, rng, ws));
-          }
-          const std::uint64_t n = samples_done.fetch_add(to - from) + (to - from);
-          // With a target error the first pass measures the noise; each later one heads
-          // for the samples that noise says are needed.
-          report(o.target_error > 0.0 && from == 0 ? "noise" : "walk", double(n) * per_sample / planned);
-        }
-      });
-    });
-    if (cancelled()) throw Cancelled();
-    done = to;
-    ++stats.passes;
-    write_pixels();
-    stats.relative_standard_error = relative_standard_error(out.hdr, out.variance);
-    if (o.target_error == 0.0 || stats.relative_standard_error <= o.target_error || (cap > 0 && done >= cap)) break;
-    const double e = stats.relative_standard_error / o.target_error;
-    std::uint64_t want = std::uint64_t(std::ceil(double(done) * e * e * 1.05));
-    want = std::clamp<std::uint64_t>(want, done + 1, 4 * done);
-    next = cap > 0 ? std::min(cap, want) : want;
-  }
+  const PassResult passes = run_sample_passes(
+      plans.size(), {o.spp, o.target_error, "walk"}, arena, walk_stats, acc,
+      [&](std::size_t i, std::uint64_t k, WalkStats& ws) {
+        walk::WalkRng rng(o.seed, plans[i].index, k);
+        return sample_pixel(*walk, plans[i], o.exitance, rng, ws);
+      },
+      write_pixels, cancelled, report);
+  if (cancelled()) throw Cancelled();
+  stats.passes = passes.passes;
+  const std::uint64_t done = passes.spp;
   // A tile (or frame) without a subsurface pixel still took the samples it was asked for:
   // its tiles must agree on the count to merge.
   stats.spp = plans.empty() ? o.spp : done;

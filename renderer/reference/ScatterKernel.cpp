@@ -1,5 +1,7 @@
 #include "renderer/reference/ScatterKernel.h"
 
+#include "renderer/reference/ProfileTable.h"
+
 #include "profiles/Integrate.h"
 
 #include <tbb/parallel_for.h>
@@ -35,58 +37,6 @@ constexpr double kKinkGap = 0x1.0p-20;
 
 double edge(std::uint64_t key) { return std::bit_cast<double>(key << kShift); }
 std::uint64_t key_of(double y) { return std::bit_cast<std::uint64_t>(y) >> kShift; }
-
-// R (or T) as the quadrature sees it: the profile itself, or for the costly models
-// (photon beam diffusion: ~4 µs a call) a cubic interpolant of ln R in ln r on 64 nodes
-// per decade from 1e-7 min(ℓ, a) to the support, Lagrange through the 4 nearest nodes.
-// ln R of a diffusion profile is smooth in ln r, with derivatives of the order of σr,
-// so the interpolation error is ~(ln 10/64)^4 σr/24 ~ 1e-6 (measured through the
-// kernel: its PBD and multipole tables match the polar integral of the profile itself
-// to 2e-5, as those of the directly evaluated models do). Nodes at or below 0 (the
-// multipole's T near the axis of a thin slab) fall back to linear interpolation in R;
-// below the first node the profile is evaluated directly.
-class ProfileSampler {
- public:
-  ProfileSampler(const profiles::RadialProfile& p, bool transmit, bool interpolate, double r0,
-                 double support)
-      : p_(p), transmit_(transmit) {
-    if (!interpolate) return;
-    log_r0_ = std::log(r0);
-    inv_step_ = kNodesPerDecade / std::log(10.0);
-    const int n = int(std::ceil(std::log(support / r0) * inv_step_)) + 4;
-    for (int k = -1; k <= n; ++k) {
-      const double v = direct(std::exp(log_r0_ + k / inv_step_));
-      value_.push_back(v);
-      log_value_.push_back(v > 0.0 ? std::log(v) : -std::numeric_limits<double>::infinity());
-    }
-  }
-  double operator()(double r) const {
-    if (value_.empty()) return direct(r);
-    const double x = (std::log(std::max(r, 1e-300)) - log_r0_) * inv_step_;
-    // Nodes k - 1 .. k + 2 around x (node j at index j + 1).
-    const double k = std::clamp(std::floor(x), 0.0, double(value_.size() - 4));
-    const double t = x - k;
-    const std::size_t i = std::size_t(k);
-    const double* lv = &log_value_[i];
-    if (std::isfinite(lv[0]) && std::isfinite(lv[1]) && std::isfinite(lv[2]) &&
-        std::isfinite(lv[3]) && t >= 0.0 && t <= 1.0) {
-      // Lagrange weights at nodes -1, 0, 1, 2 for t in [0, 1].
-      const double w0 = -t * (t - 1.0) * (t - 2.0) / 6.0, w1 = (t + 1.0) * (t - 1.0) * (t - 2.0) / 2.0;
-      const double w2 = -(t + 1.0) * t * (t - 2.0) / 2.0, w3 = (t + 1.0) * t * (t - 1.0) / 6.0;
-      return std::exp(w0 * lv[0] + w1 * lv[1] + w2 * lv[2] + w3 * lv[3]);
-    }
-    if (t < 0.0 || t > 1.0) return direct(r);  // outside the nodes
-    return value_[i + 1] + t * (value_[i + 2] - value_[i + 1]);
-  }
-
- private:
-  static constexpr double kNodesPerDecade = 64.0;
-  double direct(double r) const { return transmit_ ? p_.transmittance(r) : p_.reflectance(r); }
-  const profiles::RadialProfile& p_;
-  bool transmit_;
-  double log_r0_ = 0.0, inv_step_ = 0.0;
-  std::vector<double> value_, log_value_;
-};
 
 // K(d) = 1/(πa²) ∫_0^S f(s) 2s θ(s) ds for one channel's R or T (DESIGN.md §3 units).
 class DiscAverage {
@@ -195,7 +145,7 @@ class DiscAverage {
     return sum;
   }
 
-  ProfileSampler f_;
+  ProfileTable f_;
   double a_, support_;
   const profiles::GaussLegendreRule& rule_;
   std::vector<double> grid_, cum_;
@@ -225,9 +175,8 @@ ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_a
   const std::size_t cells =
       inner_cells + std::size_t(key_of(std::max(S * inv_a, kKinkGap)) - base) + 1;
   // The two models whose profile is costly (PBD: 64 beam samples; the multipole: up to
-  // hundreds of dipole pairs) are read through a log-log interpolant (ProfileSampler).
-  const bool interpolate =
-      profile.model() == profiles::Model::Pbd || profile.model() == profiles::Model::Multipole;
+  // hundreds of dipole pairs) are read through a log-log interpolant (ProfileTable.h).
+  const bool interpolate = profile_is_costly(profile.model());
 
   const auto build = [&](bool transmit) {
     Table t;

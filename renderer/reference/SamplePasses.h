@@ -1,0 +1,104 @@
+// The sampling loop that both per-pixel Monte Carlo renderers of the reference share (the
+// random-walk ground truth, GroundTruth.h, and the probe diffusion reference,
+// ProbeReference.h): passes of samples over a list of pixels, each pixel's running mean
+// and variance of the mean (Welford), and, with a target error, passes that grow towards
+// the sample count the measured noise says is needed.
+//
+// Reproducible: sample k of pixel i is whatever `sample(i, k, tls)` returns for it, and a
+// pixel's samples are added in order by one thread, so the result depends on `sample`
+// alone, not on the thread count.
+#pragma once
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace sss::reference {
+
+// Welford's running mean and sum of squared deviations of a pixel's samples.
+struct PixelAccumulator {
+  glm::dvec3 mean{0.0}, m2{0.0};
+  std::uint64_t n = 0;
+  void add(const glm::dvec3& x) {
+    ++n;
+    const glm::dvec3 delta = x - mean;
+    mean += delta / double(n);
+    m2 += delta * (x - mean);
+  }
+  glm::dvec3 variance_of_mean() const { return n > 1 ? m2 / (double(n) * double(n - 1)) : glm::dvec3(0.0); }
+};
+
+struct PassSettings {
+  std::uint64_t spp = 0;      // samples per pixel; with a target error the most a pixel gets (0: no limit)
+  double target_error = 0.0;  // > 0: stop when the frame's relative standard error is at most this
+  const char* stage = "walk"; // progress stage of the sampling passes ("noise" for a first measuring pass)
+};
+
+struct PassResult {
+  std::uint64_t spp = 0;  // samples every pixel got
+  int passes = 0;
+  double relative_standard_error = 0.0;  // as `error` returned after the last pass
+};
+
+// Samples pixels 0..count-1. `sample(i, k, tls)` returns sample k of pixel i (Tls: per
+// thread scratch or statistics); after each pass `error(acc)` writes the images from the
+// accumulators and returns the frame's relative standard error. Returns with
+// `cancelled()` true at the first check after it became so (the caller throws).
+template <class Tls, class Sample, class Error>
+PassResult run_sample_passes(std::size_t count, const PassSettings& settings, tbb::task_arena& arena,
+                             tbb::enumerable_thread_specific<Tls>& tls, std::vector<PixelAccumulator>& acc,
+                             const Sample& sample, const Error& error, const std::function<bool()>& cancelled,
+                             const std::function<void(const char*, double)>& report) {
+  PassResult result;
+  acc.assign(count, PixelAccumulator{});
+  if (count == 0) return result;
+  const std::uint64_t cap = settings.spp;
+  const bool targeted = settings.target_error > 0.0;
+  std::uint64_t done = 0;
+  std::uint64_t next = targeted ? (cap > 0 ? std::min<std::uint64_t>(cap, 16) : 16) : cap;
+  std::atomic<std::uint64_t> samples_done{0};
+  const double per_sample = 1.0 / double(count);
+  for (;;) {
+    const std::uint64_t from = done, to = next;
+    const double planned = double(to);  // samples per pixel this run is heading for
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4), [&](const tbb::blocked_range<std::size_t>& r) {
+        Tls& local = tls.local();
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          if (cancelled()) return;
+          for (std::uint64_t k = from; k < to; ++k) {
+            if ((k & 255u) == 255u && cancelled()) return;
+            acc[i].add(sample(i, k, local));
+          }
+          const std::uint64_t n = samples_done.fetch_add(to - from) + (to - from);
+          // With a target error the first pass measures the noise; each later one heads
+          // for the samples that noise says are needed.
+          report(targeted && from == 0 ? "noise" : settings.stage, double(n) * per_sample / planned);
+        }
+      });
+    });
+    if (cancelled()) return result;
+    done = to;
+    ++result.passes;
+    result.relative_standard_error = error(acc);
+    if (!targeted || result.relative_standard_error <= settings.target_error || (cap > 0 && done >= cap)) break;
+    const double e = result.relative_standard_error / settings.target_error;
+    std::uint64_t want = std::uint64_t(std::ceil(double(done) * e * e * 1.05));
+    want = std::clamp<std::uint64_t>(want, done + 1, 4 * done);
+    next = cap > 0 ? std::min(cap, want) : want;
+  }
+  result.spp = done;
+  return result;
+}
+
+}  // namespace sss::reference
