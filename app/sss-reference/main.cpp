@@ -115,6 +115,18 @@ class ProgressBar {
 };
 
 void print_stats(const reference::ReferenceStats& s) {
+  if (s.spp > 0 || s.probes > 0) {  // the probe estimator
+    std::fprintf(stderr,
+                 "sss-reference: probe estimator, %llu batches per pixel over %llu subsurface pixels (%d passes), "
+                 "relative standard error %.4g\n",
+                 (unsigned long long)s.spp, (unsigned long long)s.subsurface_pixels, s.passes, s.relative_standard_error);
+    std::fprintf(stderr, "  %llu probe rays, %llu hits, %llu shadow rays; %.4g probes/s\n",
+                 (unsigned long long)s.probes, (unsigned long long)s.hits, (unsigned long long)s.shadow_rays,
+                 double(s.probes) / std::max(s.render_ms * 1e-3, 1e-9));
+    std::fprintf(stderr, "  time: profiles %.0f ms, render %.0f ms, total %.0f ms\n", s.profile_ms, s.render_ms,
+                 s.total_ms);
+    return;
+  }
   std::fprintf(stderr, "sss-reference: %zu irradiance points\n", s.points);
   for (const reference::GroupStats& g : s.groups)
     std::fprintf(stderr, "  %-24s %9zu points, spacing %.3f mm, area %.1f mm^2, %zu octree nodes\n",
@@ -233,12 +245,13 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::strcmp(argv[1], "merge") == 0) return merge_main(argc - 1, argv + 1);
   CLI::App app{
       "sss-reference: offline CPU references for subsurface scattering. --method diffusion (default): Jensen & "
-      "Buhler 2002's irradiance points and octree with the exact diffusion profile (no Gaussian fit). --method "
+      "Buhler 2002's irradiance points and octree with the exact diffusion profile (no Gaussian fit), or with "
+      "--estimator probe a per-pixel Monte Carlo estimate of the same integral that converges to it. --method "
       "random-walk: the ground truth, volumetric light transport through the scene's meshes (σa, σs, g, η; "
       "smooth dielectric boundary). 'sss-reference merge --help' puts tiles together.",
       "sss-reference"};
   std::string scene_name = std::string(scene::kDefaultScene);
-  std::string out, png, method = "diffusion", variance, tile_text, summary;
+  std::string out, png, method = "diffusion", estimator = "octree", variance, tile_text, summary;
   int width = 640, height = 360, threads = 0;
   double spacing = 0.5, error_bound = 0.3, target_error = 0.0;
   std::size_t max_points = 8'000'000;
@@ -254,6 +267,10 @@ int main(int argc, char** argv) {
   app.add_option("--method", method,
                  "diffusion (default): the exact diffusion profile over irradiance points; random-walk: the ground "
                  "truth, true transport through the meshes");
+  app.add_option("--estimator", estimator,
+                 "diffusion: octree (default): irradiance points summed through the Jensen-Buhler octree, its error "
+                 "set by --spacing and --error-bound; probe: per-pixel profile importance sampling with probe rays, "
+                 "unbiased, with a standard error per pixel (--spp, --target-error, --variance)");
   add_material_override_options(app, material);
   app.add_option("--spacing", spacing,
                  "diffusion: irradiance point spacing in reduced mean free paths (default 0.5; lower it for "
@@ -264,17 +281,19 @@ int main(int argc, char** argv) {
                  "0 descends to every point)");
   app.add_flag("--brute-force", brute, "diffusion: sum every irradiance point at every pixel (no octree)");
   app.add_option("--spp", spp,
-                 "random-walk: samples per pixel (with --target-error: the most a pixel gets)");
+                 "random-walk: samples per pixel; --estimator probe: batches of probes per pixel (default 16); with "
+                 "--target-error: the most a pixel gets");
   app.add_option("--target-error", target_error,
-                 "random-walk: add samples until the frame's relative standard error is at most this (default 0.02 "
-                 "when --spp is not given)");
-  app.add_option("--variance", variance, "random-walk: also write the per-pixel variance of the mean (FILE.exr)");
+                 "random-walk, --estimator probe: add samples until the frame's relative standard error is at most "
+                 "this (random-walk: default 0.02 when --spp is not given)");
+  app.add_option("--variance", variance,
+                 "random-walk, --estimator probe: also write the per-pixel variance of the mean (FILE.exr)");
   app.add_option("--tile", tile_text,
                  "random-walk: render tile K of N (rows y with y mod N = K-1) for 'sss-reference merge'; needs "
                  "--spp and --variance");
   app.add_option("--summary", summary,
-                 "random-walk: also write what the render did as JSON (command, samples per pixel, relative standard "
-                 "error, paths, events, times)");
+                 "random-walk, --estimator probe: also write what the render did as JSON (command, samples per pixel, "
+                 "relative standard error, paths or probes, times)");
   app.add_flag("--exitance", exitance,
                "random-walk: write M/pi, the cosine-weighted mean radiance leaving each visible point (the "
                "quantity --diffuse-only writes with --method diffusion), instead of the radiance towards the eye");
@@ -302,11 +321,18 @@ int main(int argc, char** argv) {
   if (method != "diffusion" && method != "random-walk")
     return usage("--method: expected diffusion or random-walk, got '" + method + "'");
   const bool walk = method == "random-walk";
-  for (const char* name : walk ? std::vector<const char*>{"--spacing", "--max-points", "--error-bound", "--brute-force"}
-                               : std::vector<const char*>{"--spp", "--target-error", "--variance", "--tile", "--exitance",
-                                                          "--summary"})
-    if (app.count(name) > 0)
-      return usage(std::string(name) + ": applies to --method " + (walk ? "diffusion" : "random-walk") + " only");
+  if (estimator != "octree" && estimator != "probe")
+    return usage("--estimator: expected octree or probe, got '" + estimator + "'");
+  if (walk && app.count("--estimator") > 0) return usage("--estimator: applies to --method diffusion only");
+  const bool probe = !walk && estimator == "probe";
+  for (const char* name : {"--spacing", "--max-points", "--error-bound", "--brute-force"})
+    if (app.count(name) > 0 && (walk || probe))
+      return usage(std::string(name) + ": applies to --method diffusion with --estimator octree only");
+  for (const char* name : {"--tile", "--exitance"})
+    if (app.count(name) > 0 && !walk) return usage(std::string(name) + ": applies to --method random-walk only");
+  for (const char* name : {"--spp", "--target-error", "--variance", "--summary"})
+    if (app.count(name) > 0 && !walk && !probe)
+      return usage(std::string(name) + ": applies to --method random-walk or --estimator probe only");
   if (!(std::isfinite(spacing) && spacing > 0.0))
     return usage("--spacing: expected a finite number > 0 (mean free paths), got " + message_number(spacing));
   if (max_points == 0) return usage("--max-points: expected a number >= 1, got 0");
@@ -318,6 +344,7 @@ int main(int argc, char** argv) {
   if (app.count("--target-error") > 0 && !(std::isfinite(target_error) && target_error > 0.0 && target_error < 1.0))
     return usage("--target-error: expected a relative standard error in (0, 1), got " + message_number(target_error));
   if (walk && spp == 0 && target_error == 0.0) target_error = 0.02;
+  if (probe && spp == 0 && target_error == 0.0) spp = 16;
   if (app.count("--target-error") > 0 && spp == 1)
     return usage("--spp: a target error needs at least 2 samples per pixel to measure the noise, got 1");
   reference::TileSpec tile;
@@ -379,11 +406,46 @@ int main(int argc, char** argv) {
       o.threads = threads;
       o.seed = seed;
       o.exposure = exposure;
-      const reference::ReferenceImage r = reference::render_reference(s, o, progress, &g_cancel);
+      if (probe) {
+        o.estimator = reference::Estimator::Probe;
+        o.spp = spp;
+        o.target_error = target_error;
+        if (spp == 1)
+          std::cerr << "sss-reference: warning: --spp 1: one batch per pixel says nothing of the noise; the "
+                       "variance is written as 0 and the relative standard error is unknown (nan)\n";
+      }
+      reference::ReferenceImage r = reference::render_reference(s, o, progress, &g_cancel);
       if (g_cancel.load()) throw reference::Cancelled();
+      if (probe) {
+        const std::string settings = pixel_settings(argc, argv);
+        const double error = r.stats.relative_standard_error;
+        r.hdr.attributes = reference::ground_truth_attributes("mean", "", settings, r.stats.spp, error);
+        r.variance.attributes = reference::ground_truth_attributes("variance", "", settings, r.stats.spp, error);
+      }
       if (ext == ".exr") image::write_exr(out, r.hdr);
       else image::write_png(out, r.display);
+      if (!variance.empty()) image::write_exr(variance, r.variance);
       if (!png.empty()) image::write_png(png, r.display);
+      if (!summary.empty()) {
+        std::string command = "sss-reference";
+        for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+        nlohmann::json j = {{"command", command},
+                            {"settings", pixel_settings(argc, argv)},
+                            {"method", "diffusion"},
+                            {"estimator", "probe"},
+                            {"width", width},
+                            {"height", height},
+                            {"spp", r.stats.spp},
+                            {"passes", r.stats.passes},
+                            {"relative_standard_error", r.stats.relative_standard_error},
+                            {"subsurface_pixels", r.stats.subsurface_pixels},
+                            {"probes", r.stats.probes},
+                            {"hits", r.stats.hits},
+                            {"shadow_rays", r.stats.shadow_rays},
+                            {"threads", threads > 0 ? threads : int(std::thread::hardware_concurrency())},
+                            {"seconds", r.stats.total_ms * 1e-3}};
+        image::write_file_atomically(summary, j.dump(2) + "\n");
+      }
       if (stats) print_stats(r.stats);
     } else {
       reference::GroundTruthOptions o;

@@ -2,6 +2,7 @@
 
 #include "renderer/image/Tonemap.h"
 #include "renderer/reference/PixelShading.h"
+#include "renderer/reference/ProbeReference.h"
 #include "renderer/reference/RayScene.h"
 #include "renderer/reference/Shading.h"
 #include "renderer/reference/SurfaceSampling.h"
@@ -89,6 +90,18 @@ void check_options(const ReferenceOptions& o) {
     throw std::invalid_argument("width/height: at most " + std::to_string(image::kMaxImagePixels) +
                                 " pixels (what image files are read back with)");
   if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
+  if (o.estimator == Estimator::Probe) {
+    if (!(std::isfinite(o.target_error) && o.target_error >= 0.0 && o.target_error < 1.0))
+      throw std::invalid_argument("target error: expected a relative standard error in (0, 1), got " +
+                                  message_number(o.target_error));
+    if (o.spp == 0 && o.target_error == 0.0)
+      throw std::invalid_argument("spp: give a number of probe batches per pixel >= 1, or a target error");
+    if (o.target_error > 0.0 && o.spp == 1)
+      throw std::invalid_argument("spp: a target error needs at least 2 batches per pixel to measure the noise");
+  } else if (o.spp != 0 || o.target_error != 0.0) {
+    throw std::invalid_argument("spp/target error: apply to the probe estimator only (the octree's error is set by "
+                                "the spacing and the error bound)");
+  }
 }
 
 double soup_area(const TriangleSoup& soup) {
@@ -154,6 +167,8 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
 
 }  // namespace
 
+std::string_view estimator_name(Estimator e) { return e == Estimator::Probe ? "probe" : "octree"; }
+
 ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o,
                                 const ProgressFn& progress, const std::atomic<bool>* cancel) {
   check_options(o);
@@ -166,6 +181,7 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
     if (mesh.material >= s.materials.size())
       throw std::invalid_argument("mesh '" + mesh.name + "': material index out of range");
   }
+  if (o.estimator == Estimator::Probe) return render_probe_reference(s, o, progress, cancel);
   const auto t_start = Clock::now();
   Reporter reporter(progress, cancel);
   tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);

@@ -17,6 +17,10 @@
 //      image is tonemapped as on the GPU (image::tonemap).
 //
 // One ray per pixel centre, as the rasterizer samples. Parallel over rows with TBB.
+//
+// Estimator::Probe (ProbeReference.h) replaces steps 1-3 by a per-pixel Monte Carlo
+// estimate of the same integral with the exact R(r) (no point spacing, no point cap), and
+// reports each pixel's variance of the mean; spp / target_error say how long it samples.
 #pragma once
 
 #include "renderer/image/Image.h"
@@ -30,9 +34,16 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sss::reference {
+
+enum class Estimator {
+  Octree,  // irradiance points and the Jensen-Buhler octree (steps 1-3 above)
+  Probe,   // per-pixel profile importance sampling with probe rays (ProbeReference.h)
+};
+std::string_view estimator_name(Estimator e);  // "octree" | "probe"
 
 struct ReferenceOptions {
   std::uint32_t width = 640;
@@ -44,7 +55,12 @@ struct ReferenceOptions {
   bool brute_force = false;      // sum every point (tests and benchmarks of the octree)
   bool diffuse_only = false;     // hdr = M/π (before albedo), no specular, opaque surfaces 0
   int threads = 0;               // 0: every hardware thread
-  std::uint64_t seed = 1;        // of the point sets
+  std::uint64_t seed = 1;        // of the point sets, or of the probes
+  Estimator estimator = Estimator::Octree;
+  // Probe only: batches of probes per pixel (with target_error: the most a pixel gets),
+  // and the frame's relative standard error to stop at (0: run spp batches).
+  std::uint64_t spp = 0;
+  double target_error = 0.0;
   profiles::ModelOptions model_options;
 };
 
@@ -59,6 +75,11 @@ struct GroupStats {
 struct ReferenceStats {
   std::vector<GroupStats> groups;
   std::size_t points = 0;
+  // Probe estimator: batches per subsurface pixel, passes, the frame's relative standard
+  // error (NaN with 1 batch), probe rays, their hits on the material, shadow rays.
+  std::uint64_t spp = 0, subsurface_pixels = 0, probes = 0, hits = 0, shadow_rays = 0;
+  int passes = 0;
+  double relative_standard_error = 0.0;
   double profile_ms = 0.0, sampling_ms = 0.0, irradiance_ms = 0.0, octree_ms = 0.0,
          render_ms = 0.0, total_ms = 0.0;
 };
@@ -66,10 +87,12 @@ struct ReferenceStats {
 struct ReferenceImage {
   image::Image hdr;      // linear radiance, alpha 1 on geometry, 0 on background
   image::Image display;  // tonemapped, sRGB codes / 255
+  image::Image variance; // probe estimator: the per-pixel variance of the mean (empty otherwise)
   ReferenceStats stats;
 };
 
-// The stage ("profiles", "points", "irradiance", "octree", "render") and its completed
+// The stage ("profiles", "points", "irradiance", "octree", "render"; the probe estimator:
+// "profiles", "setup", then "noise" with a target error, "probes") and its completed
 // fraction. Called from one thread at a time (the renderer serialises the calls).
 using ProgressFn = std::function<void(const char* stage, double fraction)>;
 

@@ -193,6 +193,56 @@ TEST(SssReferenceRandomWalk, BadInputExitsTwoNamingTheOptionAndWritesNothing) {
   EXPECT_FALSE(fs::exists(var));
 }
 
+// The diffusion reference's probe estimator (issue 17) writes the same three files, with
+// the same attributes, and refuses what belongs to the other estimator or method.
+TEST(SssReferenceProbe, WritesMeanVarianceAndSummaryAndRefusesOctreeOptions) {
+  const fs::path dir = folder("probe");
+  const fs::path exr = dir / "sphere.exr", var = dir / "sphere.var.exr", json = dir / "sphere.json";
+  const CliRun r = reference("builtin:sphere --estimator probe --width 12 --height 8 --spp 4 --quiet --out " +
+                             exr.string() + " --variance " + var.string() + " --summary " + json.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const sss::image::Image mean = read(exr), variance = read(var);
+  EXPECT_EQ(attribute(mean, "sssContent"), "mean");
+  EXPECT_EQ(attribute(variance, "sssContent"), "variance");
+  EXPECT_EQ(attribute(mean, "sssSpp"), "4");
+  bool lit = false;
+  for (std::size_t i = 0; i < variance.rgba.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(variance.rgba[i]) && variance.rgba[i] >= 0.0f) << i;
+    if (i % 4 != 3 && variance.rgba[i] > 0.0f) lit = true;
+  }
+  EXPECT_TRUE(lit) << "no pixel has a measured variance";
+  const nlohmann::json j = nlohmann::json::parse(slurp(json));
+  EXPECT_EQ(j.value("estimator", ""), "probe");
+  EXPECT_EQ(j.value("spp", 0), 4);
+  EXPECT_GT(j.value("probes", 0), 0);
+  EXPECT_GT(j.value("hits", 0), 0);
+  EXPECT_EQ(entries(dir), 3u);
+
+  const fs::path bad_dir = folder("probe-bad");
+  const std::string out = (bad_dir / "x.exr").string();
+  const std::string probe = "builtin:sphere --estimator probe --width 12 --height 8 --quiet --out " + out;
+  const std::string octree = "builtin:sphere --width 12 --height 8 --quiet --out " + out;
+  struct Case {
+    std::string args, expect;
+  };
+  const Case cases[] = {
+      {probe + " --spacing 1", "--spacing"},
+      {probe + " --brute-force", "--brute-force"},
+      {probe + " --tile 1/2", "--tile"},
+      {probe + " --spp 0", "--spp"},
+      {probe + " --target-error 2", "--target-error"},
+      {octree + " --variance " + (bad_dir / "v.exr").string(), "--variance"},
+      {octree + " --estimator magic", "--estimator"},
+      {"builtin:sphere --method random-walk --estimator probe --spp 2 --quiet --out " + out, "--estimator"},
+  };
+  for (const Case& c : cases) {
+    const CliRun b = reference(c.args);
+    EXPECT_EQ(b.code, 2) << c.args << "\n" << b.err;
+    EXPECT_NE(b.err.find(c.expect), std::string::npos) << c.args << "\n" << b.err;
+    EXPECT_EQ(entries(bad_dir), 0u) << c.args << ": wrote something";
+  }
+}
+
 TEST(SssReferenceRandomWalk, TilesMergeBitIdenticallyToTheWholeFrame) {
   const fs::path dir = folder("tiles");
   render_whole(dir);
