@@ -10,14 +10,24 @@
 //    and on every hardware thread (2 on CI machines): wall time per stage. Target: under a
 //    minute on 2 cores. `speedup` is the 1-thread time over the all-threads time.
 //
+//  * Issue 17's light edge: builtin:edge, skin1, 400x8 px of 0.1 mm, diffuse term only,
+//    the octree at its defaults (the baseline, measured first in the same run) and the
+//    probe estimator at its default 16 batches: wall time, `worst_%Rd`, the worst
+//    |M - M_exact| over pixels and channels in % of R_d against the exact edge response
+//    (profiles/EdgeResponse.h), and `speedup` = octree time / probe time. Arg: the model.
+//
 //   scripts/bench.sh --benchmark_filter=Reference
+#include "profiles/EdgeResponse.h"
+#include "profiles/Profile.h"
 #include "renderer/image/Metrics.h"
 #include "renderer/reference/ReferenceRenderer.h"
 #include "renderer/scene/BuiltinScenes.h"
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <stdexcept>
 #include <thread>
 
@@ -84,5 +94,46 @@ void BM_ReferenceDefaultScene(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ReferenceDefaultScene)->Arg(1)->Arg(0)->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+
+void BM_ReferenceEdgeOctreeVsProbe(benchmark::State& state) {
+  const profiles::Model model = profiles::kAllModels[std::size_t(state.range(0))];
+  scene::EdgeOptions eo;
+  eo.preset = "skin1";
+  eo.half_width_mm = 20.0;
+  scene::Scene s = scene::edge_scene(eo);
+  s.materials[0].sss.model = model;
+  if (model == profiles::Model::Multipole) s.materials[0].sss.medium.thickness_mm = 50.0;  // the block's depth
+  const profiles::RgbProfile profile(model, s.materials[0].sss.effective_medium());
+  const Rgb rd = profile.total_reflectance();
+  auto worst = [&](const image::Image& hdr) {
+    double w = 0.0;
+    for (int px = 0; px < hdr.width; ++px) {
+      const Rgb exact = profiles::edge_response(profile, -20.0 + (px + 0.5) * 40.0 / hdr.width);
+      for (int y = 0; y < hdr.height; ++y)
+        for (int c = 0; c < 3; ++c)
+          w = std::max(w, std::abs(3.14159265358979323846 * hdr.pixel(px, y)[c] - exact[c]) / rd[c]);
+    }
+    return w;
+  };
+  reference::ReferenceOptions o;
+  o.width = 400;
+  o.height = 8;
+  o.diffuse_only = true;
+  for (auto _ : state) {
+    const reference::ReferenceImage octree = reference::render_reference(s, o);
+    reference::ReferenceOptions p = o;
+    p.estimator = reference::Estimator::Probe;
+    p.spp = 16;
+    const reference::ReferenceImage probe = reference::render_reference(s, p);
+    state.SetIterationTime(probe.stats.total_ms / 1000.0);
+    state.counters["octree_s"] = octree.stats.total_ms / 1000.0;
+    state.counters["octree_worst_%Rd"] = 100.0 * worst(octree.hdr);
+    state.counters["probe_s"] = probe.stats.total_ms / 1000.0;
+    state.counters["probe_worst_%Rd"] = 100.0 * worst(probe.hdr);
+    state.counters["speedup"] = octree.stats.total_ms / probe.stats.total_ms;
+  }
+  state.SetLabel(std::string(profiles::model_name(model)));
+}
+BENCHMARK(BM_ReferenceEdgeOctreeVsProbe)->DenseRange(0, 6)->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
