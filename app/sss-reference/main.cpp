@@ -114,6 +114,13 @@ class ProgressBar {
   std::chrono::steady_clock::time_point stage_start_;
 };
 
+// The command as typed, for --summary.
+std::string command_line(int argc, char** argv) {
+  std::string command = "sss-reference";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  return command;
+}
+
 void print_stats(const reference::ReferenceStats& s) {
   if (s.spp > 0 || s.probes > 0) {  // the probe estimator
     std::fprintf(stderr,
@@ -427,8 +434,7 @@ int main(int argc, char** argv) {
       if (!variance.empty()) image::write_exr(variance, r.variance);
       if (!png.empty()) image::write_png(png, r.display);
       if (!summary.empty()) {
-        std::string command = "sss-reference";
-        for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+        const std::string command = command_line(argc, argv);
         nlohmann::json j = {{"command", command},
                             {"settings", pixel_settings(argc, argv)},
                             {"method", "diffusion"},
@@ -476,8 +482,7 @@ int main(int argc, char** argv) {
       if (!png.empty()) image::write_png(png, r.display);
       const int used_threads = threads > 0 ? threads : int(std::thread::hardware_concurrency());
       if (!summary.empty()) {
-        std::string command = "sss-reference";
-        for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+        const std::string command = command_line(argc, argv);
         const reference::WalkStats& w = r.stats.walk;
         nlohmann::json j = {{"command", command},
                             {"settings", settings},

@@ -41,13 +41,7 @@ void check_options(const GroundTruthOptions& o) {
   if (o.width > 16384 || o.height > 16384) throw std::invalid_argument("width/height: at most 16384 pixels a side");
   if (std::uint64_t(o.width) * o.height > image::kMaxImagePixels)
     throw std::invalid_argument("width/height: at most " + std::to_string(image::kMaxImagePixels) + " pixels");
-  if (!(std::isfinite(o.target_error) && o.target_error >= 0.0 && o.target_error < 1.0))
-    throw std::invalid_argument("target error: expected a relative standard error in (0, 1), got " +
-                                message_number(o.target_error));
-  if (o.spp == 0 && o.target_error == 0.0)
-    throw std::invalid_argument("spp: give a number of samples per pixel >= 1, or a target error");
-  if (o.target_error > 0.0 && o.spp == 1)
-    throw std::invalid_argument("spp: a target error needs at least 2 samples per pixel to measure the noise");
+  check_sample_counts(o.spp, o.target_error, "samples");
   if (!(std::isfinite(o.exposure) && o.exposure >= 0.0f))
     throw std::invalid_argument("exposure: must be finite and >= 0, got " + message_number(o.exposure));
   if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
@@ -197,17 +191,7 @@ GroundTruthImage render_ground_truth(const scene::Scene& s, const GroundTruthOpt
   std::vector<PixelAccumulator> acc;
   tbb::enumerable_thread_specific<WalkStats> walk_stats;
   auto write_pixels = [&](const std::vector<PixelAccumulator>& a) {
-    for (std::size_t i = 0; i < plans.size(); ++i) {
-      const PixelPlan& p = plans[i];
-      float* px = &out.hdr.rgba[std::size_t(p.index) * 4];
-      float* pv = &out.variance.rgba[std::size_t(p.index) * 4];
-      const glm::dvec3 mean = p.base + p.factor * a[i].mean;
-      const glm::dvec3 var = p.factor * p.factor * a[i].variance_of_mean();
-      for (int c = 0; c < 3; ++c) {
-        px[c] = float(mean[c]);
-        pv[c] = float(var[c]);
-      }
-    }
+    write_pixel_estimates(plans, a, out.hdr, out.variance);
     return relative_standard_error(out.hdr, out.variance);
   };
   const PassResult passes = run_sample_passes(

@@ -290,17 +290,7 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
   std::vector<PixelAccumulator> acc;
   tbb::enumerable_thread_specific<ProbeStats> probe_stats;
   auto write_pixels = [&](const std::vector<PixelAccumulator>& a) {
-    for (std::size_t i = 0; i < pixels.size(); ++i) {
-      const ProbePixel& p = pixels[i];
-      float* px = &out.hdr.rgba[std::size_t(p.index) * 4];
-      float* pv = &out.variance.rgba[std::size_t(p.index) * 4];
-      const glm::dvec3 mean = p.base + p.factor * a[i].mean;
-      const glm::dvec3 var = p.factor * p.factor * a[i].variance_of_mean();
-      for (int c = 0; c < 3; ++c) {
-        px[c] = float(mean[c]);
-        pv[c] = float(var[c]);
-      }
-    }
+    write_pixel_estimates(pixels, a, out.hdr, out.variance);
     return relative_standard_error(out.hdr, out.variance);
   };
   const PassResult passes = run_sample_passes(

@@ -3,6 +3,7 @@
 #include "renderer/image/Tonemap.h"
 #include "renderer/reference/PixelShading.h"
 #include "renderer/reference/ProbeReference.h"
+#include "renderer/reference/SamplePasses.h"
 #include "renderer/reference/RayScene.h"
 #include "renderer/reference/Shading.h"
 #include "renderer/reference/SurfaceSampling.h"
@@ -91,13 +92,7 @@ void check_options(const ReferenceOptions& o) {
                                 " pixels (what image files are read back with)");
   if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
   if (o.estimator == Estimator::Probe) {
-    if (!(std::isfinite(o.target_error) && o.target_error >= 0.0 && o.target_error < 1.0))
-      throw std::invalid_argument("target error: expected a relative standard error in (0, 1), got " +
-                                  message_number(o.target_error));
-    if (o.spp == 0 && o.target_error == 0.0)
-      throw std::invalid_argument("spp: give a number of probe batches per pixel >= 1, or a target error");
-    if (o.target_error > 0.0 && o.spp == 1)
-      throw std::invalid_argument("spp: a target error needs at least 2 batches per pixel to measure the noise");
+    check_sample_counts(o.spp, o.target_error, "probe batches");
   } else if (o.spp != 0 || o.target_error != 0.0) {
     throw std::invalid_argument("spp/target error: apply to the probe estimator only (the octree's error is set by "
                                 "the spacing and the error bound)");

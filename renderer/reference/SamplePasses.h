@@ -16,11 +16,16 @@
 
 #include <glm/vec3.hpp>
 
+#include "profiles/Medium.h"
+#include "renderer/image/Image.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace sss::reference {
@@ -37,6 +42,37 @@ struct PixelAccumulator {
   }
   glm::dvec3 variance_of_mean() const { return n > 1 ? m2 / (double(n) * double(n - 1)) : glm::dvec3(0.0); }
 };
+
+// The sample-count options both renderers take: a fixed count, a target error, or both
+// (the count then caps). `noun` names what one sample is ("samples", "probe batches").
+// Throws std::invalid_argument naming the option.
+inline void check_sample_counts(std::uint64_t spp, double target_error, const std::string& noun) {
+  if (!(std::isfinite(target_error) && target_error >= 0.0 && target_error < 1.0))
+    throw std::invalid_argument("target error: expected a relative standard error in (0, 1), got " +
+                                message_number(target_error));
+  if (spp == 0 && target_error == 0.0)
+    throw std::invalid_argument("spp: give a number of " + noun + " per pixel >= 1, or a target error");
+  if (target_error > 0.0 && spp == 1)
+    throw std::invalid_argument("spp: a target error needs at least 2 " + noun + " per pixel to measure the noise");
+}
+
+// Writes each pixel's estimate, base + factor · mean, and its variance of the mean,
+// factor² · var, into the images at the pixel's index (Plan: index, base, factor).
+template <class Plan>
+void write_pixel_estimates(const std::vector<Plan>& plans, const std::vector<PixelAccumulator>& acc,
+                           image::Image& hdr, image::Image& variance) {
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    const Plan& p = plans[i];
+    float* px = &hdr.rgba[std::size_t(p.index) * 4];
+    float* pv = &variance.rgba[std::size_t(p.index) * 4];
+    const glm::dvec3 mean = p.base + p.factor * acc[i].mean;
+    const glm::dvec3 var = p.factor * p.factor * acc[i].variance_of_mean();
+    for (int c = 0; c < 3; ++c) {
+      px[c] = float(mean[c]);
+      pv[c] = float(var[c]);
+    }
+  }
+}
 
 struct PassSettings {
   std::uint64_t spp = 0;      // samples per pixel; with a target error the most a pixel gets (0: no limit)
