@@ -124,6 +124,12 @@ RgbProfile::RgbProfile(Model model, const Medium& medium, const ModelOptions& op
   }
 }
 
+RgbProfile::RgbProfile(Model model, std::array<std::unique_ptr<RadialProfile>, 3> channels)
+    : model_(model), channels_(std::move(channels)) {
+  for (int c = 0; c < 3; ++c)
+    if (!channels_[c]) throw std::invalid_argument(std::string("RgbProfile: channel ") + kChannelNames[c] + " is null");
+}
+
 Rgb RgbProfile::reflectance(double r) const {
   return {channels_[0]->reflectance(r), channels_[1]->reflectance(r),
           channels_[2]->reflectance(r)};

@@ -83,6 +83,9 @@ std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
 class RgbProfile {
  public:
   RgbProfile(Model model, const Medium& medium, const ModelOptions& opt = {});
+  // Three prepared channels (GaussianSumProfile.h: a material's Gaussian fit), labelled
+  // with the model they stand for. Throws std::invalid_argument for a null channel.
+  RgbProfile(Model model, std::array<std::unique_ptr<RadialProfile>, 3> channels);
   Model model() const { return model_; }
   const RadialProfile& channel(int c) const { return *channels_[c]; }
   Rgb reflectance(double r_mm) const;

@@ -10,6 +10,7 @@
 #include "shaders/shared/frame.h"
 
 #include "profiles/GaussianFit.h"
+#include "profiles/KernelFit.h"
 #include "profiles/SeparableKernel.h"
 
 #include <optional>
@@ -21,18 +22,8 @@ class Context;
 
 namespace sss::renderer {
 
-// A slab's transmittance T(r) (the multipole's) as a sum of the reflectance fit's own
-// Gaussians: T_c(r) ≈ Σ_i weights[i]_c G(v_i, r), non-negative weights for the fixed
-// variances (NNLS with the energy row Σ_i w_ic = total, as fit_gaussians does for R).
-struct TransmittanceFit {
-  std::vector<Rgb> weights;  // one per fit.variances_mm2
-  Rgb total{};               // Σ_i weights[i] == the profile's total transmittance
-  Rgb relative_error{};      // ‖r(T − T̃)‖₂ / ‖r T‖₂ on the fit's samples
-};
-// The fitted transmittance of `rgb` for fixed `variances_mm2` (ascending, > 0), on the
-// samples of `target` (make_fit_target(rgb), the reflectance fit's own).
-TransmittanceFit fit_transmittance(const profiles::RgbProfile& rgb, const profiles::FitTarget& target,
-                                   const std::vector<double>& variances_mm2);
+using profiles::fit_transmittance;
+using profiles::TransmittanceFit;
 
 struct MaterialProfile {
   profiles::GaussianFit fit;

@@ -259,7 +259,8 @@ int main(int argc, char** argv) {
       "sss-reference"};
   std::string scene_name = std::string(scene::kDefaultScene);
   std::string out, png, method = "diffusion", estimator = "octree", variance, tile_text, summary;
-  int width = 640, height = 360, threads = 0;
+  std::string kernel = "exact", shadows = "ray-traced";
+  int width = 640, height = 360, threads = 0, shadow_map_size = 1024;
   double spacing = 0.5, error_bound = 0.3, target_error = 0.0;
   std::size_t max_points = 8'000'000;
   std::uint64_t seed = 1, spp = 0;
@@ -286,6 +287,17 @@ int main(int argc, char** argv) {
   app.add_option("--error-bound", error_bound,
                  "diffusion: Jensen-Buhler maximum solid angle (sr) of an octree node used whole (default 0.3; "
                  "0 descends to every point)");
+  app.add_option("--kernel", kernel,
+                 "diffusion: the profile summed: exact (the model's R(r), default) or fit (the material's "
+                 "sum-of-Gaussians fit, exactly as the real-time renderer gets it); the error budget's "
+                 "'Gaussian fit' link");
+  app.add_option("--shadows", shadows,
+                 "diffusion: ray-traced (a shadow ray per light, default) or shadow-map (the real-time frame's "
+                 "shadow maps and 3x3 PCF rebuilt on the CPU, no shadow from point lights); the error budget's "
+                 "'lighting' link");
+  app.add_option("--shadow-map-size", shadow_map_size,
+                 "diffusion --shadows shadow-map: texels a side (default 1024, as sss-viewer's)")
+      ->check(CLI::Range(1, 16384));
   app.add_flag("--brute-force", brute, "diffusion: sum every irradiance point at every pixel (no octree)");
   app.add_option("--spp", spp,
                  "random-walk: samples per pixel; --estimator probe: batches of probes per pixel (default 16); with "
@@ -332,6 +344,15 @@ int main(int argc, char** argv) {
     return usage("--estimator: expected octree or probe, got '" + estimator + "'");
   if (walk && app.count("--estimator") > 0) return usage("--estimator: applies to --method diffusion only");
   const bool probe = !walk && estimator == "probe";
+  if (kernel != "exact" && kernel != "fit") return usage("--kernel: expected exact or fit, got '" + kernel + "'");
+  if (shadows != "ray-traced" && shadows != "shadow-map")
+    return usage("--shadows: expected ray-traced or shadow-map, got '" + shadows + "'");
+  for (const char* name : {"--kernel", "--shadows", "--shadow-map-size"})
+    if (app.count(name) > 0 && walk)
+      return usage(std::string(name) + ": applies to --method diffusion only (the ground truth has neither a "
+                                       "profile nor shadow maps)");
+  if (app.count("--shadow-map-size") > 0 && shadows != "shadow-map")
+    return usage("--shadow-map-size: applies to --shadows shadow-map only");
   for (const char* name : {"--spacing", "--max-points", "--error-bound", "--brute-force"})
     if (app.count(name) > 0 && (walk || probe))
       return usage(std::string(name) + ": applies to --method diffusion with --estimator octree only");
@@ -413,6 +434,9 @@ int main(int argc, char** argv) {
       o.threads = threads;
       o.seed = seed;
       o.exposure = exposure;
+      o.kernel = kernel == "fit" ? reference::KernelSource::Fit : reference::KernelSource::Exact;
+      o.shadows = shadows == "shadow-map" ? reference::Shadows::ShadowMap : reference::Shadows::RayTraced;
+      o.shadow_map_size = std::uint32_t(shadow_map_size);
       if (probe) {
         o.estimator = reference::Estimator::Probe;
         o.spp = spp;
@@ -439,6 +463,8 @@ int main(int argc, char** argv) {
                             {"settings", pixel_settings(argc, argv)},
                             {"method", "diffusion"},
                             {"estimator", "probe"},
+                            {"kernel", kernel},
+                            {"shadows", shadows},
                             {"width", width},
                             {"height", height},
                             {"spp", r.stats.spp},

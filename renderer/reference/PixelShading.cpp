@@ -35,7 +35,7 @@ CameraRays::Ray CameraRays::pixel(std::uint32_t x, std::uint32_t y) const {
 glm::dvec3 VisibleSurface::opaque_radiance() const { return scatter_factor * irradiance / kPi + specular; }
 
 VisibleSurface visible_surface(const scene::Scene& s, const RayScene& rays, const CameraRays& camera, const Hit& hit,
-                               const glm::vec3& direction, bool diffuse_only) {
+                               const glm::vec3& direction, bool diffuse_only, const ShadowMaps* maps) {
   VisibleSurface v;
   v.point = surface_at(s, rays, hit.instance, hit.triangle, hit.barycentric);
   const scene::Material& m = s.materials[v.point.material];
@@ -50,9 +50,9 @@ VisibleSurface visible_surface(const scene::Scene& s, const RayScene& rays, cons
   spec.roughness = m.roughness;
   const bool want_specular = !diffuse_only && std::max({spec.f0.x, spec.f0.y, spec.f0.z}) > 0.0f;
   if (v.subsurface) {
-    if (want_specular) v.specular = direct_light(s, rays, v.point, v.normal, &spec).specular;
+    if (want_specular) v.specular = direct_light(s, rays, v.point, v.normal, &spec, maps).specular;
   } else if (!diffuse_only) {
-    const DirectLight d = direct_light(s, rays, v.point, v.normal, want_specular ? &spec : nullptr);
+    const DirectLight d = direct_light(s, rays, v.point, v.normal, want_specular ? &spec : nullptr, maps);
     v.irradiance = d.irradiance;
     v.specular = d.specular;
   }

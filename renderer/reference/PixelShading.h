@@ -54,8 +54,10 @@ struct VisibleSurface {
 };
 
 // The surface `hit` of a camera ray travelling along `direction`. Specular is evaluated
-// unless `diffuse_only`; irradiance only for opaque materials.
+// unless `diffuse_only`; irradiance only for opaque materials. `maps`: shadowed as the GPU
+// shadows (direct_light).
 VisibleSurface visible_surface(const scene::Scene& scene, const RayScene& rays, const CameraRays& camera,
-                               const Hit& hit, const glm::vec3& direction, bool diffuse_only);
+                               const Hit& hit, const glm::vec3& direction, bool diffuse_only,
+                               const ShadowMaps* maps = nullptr);
 
 }  // namespace sss::reference

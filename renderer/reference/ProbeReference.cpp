@@ -90,8 +90,9 @@ double RadialSampler::density(double r) const {
   return (cdf_[k + 1] - cdf_[k]) / (edges_[k + 1] - edges_[k]);
 }
 
-ProbeEstimator::ProbeEstimator(const scene::Scene& s, const RayScene& rays, const profiles::ModelOptions& mo)
-    : scene_(s), rays_(rays), group_of_(s.materials.size(), -1) {
+ProbeEstimator::ProbeEstimator(const scene::Scene& s, const RayScene& rays, const ReferenceOptions& o,
+                               const ShadowMaps* maps)
+    : scene_(s), rays_(rays), maps_(maps), group_of_(s.materials.size(), -1) {
   std::vector<bool> used(s.materials.size(), false);
   for (const scene::Instance& inst : s.instances) used[s.meshes[inst.mesh].material] = true;
   for (std::uint32_t m = 0; m < s.materials.size(); ++m) {
@@ -99,7 +100,7 @@ ProbeEstimator::ProbeEstimator(const scene::Scene& s, const RayScene& rays, cons
     if (!sss.enabled || !used[m]) continue;
     ProbeGroup g;
     g.material = m;
-    g.profile = std::make_unique<profiles::RgbProfile>(sss.model, sss.effective_medium(), mo);
+    g.profile = reference_profile(sss, o.kernel, o.model_options);
     g.support_mm = g.profile->support_radius();
     g.pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
     const bool costly = profile_is_costly(g.profile->model());
@@ -191,7 +192,7 @@ glm::dvec3 ProbeEstimator::sample(const ProbeGroup& g, const glm::dvec3& x_o, co
           if (!(K > 0.0)) continue;
           // The G-buffer's normal: normal-mapped, not flipped (no viewer), as the points'.
           const glm::vec3 n = shading_normal(scene_, p, p.normal);
-          double e = direct_light(scene_, rays_, p, n, nullptr).irradiance[c];
+          double e = direct_light(scene_, rays_, p, n, nullptr, maps_).irradiance[c];
           stats.shadow_rays += scene_.lights.size();
           if (g.pre_post) e *= std::sqrt(double(base_colour(scene_, p)[c]));
           total[c] += K * e / denominator;
@@ -235,7 +236,11 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
   const RayScene rays(s, o.threads);
   auto t0 = Clock::now();
   std::unique_ptr<ProbeEstimator> estimator;
-  arena.execute([&] { estimator = std::make_unique<ProbeEstimator>(s, rays, o.model_options); });
+  std::unique_ptr<ShadowMaps> maps;
+  arena.execute([&] {
+    if (o.shadows == Shadows::ShadowMap) maps = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size);
+    estimator = std::make_unique<ProbeEstimator>(s, rays, o, maps.get());
+  });
   stats.profile_ms = ms_since(t0);
   report("profiles", 1.0);
   if (cancelled()) throw Cancelled();
@@ -257,7 +262,8 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
         const CameraRays::Ray ray = camera.pixel(x, y);
         const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
         if (!hit) continue;
-        const VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only);
+        const VisibleSurface v =
+            visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only, maps.get());
         float* px = out.hdr.pixel(int(x), int(y));
         px[3] = 1.0f;
         out.variance.pixel(int(x), int(y))[3] = 1.0f;

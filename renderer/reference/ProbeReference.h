@@ -37,6 +37,7 @@
 #include "renderer/reference/ProfileTable.h"
 #include "renderer/reference/RayScene.h"
 #include "renderer/reference/ReferenceRenderer.h"
+#include "renderer/reference/ShadowMaps.h"
 #include "renderer/reference/WalkSampling.h"
 #include "renderer/scene/Scene.h"
 
@@ -92,7 +93,10 @@ class ProbeEstimator {
  public:
   // Builds a group per SSS material that some instance uses. Throws std::invalid_argument
   // for a material whose profile cannot be built.
-  ProbeEstimator(const scene::Scene& scene, const RayScene& rays, const profiles::ModelOptions& model_options);
+  // `options`: the model options and the kernel source (ReferenceProfile); `maps`: shadow
+  // maps to light the probe hits with (null: ray-traced shadows).
+  ProbeEstimator(const scene::Scene& scene, const RayScene& rays, const ReferenceOptions& options,
+                 const ShadowMaps* maps = nullptr);
   const ProbeGroup* group(std::uint32_t material) const;
   const std::vector<ProbeGroup>& groups() const { return groups_; }
 
@@ -106,6 +110,7 @@ class ProbeEstimator {
  private:
   const scene::Scene& scene_;
   const RayScene& rays_;
+  const ShadowMaps* maps_ = nullptr;
   std::vector<ProbeGroup> groups_;
   std::vector<int> group_of_;  // material -> groups_ index, -1
 };

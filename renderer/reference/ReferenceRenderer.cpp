@@ -8,6 +8,8 @@
 #include "renderer/reference/Shading.h"
 #include "renderer/reference/SurfaceSampling.h"
 
+#include "profiles/GaussianSumProfile.h"
+
 #include <glm/geometric.hpp>
 
 #include <tbb/blocked_range.h>
@@ -90,6 +92,8 @@ void check_options(const ReferenceOptions& o) {
   if (std::uint64_t(o.width) * o.height > image::kMaxImagePixels)
     throw std::invalid_argument("width/height: at most " + std::to_string(image::kMaxImagePixels) +
                                 " pixels (what image files are read back with)");
+  if (o.shadows == Shadows::ShadowMap && (o.shadow_map_size < 1 || o.shadow_map_size > 16384))
+    throw std::invalid_argument("shadow map size: must be 1..16384, got " + std::to_string(o.shadow_map_size));
   if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
   if (o.estimator == Estimator::Probe) {
     check_sample_counts(o.spp, o.target_error, "probe batches");
@@ -152,7 +156,7 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
     Group& g = groups[k];
     const scene::SssMaterial& sss = s.materials[g.material].sss;
     const profiles::Medium medium = sss.effective_medium();
-    g.profile = std::make_unique<profiles::RgbProfile>(sss.model, medium, o.model_options);
+    g.profile = reference_profile(sss, o.kernel, o.model_options);
     g.spacing_mm = o.spacing_mfp * smallest_mfp(medium);
     g.planned_points = g.area_mm2 / (g.spacing_mm * g.spacing_mm);
     reporter.report("profiles", double(k + 1) / double(groups.size()));
@@ -163,6 +167,17 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
 }  // namespace
 
 std::string_view estimator_name(Estimator e) { return e == Estimator::Probe ? "probe" : "octree"; }
+std::string_view kernel_source_name(KernelSource k) { return k == KernelSource::Fit ? "fit" : "exact"; }
+std::string_view shadows_name(Shadows s) { return s == Shadows::ShadowMap ? "shadow-map" : "ray-traced"; }
+
+std::unique_ptr<profiles::RgbProfile> reference_profile(const scene::SssMaterial& sss, KernelSource kernel,
+                                                        const profiles::ModelOptions& model_options) {
+  const profiles::Medium medium = sss.effective_medium();
+  if (kernel == KernelSource::Exact) return std::make_unique<profiles::RgbProfile>(sss.model, medium, model_options);
+  const profiles::RgbProfile exact(sss.model, medium);
+  return std::make_unique<profiles::RgbProfile>(
+      profiles::make_kernel_profile(profiles::fit_kernel(exact, sss.gaussians, medium.is_slab()), sss.model));
+}
 
 ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o,
                                 const ProgressFn& progress, const std::atomic<bool>* cancel) {
@@ -185,6 +200,9 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
 
   RayScene rays(s, o.threads);
   auto t0 = Clock::now();
+  std::unique_ptr<ShadowMaps> maps;
+  if (o.shadows == Shadows::ShadowMap)
+    arena.execute([&] { maps = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size); });
   std::vector<Group> groups = make_groups(s, rays, o, reporter);
   stats.profile_ms = ms_since(t0);
 
@@ -247,7 +265,7 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
                             p.position_mm = sp.position_mm;
                             // The G-buffer's normal: normal-mapped, not flipped (no viewer).
                             const glm::vec3 n = shading_normal(s, p, sp.normal);
-                            const DirectLight d = direct_light(s, rays, p, n, nullptr);
+                            const DirectLight d = direct_light(s, rays, p, n, nullptr, maps.get());
                             glm::dvec3 e = d.irradiance;
                             if (pre_post) e *= glm::sqrt(glm::dvec3(base_colour(s, p)));
                             points[i] = {sp.position_mm, sp.normal, glm::vec3(e)};
@@ -296,7 +314,8 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
         const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
         float* px = out.hdr.pixel(int(x), int(y));
         if (!hit) continue;
-        const VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only);
+        const VisibleSurface v =
+            visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only, maps.get());
         const int gi = group_of[v.point.material];
         glm::dvec3 L;
         if (gi >= 0) {

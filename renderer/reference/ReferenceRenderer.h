@@ -32,6 +32,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -44,6 +45,19 @@ enum class Estimator {
   Probe,   // per-pixel profile importance sampling with probe rays (ProbeReference.h)
 };
 std::string_view estimator_name(Estimator e);  // "octree" | "probe"
+
+// The budget's links (DESIGN.md §1): each switches one real-time approximation into the
+// reference, so that the difference it makes is measured alone.
+enum class KernelSource {
+  Exact,  // the model's R(r) (and T(r))
+  Fit,    // the material's sum-of-Gaussians fit, exactly as the GPU gets it (KernelFit.h)
+};
+std::string_view kernel_source_name(KernelSource k);  // "exact" | "fit"
+enum class Shadows {
+  RayTraced,  // a shadow ray per light (hard, exact)
+  ShadowMap,  // the GPU's shadow maps and PCF, rebuilt on the CPU (ShadowMaps.h)
+};
+std::string_view shadows_name(Shadows s);  // "ray-traced" | "shadow-map"
 
 struct ReferenceOptions {
   std::uint32_t width = 640;
@@ -62,7 +76,17 @@ struct ReferenceOptions {
   std::uint64_t spp = 0;
   double target_error = 0.0;
   profiles::ModelOptions model_options;
+  KernelSource kernel = KernelSource::Exact;
+  Shadows shadows = Shadows::RayTraced;
+  std::uint32_t shadow_map_size = 1024;  // Shadows::ShadowMap: the GPU's (RenderOptions)
 };
+
+// The profile the reference sums for an SSS material: its model's exact R(r), or with
+// KernelSource::Fit the Gaussian fit the GPU uploads (the model's default ModelOptions
+// for the fit, as renderer/MaterialTable builds it; `model_options` for the exact one).
+// Throws std::invalid_argument when the profile cannot be built.
+std::unique_ptr<profiles::RgbProfile> reference_profile(const scene::SssMaterial& sss, KernelSource kernel,
+                                                        const profiles::ModelOptions& model_options);
 
 struct GroupStats {
   std::string material;

@@ -119,13 +119,15 @@ glm::vec3 shading_normal(const scene::Scene& s, const SurfacePoint& p, const glm
 }
 
 DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const SurfacePoint& p,
-                         const glm::vec3& n, const SpecularInputs* spec) {
+                         const glm::vec3& n, const SpecularInputs* spec, const ShadowMaps* maps) {
   DirectLight out;
   const float mm_per_unit = float(s.mm_per_unit);
   const glm::vec3 p_scene = p.position_mm / mm_per_unit;
   // Shadow rays leave from just off the surface, on the side the light is on.
   const float offset = 1e-4f * std::max(1.0f, glm::length(p.position_mm)) + 1e-4f;
-  for (const scene::Light& light : s.lights) {
+  for (std::size_t index = 0; index < s.lights.size(); ++index) {
+    const scene::Light& light = s.lights[index];
+    if (maps && !maps->shaded(index)) continue;
     if (!light.reaches(p_scene)) continue;
     glm::vec3 l;
     glm::dvec3 radiance = glm::dvec3(light.color) * double(light.intensity);
@@ -149,8 +151,14 @@ DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const Surf
     const float n_dot_l = glm::dot(n, l);
     if (n_dot_l <= 0.0f) continue;
     const glm::vec3 side = glm::dot(p.geometric_normal, l) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
-    if (rays.occluded(p.position_mm + side * offset, l, 0.0f, distance - 2.0f * offset)) continue;
-    const glm::dvec3 incident = radiance * double(n_dot_l);
+    double visibility = 1.0;
+    if (maps) {
+      visibility = maps->visibility(index, p.position_mm, n);
+      if (!(visibility > 0.0)) continue;
+    } else if (rays.occluded(p.position_mm + side * offset, l, 0.0f, distance - 2.0f * offset)) {
+      continue;
+    }
+    const glm::dvec3 incident = radiance * double(n_dot_l) * visibility;
     out.irradiance += incident;
     if (spec) {
       const glm::vec3& v = spec->to_eye;

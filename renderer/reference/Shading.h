@@ -11,6 +11,7 @@
 #pragma once
 
 #include "renderer/reference/RayScene.h"
+#include "renderer/reference/ShadowMaps.h"
 #include "renderer/scene/Scene.h"
 
 #include <glm/vec2.hpp>
@@ -52,8 +53,12 @@ struct SpecularInputs {
   float roughness = 1.0f;
 };
 
-// Direct light at p with normal n (unit). `specular` null: irradiance only.
+// Direct light at p with normal n (unit). `specular` null: irradiance only. `maps` null:
+// ray-traced shadows from every light; else the lights are shadowed as the GPU shadows
+// them (ShadowMaps.h: its filtered shadow maps, no shadow from point lights, only the
+// lights the GPU shades).
 DirectLight direct_light(const scene::Scene& scene, const RayScene& rays, const SurfacePoint& p,
-                         const glm::vec3& n, const SpecularInputs* specular);
+                         const glm::vec3& n, const SpecularInputs* specular,
+                         const ShadowMaps* maps = nullptr);
 
 }  // namespace sss::reference

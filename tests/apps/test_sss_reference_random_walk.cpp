@@ -234,6 +234,13 @@ TEST(SssReferenceProbe, WritesMeanVarianceAndSummaryAndRefusesOctreeOptions) {
       {octree + " --variance " + (bad_dir / "v.exr").string(), "--variance"},
       {octree + " --estimator magic", "--estimator"},
       {"builtin:sphere --method random-walk --estimator probe --spp 2 --quiet --out " + out, "--estimator"},
+      // The budget's switches (issue 17): named values, diffusion only, the size with the maps only.
+      {octree + " --kernel gaussian", "--kernel"},
+      {octree + " --shadows soft", "--shadows"},
+      {octree + " --shadow-map-size 512", "--shadow-map-size"},
+      {octree + " --shadows shadow-map --shadow-map-size 0", "--shadow-map-size"},
+      {"builtin:sphere --method random-walk --kernel fit --spp 2 --quiet --out " + out, "--kernel"},
+      {"builtin:sphere --method random-walk --shadows shadow-map --spp 2 --quiet --out " + out, "--shadows"},
   };
   for (const Case& c : cases) {
     const CliRun b = reference(c.args);
