@@ -138,6 +138,19 @@ struct Row {
   // and the GPU frame, each with the ground truth's own noise subtracted (Metrics.h).
   bool has_truth = false;
   double reference_vs_truth = 0.0, gpu_vs_truth = 0.0, truth_noise = 0.0;
+  // The error budget (DESIGN.md §1), GPU frame minus ground truth split into four links,
+  // each the difference of two images that differ in one approximation:
+  //   1 model    diffusion reference (exact R, ray-traced shadows) - ground truth
+  //   2 fit      reference with the GPU's Gaussian fit - diffusion reference
+  //   3 lighting reference with the fit, lit by the GPU's shadow maps - reference with the fit
+  //   4 blur     GPU frame - reference with the fit and the shadow maps
+  // The differences telescope: link 1 + 2 + 3 + 4 = GPU - truth, pixel for pixel. Each is
+  // a relative RMSE over the same pixels, normalised by the truth's signal (its noise
+  // taken off); bias is the signed Σ difference / Σ truth, which adds up exactly.
+  bool has_budget = false;
+  double link[4] = {0, 0, 0, 0}, bias[4] = {0, 0, 0, 0};
+  double budget_total = 0.0, budget_bias = 0.0;  // GPU - truth
+  double fit_vs_reference = 0.0, lit_vs_reference = 0.0;  // links 2, 2+3 against the reference's own signal
   double limit = 0.0;
   bool pass = false;
   double gpu_ms = 0.0, reference_ms = 0.0;
@@ -155,6 +168,24 @@ struct Truth {
   image::Image mean, variance;
   nlohmann::json summary;
 };
+
+// Σ over the pixels of `mask` (alpha > kGeometryAlpha in every image given) of (a - b)²
+// and of (a - b), over R, G, B.
+struct DiffSums {
+  double squares = 0.0, sum = 0.0;
+};
+DiffSums difference(const image::Image& a, const image::Image& b, const std::vector<std::uint8_t>& mask) {
+  DiffSums d;
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    if (!mask[i]) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double e = double(a.rgba[4 * i + c]) - double(b.rgba[4 * i + c]);
+      d.squares += e * e;
+      d.sum += e;
+    }
+  }
+  return d;
+}
 
 void write_report(const fs::path& path, const std::vector<Row>& rows, const nlohmann::json& tolerances,
                   const std::map<std::string, Truth>& truths) {
@@ -193,6 +224,35 @@ void write_report(const fs::path& path, const std::vector<Row>& rows, const nloh
        << " | " << fixed(r.reference_ms / std::max(r.gpu_ms, 1e-3), 0) << "× | "
        << (r.has_truth ? fixed(100.0 * r.reference_vs_truth, 1) + "%" : "—") << " | "
        << (r.has_truth ? fixed(100.0 * r.gpu_vs_truth, 1) + "%" : "—") << " |\n";
+  md << "\n## The error budget\n\n"
+        "Each frame's distance from the ground truth, split into four links, each measured by switching one\n"
+        "approximation (DESIGN.md §1): **1 model** = diffusion reference − ground truth (the flat\n"
+        "semi-infinite profile on this geometry, similarity, no directional or single-scattering terms);\n"
+        "**2 fit** = the reference summing the GPU's Gaussian fit (`sss-reference --kernel fit`) − the\n"
+        "reference; **3 lighting** = that, lit by the GPU's shadow maps and PCF rebuilt on the CPU\n"
+        "(`--shadows shadow-map --shadow-map-size 512`) − the reference with the fit; **4 blur** = the GPU\n"
+        "frame − the reference with the fit and the shadow maps (the real-time blur, the GPU's\n"
+        "transmission term with the shadow map's thickness, fp16 targets). Each is a relative RMSE over the\n"
+        "same pixels (silhouettes left out), divided by the ground truth's signal with its noise taken off;\n"
+        "in brackets the bias, Σ difference / Σ truth. The four differences add up to GPU − truth pixel\n"
+        "for pixel, so the biases add up exactly; the RMSEs add in quadrature plus the links' cross terms:\n"
+        "*left over* = total² − Σ link² (signed square root; positive where links push the same way).\n\n"
+        "| scene | mode | model | 1 model | 2 fit | 3 lighting | 4 blur | √Σ link² | GPU vs truth | left over | truth noise |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  auto pct = [](double v) { return fixed(100.0 * v, 1) + "%"; };
+  auto link_cell = [&](double rmse, double bias) {
+    return pct(rmse) + " (" + (bias >= 0.0 ? "+" : "") + fixed(100.0 * bias, 1) + "%)";
+  };
+  for (const Row& r : rows) {
+    if (!r.has_budget) continue;
+    double quad = 0.0;
+    for (double l : r.link) quad += l * l;
+    const double left = r.budget_total * r.budget_total - quad;
+    md << "| " << r.scene << " | " << r.mode << " | " << r.model;
+    for (int k = 0; k < 4; ++k) md << " | " << link_cell(r.link[k], r.bias[k]);
+    md << " | " << pct(std::sqrt(quad)) << " | " << link_cell(r.budget_total, r.budget_bias) << " | "
+       << (left >= 0.0 ? "+" : "−") << pct(std::sqrt(std::fabs(left))) << " | " << pct(r.truth_noise) << " |\n";
+  }
   md << "\n## The ground truths\n\n"
         "| scene | size | samples per pixel | relative standard error | time | made |\n|---|---|---|---|---|---|\n";
   for (const auto& [name, t] : truths)
@@ -280,6 +340,9 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
   fs::create_directories(out);
 
   std::map<std::string, reference::ReferenceImage> references;  // by scene + model
+  // The budget's intermediate references, by the same key: the GPU's Gaussian fit summed
+  // (link 2), and that lit by the GPU's shadow maps at the suite's 512² (link 3).
+  std::map<std::string, reference::ReferenceImage> fitted, fitted_lit;
   // The stored ground truths, by short scene name: read, never rendered here.
   std::map<std::string, Truth> truths;
   for (const SuiteCase& c : cases) {
@@ -337,6 +400,17 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
       references[ref_key] = reference::render_reference(s, ro);
     }
     const reference::ReferenceImage& ref = references[ref_key];
+    if (!fitted.count(ref_key)) {
+      reference::ReferenceOptions ro;
+      ro.width = c.width;
+      ro.height = c.height;
+      ro.spacing_mfp = kReferenceSpacingMfp;
+      ro.kernel = reference::KernelSource::Fit;
+      fitted[ref_key] = reference::render_reference(s, ro);
+      ro.shadows = reference::Shadows::ShadowMap;
+      ro.shadow_map_size = small_options(c.width, c.height).shadow_map_size;
+      fitted_lit[ref_key] = reference::render_reference(s, ro);
+    }
     row.reference_ms = ref.stats.total_ms;
     row.points = ref.stats.points;
 
@@ -358,6 +432,42 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
       row.reference_vs_truth = r.relative_rmse_noise_subtracted;
       row.gpu_vs_truth = g.relative_rmse_noise_subtracted;
       row.truth_noise = r.reference_noise;
+      // The budget, over the compared pixels that every image of the chain covers.
+      const Truth& truth = t->second;
+      const image::Image& fit = fitted[ref_key].hdr;
+      const image::Image& lit = fitted_lit[ref_key].hdr;
+      std::vector<std::uint8_t> mask(std::size_t(c.width) * c.height, 0);
+      double signal = 0.0, noise = 0.0, truth_sum = 0.0, ref_signal = 0.0;
+      for (std::size_t i = 0; i < mask.size(); ++i) {
+        bool on = true;
+        for (const image::Image* im : std::initializer_list<const image::Image*>{&gpu_hdr, &truth.mean, &ref.hdr, &fit, &lit})
+          on = on && im->rgba[4 * i + 3] > image::kGeometryAlpha;
+        mask[i] = on;
+        if (!on) continue;
+        for (int ch = 0; ch < 3; ++ch) {
+          signal += double(truth.mean.rgba[4 * i + ch]) * truth.mean.rgba[4 * i + ch];
+          noise += truth.variance.rgba[4 * i + ch];
+          truth_sum += truth.mean.rgba[4 * i + ch];
+          ref_signal += double(ref.hdr.rgba[4 * i + ch]) * ref.hdr.rgba[4 * i + ch];
+        }
+      }
+      signal -= noise;  // E[Σ T²] = Σ T_true² + Σ var
+      if (signal > 0.0 && truth_sum > 0.0) {
+        const DiffSums d[4] = {difference(ref.hdr, truth.mean, mask), difference(fit, ref.hdr, mask),
+                               difference(lit, fit, mask), difference(gpu_hdr, lit, mask)};
+        const DiffSums total = difference(gpu_hdr, truth.mean, mask);
+        for (int k = 0; k < 4; ++k) {
+          // Links 1 and the total hold the truth's noise: E[Σ(x - T)²] = Σ(x - T_true)² + Σ var.
+          const double sq = k == 0 ? std::max(0.0, d[k].squares - noise) : d[k].squares;
+          row.link[k] = std::sqrt(sq / signal);
+          row.bias[k] = d[k].sum / truth_sum;
+        }
+        row.budget_total = std::sqrt(std::max(0.0, total.squares - noise) / signal);
+        row.budget_bias = total.sum / truth_sum;
+        row.fit_vs_reference = std::sqrt(d[1].squares / ref_signal);
+        row.lit_vs_reference = std::sqrt(difference(lit, ref.hdr, mask).squares / ref_signal);
+        row.has_budget = true;
+      }
     }
 
     if (bless) {
@@ -375,9 +485,12 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
         << row.limit << " (measured " << tolerances[row.key].value("measured_relative_rmse", -1.0)
         << " when set); GPU, reference and heat map written to " << out;
     std::printf("[ %-36s ] rel RMSE %6.2f%% (limit %5.1f%%) SSIM %.4f  GPU %.1f ms  reference %.0f ms (%zu points)"
-                "  vs truth: reference %.1f%%, GPU %.1f%%\n",
+                "  vs truth: reference %.1f%%, GPU %.1f%%  budget: model %.1f%% fit %.1f%% lighting %.1f%% blur %.1f%%"
+                " (total %.1f%%)\n",
                 row.key.c_str(), 100.0 * row.m.relative_rmse, 100.0 * row.limit, row.m.ssim, row.gpu_ms,
-                row.reference_ms, row.points, 100.0 * row.reference_vs_truth, 100.0 * row.gpu_vs_truth);
+                row.reference_ms, row.points, 100.0 * row.reference_vs_truth, 100.0 * row.gpu_vs_truth,
+                100.0 * row.link[0], 100.0 * row.link[1], 100.0 * row.link[2], 100.0 * row.link[3],
+                100.0 * row.budget_total);
     if (!row.pass || bless) {
       std::string file = row.key;
       for (char& ch : file)
