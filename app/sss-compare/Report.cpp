@@ -81,6 +81,15 @@ nlohmann::ordered_json to_json(const Report& r) {
                       {"pass", c.pass}});
   nlohmann::ordered_json heatmap;  // null without --heatmap
   if (r.heatmap) heatmap = {{"path", *r.heatmap}, {"max", r.heatmap_max}};
+  nlohmann::ordered_json log_ratio;  // null without --log-ratio
+  if (r.log_ratio)
+    log_ratio = {{"path", *r.log_ratio},
+                 {"range_stops", r.log_range},
+                 {"mean_log2", number(r.log_stats.mean_log2)},
+                 {"mean_abs_log2", number(r.log_stats.mean_abs_log2)},
+                 {"tolerance", r.log_stats.tolerance},
+                 {"fraction_brighter", number(r.log_stats.fraction_brighter)},
+                 {"fraction_darker", number(r.log_stats.fraction_darker)}};
   return {
       {"a", input_json(r.a)},
       {"b", input_json(r.b)},
@@ -108,6 +117,7 @@ nlohmann::ordered_json to_json(const Report& r) {
       {"limits", limits},
       {"pass", all_pass(r.checks)},
       {"heatmap", heatmap},
+      {"log_ratio", log_ratio},
   };
 }
 
@@ -151,6 +161,15 @@ std::string to_table(const Report& r) {
   row("SSIM", g(m.ssim), "", "ssim");
   if (r.heatmap)
     out += format("\nheat map: %s (error 0 to %s)\n", r.heatmap->c_str(), g(r.heatmap_max).c_str());
+  if (r.log_ratio) {
+    const image::LogRatioStats& s = r.log_stats;
+    out += format("%slog ratio map: %s (log2(A/B) of the luminance, -%s to +%s stops)\n",
+                  r.heatmap ? "" : "\n", r.log_ratio->c_str(), g(r.log_range).c_str(),
+                  g(r.log_range).c_str());
+    out += format("  mean log2(A/B) %s (mean |log2| %s); beyond +-%s%%: %s brighter, %s darker\n",
+                  g(s.mean_log2).c_str(), g(s.mean_abs_log2).c_str(), g(100.0 * s.tolerance).c_str(),
+                  g(s.fraction_brighter).c_str(), g(s.fraction_darker).c_str());
+  }
   std::string failed;
   for (const Check& c : r.checks)
     if (!c.pass)

@@ -2,6 +2,7 @@
 // or as one JSON document.
 #pragma once
 
+#include "renderer/image/HeatMap.h"
 #include "renderer/image/Metrics.h"
 
 #include <nlohmann/json.hpp>
@@ -45,6 +46,9 @@ struct Report {
   std::vector<Check> checks;
   std::optional<std::string> heatmap;  // the file written, if any
   double heatmap_max = 0.0;
+  std::optional<std::string> log_ratio;  // the --log-ratio file written, if any
+  double log_range = 0.0;                // its range in stops
+  image::LogRatioStats log_stats;        // of log2(A/B), with --log-ratio
 };
 
 nlohmann::ordered_json to_json(const Report& r);

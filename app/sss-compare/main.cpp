@@ -1,10 +1,11 @@
-// sss-compare: error metrics between two renders, an optional heat map, and a verdict.
-//   sss-compare A B [--heatmap FILE.png] [--json] [--tolerance T] [--max-abs E]
+// sss-compare: error metrics between two renders, optional error maps, and a verdict.
+//   sss-compare A B [--heatmap FILE.png] [--log-ratio FILE.png [--log-range STOPS]]
+//               [--json] [--tolerance T] [--max-abs E]
 //               [--max-fraction F] [--min-ssim S] [--threshold T] [--exposure X]
 //               [--variance B.var.exr]
 // B is the reference. The metrics are defined in renderer/image/Metrics.h. The command-line
 // contract is DESIGN.md §4. Exit codes: 0 the images agree within the limits, 3 they do
-// not, 2 bad usage or input, 1 a runtime failure (e.g. the heat map cannot be written).
+// not, 2 bad usage or input, 1 a runtime failure (e.g. a map cannot be written).
 #include "CliSupport.h"
 #include "ExitCodes.h"
 #include "Report.h"
@@ -62,8 +63,9 @@ std::size_t geometry_pixels(const image::Image& img) {
 }
 
 struct Args {
-  std::string a, b, heatmap, variance;
+  std::string a, b, heatmap, variance, log_ratio;
   double heatmap_max = 0.0;
+  double log_range = image::kDefaultLogRange;
   bool json = false;
   double tolerance = 0.01, threshold = 0.05, max_abs = 0.0, max_fraction = 0.0, min_ssim = 0.0;
   float exposure = 1.0f;
@@ -92,6 +94,14 @@ int main(int argc, char** argv) {
   auto* heatmap_max =
       app.add_option("--heatmap-max", a.heatmap_max, "Top of the heat map's scale (default: max error)")
           ->needs(heatmap);
+  auto* log_ratio = app.add_option(
+      "--log-ratio", a.log_ratio,
+      "Write a map of the signed log ratio log2(A/B) of each pixel's luminance (FILE.png): "
+      "blue A darker, white equal, red A brighter");
+  auto* log_range =
+      app.add_option("--log-range", a.log_range,
+                     "Stops at which the --log-ratio map saturates (default 1: 2x brighter or darker)")
+          ->needs(log_ratio);
   app.add_flag("--json", a.json, "Print one JSON document on stdout and nothing else");
   app.add_option("--tolerance", a.tolerance, "Largest relative RMSE that passes (default 0.01)");
   auto* max_abs = app.add_option("--max-abs", a.max_abs, "Also require max abs error <= E");
@@ -129,6 +139,10 @@ int main(int argc, char** argv) {
     return usage("--heatmap-max: expected a finite number > 0, got " + std::to_string(a.heatmap_max));
   if (heatmap->count() && !is_png_name(a.heatmap))
     return usage("--heatmap: expected a .png file name, got '" + a.heatmap + "'");
+  if (log_range->count() && !(std::isfinite(a.log_range) && a.log_range > 0.0))
+    return usage("--log-range: expected a finite number of stops > 0, got " + std::to_string(a.log_range));
+  if (log_ratio->count() && !is_png_name(a.log_ratio))
+    return usage("--log-ratio: expected a .png file name, got '" + a.log_ratio + "'");
 
   // Inputs: read, same size, bring to one encoding.
   image::Image img[2];
@@ -204,6 +218,16 @@ int main(int argc, char** argv) {
       image::write_png(a.heatmap, map);
       report.heatmap = a.heatmap;
       report.heatmap_max = top;
+    }
+    if (log_ratio->count()) {
+      // In the space the metrics were taken in; display values are linearized inside.
+      const std::vector<float> r = image::log2_luminance_ratio(img[0], img[1], space);
+      const image::Image map =
+          image::render_log_ratio_map(r, mask, img[0].width, img[0].height, a.log_range);
+      image::write_png(a.log_ratio, map);
+      report.log_ratio = a.log_ratio;
+      report.log_range = a.log_range;
+      report.log_stats = image::log_ratio_stats(r, mask);
     }
   } catch (const std::invalid_argument& e) {
     return input_error(e.what());

@@ -7,6 +7,7 @@
 #include "renderer/Renderer.h"
 #include "renderer/image/AtomicFile.h"
 #include "renderer/image/HeatMap.h"
+#include "renderer/image/Tonemap.h"
 #include "renderer/scene/GltfExport.h"
 #include "renderer/scene/SssExtras.h"
 #include "renderer/vk/Transfer.h"
@@ -18,11 +19,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cctype>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <system_error>
+#include <variant>
 
 namespace sss::app {
 
@@ -173,18 +177,52 @@ void ViewerTools::reset() {
   (void)job_.take_error();
   reference_.reset();
   metrics_.reset();
+  for (auto& r : results_) r.reset();
   compare_pending_ = false;
   reference_image_ = {};
   heat_image_ = {};
+  map_image_ = {};
+  clear_truth();  // a truth is of one scene's view
+  truth_message_.clear();
+  truth_error_ = false;
   view_ = 0;
   compare_error_.clear();
   export_message_.clear();
 }
 
+const char* ViewerTools::pair_name(Pair p) {
+  switch (p) {
+    case Pair::FrameVsReference: return "frame vs reference";
+    case Pair::FrameVsTruth: return "frame vs truth";
+    case Pair::ReferenceVsTruth: return "reference vs truth";
+  }
+  return "?";
+}
+
+const char* ViewerTools::ratio_name(Pair p) {
+  switch (p) {
+    case Pair::FrameVsReference: return "log2(frame/reference)";
+    case Pair::FrameVsTruth: return "log2(frame/truth)";
+    case Pair::ReferenceVsTruth: return "log2(reference/truth)";
+  }
+  return "?";
+}
+
 std::optional<ViewerTools::Overlay> ViewerTools::overlay() const {
-  if (view_ == 0 || !reference_image_) return std::nullopt;
-  if (view_ == 3) return heat_image_ ? std::optional(Overlay{&heat_image_, 1.0f}) : std::nullopt;
-  return Overlay{&reference_image_, view_ == 1 ? split_ : 1.0f};
+  switch (view_) {
+    case 1:
+    case 2:
+      if (reference_image_) return Overlay{&reference_image_, view_ == 1 ? split_ : 1.0f};
+      break;
+    case 3:
+      if (heat_image_) return Overlay{&heat_image_, 1.0f};
+      break;
+    case 4:
+      if (truth_image_) return Overlay{&truth_image_, 1.0f};
+      break;
+    default: break;
+  }
+  return std::nullopt;
 }
 
 vk::Image ViewerTools::upload(const image::Image& img, const char* name) const {
@@ -217,7 +255,7 @@ std::optional<std::string> ViewerTools::draw(renderer::Renderer& r, const LiveSt
   ImGui::SetNextWindowSizeConstraints(ImVec2(310, 0), ImVec2(310, std::max(size.y - 16.0f, 50.0f)));
   const bool expand = expand_ || show_open_;
   ImGui::SetNextWindowCollapsed(!expand, expand ? ImGuiCond_Always : ImGuiCond_FirstUseEver);
-  poll_reference(r, live);  // also while the window is collapsed
+  poll(r, live);  // also while the window is collapsed
   if (ImGui::Begin("Tools", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     draw_open();
     draw_compare(r, live);
@@ -242,47 +280,243 @@ void ViewerTools::draw_open() {
   if (message_error_) ImGui::PopStyleColor();
 }
 
-void ViewerTools::compare_now(renderer::Renderer& r) {
+namespace {
+
+// 8-bit codes, as shown and as sss-reference writes its PNG: metrics of display images
+// are then those of sss-compare on the PNGs.
+void quantize(image::Image& display) {
+  for (float& v : display.rgba) v = std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
+}
+
+std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+bool has_exr_magic(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  unsigned char magic[4] = {};
+  f.read(reinterpret_cast<char*>(magic), 4);
+  static const unsigned char kExr[4] = {0x76, 0x2f, 0x31, 0x01};
+  return f && std::memcmp(magic, kExr, 4) == 0;
+}
+
+const std::string* attribute(const image::Image& img, const std::string& name) {
+  for (const auto& [k, v] : img.attributes)
+    if (k == name) return &v;
+  return nullptr;
+}
+
+// One pair: display metrics as sss-compare gives them for the two PNGs, and the log
+// ratio of the linear images.
+ViewerTools::PairResult compare_pair(const image::Image& a_display, const image::Image& a_hdr,
+                                     const image::Image& b_display, const image::Image& b_hdr) {
+  ViewerTools::PairResult out;
+  out.width = a_display.width;
+  out.height = a_display.height;
+  out.metrics = image::compare(a_display, b_display);
+  out.errors = image::pixel_errors(a_display, b_display);
+  out.mask = image::geometry_mask(a_display, b_display);
+  out.log2_ratio = image::log2_luminance_ratio(a_hdr, b_hdr, image::Encoding::Linear);
+  out.log_stats = image::log_ratio_stats(out.log2_ratio, out.mask);
+  // The absolute map's top: the 99th percentile of the compared pixels' errors, so that
+  // a few silhouette or shadow-edge pixels do not turn the rest of the map dark.
+  std::vector<float> compared;
+  for (std::size_t i = 0; i < out.errors.size(); ++i)
+    if (out.mask[i] != 0) compared.push_back(out.errors[i]);
+  if (!compared.empty()) {
+    const auto nth = compared.begin() + std::ptrdiff_t(0.99 * double(compared.size() - 1));
+    std::nth_element(compared.begin(), nth, compared.end());
+    out.heat_max = std::max(double(*nth), 1e-3);
+  }
+  return out;
+}
+
+}  // namespace
+
+void ViewerTools::compare_now(renderer::Renderer& r, const LiveState& live) {
   compare_error_.clear();
   metrics_.reset();
+  for (auto& res : results_) res.reset();
   try {
-    const image::Image live = r.read_display();
-    const image::Image& ref = reference_->display;
-    if (live.width != ref.width || live.height != ref.height) {
-      compare_error_ = "the window was resized since the reference: render it again";
-      return;
+    frame_display_ = r.read_display();
+    frame_hdr_ = r.read_hdr();
+    if (truth_) show_truth(r.options().exposure);  // the exposure may have changed
+  } catch (const std::exception& e) {
+    compare_error_ = e.what();
+    return;
+  }
+  const bool reference_current = reference_ && live_key(r, live) == reference_key_;
+  if (truth_) {  // a new comparison, a new verdict
+    truth_message_ = truth_info_;
+    truth_error_ = false;
+  }
+  for (int p = 0; p < kPairs; ++p) {
+    const Pair pair = Pair(p);
+    const bool uses_truth = pair != Pair::FrameVsReference;
+    const image::Image *a_display = nullptr, *a_hdr = nullptr, *b_display = nullptr, *b_hdr = nullptr;
+    if (pair != Pair::ReferenceVsTruth) {
+      a_display = &frame_display_;
+      a_hdr = &frame_hdr_;
+    } else if (reference_) {
+      a_display = &reference_->display;
+      a_hdr = &reference_->hdr;
     }
-    metrics_ = image::compare(live, ref);
-    errors_ = image::pixel_errors(live, ref);
-    mask_ = image::geometry_mask(live, ref);
-    // The top of the scale: the 99th percentile of the compared pixels' errors, so that a
-    // few silhouette or shadow-edge pixels do not turn the rest of the map dark.
-    std::vector<float> compared;
-    for (std::size_t i = 0; i < errors_.size(); ++i)
-      if (mask_[i] != 0) compared.push_back(errors_[i]);
-    heat_max_ = 1.0;
-    if (!compared.empty()) {
-      const auto nth = compared.begin() + std::ptrdiff_t(0.99 * double(compared.size() - 1));
-      std::nth_element(compared.begin(), nth, compared.end());
-      heat_max_ = std::max(double(*nth), 1e-3);
+    if (pair == Pair::FrameVsReference) {
+      if (reference_current) {
+        b_display = &reference_->display;
+        b_hdr = &reference_->hdr;
+      }
+    } else if (truth_) {
+      b_display = &truth_display_;
+      b_hdr = &*truth_;
     }
-    render_heat(live.width, live.height);
+    if (!a_display || !b_display) continue;
+    std::string error;
+    if (a_display->width != b_display->width || a_display->height != b_display->height) {
+      error = pair == Pair::FrameVsReference
+                  ? "the window was resized since the reference: render it again"
+                  : std::string(pair_name(pair)) + ": the ground truth (" + truth_source_ + ") is " +
+                        size_text(b_display->width, b_display->height) + ", the " +
+                        (pair == Pair::FrameVsTruth ? "frame" : "reference") + " is " +
+                        size_text(a_display->width, a_display->height);
+    } else {
+      try {
+        results_[p] = compare_pair(*a_display, *a_hdr, *b_display, *b_hdr);
+      } catch (const std::exception& e) {
+        error = std::string(pair_name(pair)) + ": " + e.what();
+      }
+    }
+    if (error.empty()) continue;
+    if (uses_truth) {
+      truth_message_ = error;
+      truth_error_ = true;
+    } else {
+      compare_error_ = error;
+    }
+  }
+  if (results_[0]) metrics_ = results_[0]->metrics;
+  if (!results_[int(pair_)])  // the chosen pair is not there: the first one that is
+    for (int p = 0; p < kPairs; ++p)
+      if (results_[p]) {
+        pair_ = Pair(p);
+        break;
+      }
+  render_map();
+}
+
+void ViewerTools::render_map() {
+  map_image_ = {};
+  heat_image_ = {};
+  const std::optional<PairResult>& res = results_[int(pair_)];
+  if (!res) return;
+  try {
+    const int w = res->width, h = res->height;
+    const image::Image canvas =
+        map_ == ErrorMap::Absolute
+            ? image::render_heatmap(res->errors, res->mask, w, h, res->heat_max)
+            : image::render_log_ratio_map(res->log2_ratio, res->mask, w, h, log_range_);
+    image::Image map(w, h);  // the map, without the colour bar (the panel draws that)
+    for (int y = 0; y < h; ++y) std::copy_n(canvas.pixel(0, y), 4 * std::size_t(w), map.pixel(0, y));
+    for (std::size_t i = 3; i < map.rgba.size(); i += 4) map.rgba[i] = 1.0f;
+    heat_image_ = upload(map, "compare error map");
+    map_image_ = std::move(map);
   } catch (const std::exception& e) {
     compare_error_ = e.what();
   }
 }
 
-void ViewerTools::render_heat(int width, int height) {
+void ViewerTools::set_error_map(ErrorMap map, Pair pair) {
+  map_ = map;
+  pair_ = pair;
+  view_ = 3;
+  expand_ = true;
+  render_map();
+}
+
+void ViewerTools::set_log_range(double stops) {
+  if (!(std::isfinite(stops) && stops > 0.0)) return;
+  log_range_ = stops;
+  if (map_ == ErrorMap::LogRatio) render_map();
+}
+
+void ViewerTools::show_truth(float exposure) {
+  if (!truth_ || (exposure == truth_exposure_ && truth_image_)) return;
+  truth_display_ = image::tonemap(*truth_, exposure);
+  quantize(truth_display_);
+  truth_image_ = upload(truth_display_, "compare ground truth");
+  truth_exposure_ = exposure;
+}
+
+bool ViewerTools::load_truth(const std::string& path, const renderer::Renderer& r,
+                             const LiveState& live) {
+  truth_warning_.clear();
+  truth_error_ = true;
+  const auto fail = [&](std::string message) {
+    truth_message_ = std::move(message) + (truth_ ? " (not loaded; the previous truth stays)" : "");
+    return false;
+  };
+  if (path.empty()) return fail("ground truth: no file name given");
+  auto read = image::read_image(path);
+  if (auto* e = std::get_if<image::ImageError>(&read)) return fail("ground truth: " + e->what());
+  image::Image img = std::move(std::get<image::Image>(read));
+  if (!has_exr_magic(path))
+    return fail("ground truth: " + path +
+                " is not an EXR: load the linear radiance of sss-reference --method random-walk --out NAME.exr");
+  if (const std::string* content = attribute(img, "sssContent"); content && *content != "mean")
+    return fail("ground truth: " + path + " holds the ground truth's " + *content +
+                " (sssContent), not its mean: load the .exr written by --out");
+  const std::uint32_t w = live.width > 0 ? live.width : r.options().width;
+  const std::uint32_t h = live.height > 0 ? live.height : r.options().height;
+  if (std::uint32_t(img.width) != w || std::uint32_t(img.height) != h)
+    return fail("ground truth: " + path + " is " + size_text(img.width, img.height) +
+                " but the view is " + size_text(int(w), int(h)) +
+                ": a truth compares only at its own size (resize the window to " +
+                size_text(img.width, img.height) + ", or render one with sss-reference --method "
+                "random-walk --width " + std::to_string(w) + " --height " + std::to_string(h) + ")");
+  truth_ = std::move(img);
+  truth_source_ = path;
+  truth_exposure_ = -1.0f;
+  truth_image_ = {};
   try {
-    const image::Image canvas = image::render_heatmap(errors_, mask_, width, height, heat_max_);
-    image::Image heat(width, height);  // the error image, without the colour bar
-    for (int y = 0; y < height; ++y)
-      std::copy_n(canvas.pixel(0, y), 4 * std::size_t(width), heat.pixel(0, y));
-    for (std::size_t i = 3; i < heat.rgba.size(); i += 4) heat.rgba[i] = 1.0f;
-    heat_image_ = upload(heat, "compare heat map");
+    show_truth(r.options().exposure);
   } catch (const std::exception& e) {
-    compare_error_ = e.what();
+    truth_.reset();
+    return fail("ground truth: " + std::string(e.what()));
   }
+  std::ostringstream m;
+  m << "ground truth: " << path << " (" << size_text(truth_->width, truth_->height);
+  if (const std::string* spp = attribute(*truth_, "sssSpp")) m << ", " << *spp << " spp";
+  if (const std::string* se = attribute(*truth_, "sssRelativeStandardError"))
+    m << ", relative standard error " << std::atof(se->c_str()) * 100.0 << "%";
+  m << ")";
+  truth_info_ = truth_message_ = m.str();
+  truth_error_ = false;
+  // The truth cannot say which camera it saw; its settings name the scene, at least.
+  if (const std::string* settings = attribute(*truth_, "sssSettings")) {
+    const std::string scene = settings->substr(0, settings->find(' '));
+    if (!scene.empty() && scene != live.source && is_builtin(scene))
+      truth_warning_ = "rendered from " + scene + ", the view shows " + live.source;
+  }
+  copy_to(truth_path_, sizeof truth_path_, path);
+  for (int p = 1; p < kPairs; ++p) results_[p].reset();
+  compare_pending_ = true;
+  return true;
+}
+
+void ViewerTools::clear_truth() {
+  truth_.reset();
+  truth_source_.clear();
+  truth_display_ = {};
+  truth_image_ = {};
+  truth_exposure_ = -1.0f;
+  truth_message_.clear();
+  truth_info_.clear();
+  truth_warning_.clear();
+  truth_error_ = false;
+  for (int p = 1; p < kPairs; ++p) results_[p].reset();
+  if (pair_ != Pair::FrameVsReference) {
+    pair_ = Pair::FrameVsReference;
+    render_map();
+  }
+  if (view_ == 4) view_ = 0;
 }
 
 void ViewerTools::start_reference(const renderer::Renderer& r, const LiveState& live) {
@@ -303,26 +537,25 @@ void ViewerTools::start_reference(const renderer::Renderer& r, const LiveState& 
   job_.start(std::move(s), o);
 }
 
-void ViewerTools::poll_reference(renderer::Renderer& r, const LiveState& live) {
+void ViewerTools::poll(renderer::Renderer& r, const LiveState& live) {
   if (std::optional<reference::ReferenceImage> done = job_.take()) {
     reference_ = std::move(done);
     reference_key_ = job_key_;
-    // 8-bit codes, as shown and as sss-reference writes its PNG: the metrics are then
-    // those of `sss-compare live.png reference.png`.
-    for (float& v : reference_->display.rgba) v = std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
+    quantize(reference_->display);
     try {
       reference_image_ = upload(reference_->display, "compare reference");
     } catch (const std::exception& e) {
       compare_error_ = e.what();
     }
-    compare_pending_ = live_key(r, live) == reference_key_;
+    compare_pending_ = live_key(r, live) == reference_key_ || truth_.has_value();
     if (view_ == 0) view_ = 1;
   }
   // Compare the full-size frame (not a scaled one drawn while the view moves).
-  if (compare_pending_ && reference_ && r.options().width == std::uint32_t(reference_->display.width) &&
-      r.options().height == std::uint32_t(reference_->display.height)) {
+  const std::uint32_t w = live.width > 0 ? live.width : r.options().width;
+  const std::uint32_t h = live.height > 0 ? live.height : r.options().height;
+  if (compare_pending_ && (reference_ || truth_) && r.options().width == w && r.options().height == h) {
     compare_pending_ = false;
-    compare_now(r);
+    compare_now(r, live);
   }
   if (std::string e = job_.take_error(); !e.empty()) compare_error_ = "reference: " + e;
 }
@@ -341,20 +574,31 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
     start_reference(r, live);
   }
   if (!compare_error_.empty()) ImGui::TextColored(kRed, "%s", compare_error_.c_str());
-  if (!reference_) return;
+  bool stale = false;
+  if (reference_) {
+    const reference::ReferenceStats& st = reference_->stats;
+    ImGui::Text("reference: %zu points, %.1f s", st.points, st.total_ms / 1000.0);
+    stale = live_key(r, live) != reference_key_;
+    if (stale) ImGui::TextColored(kYellow, "The view or a material changed since: render again.");
+  }
+  draw_truth(r, live);
+  if (!reference_ && !truth_) return;
 
-  const reference::ReferenceStats& st = reference_->stats;
-  ImGui::Text("reference: %zu points, %.1f s", st.points, st.total_ms / 1000.0);
-  const bool stale = live_key(r, live) != reference_key_;
-  if (stale) ImGui::TextColored(kYellow, "The view or a material changed since: render again.");
+  ImGui::Separator();
   ImGui::RadioButton("live", &view_, 0);
-  ImGui::SameLine();
-  ImGui::RadioButton("split", &view_, 1);
-  ImGui::SameLine();
-  ImGui::RadioButton("reference", &view_, 2);
+  if (reference_) {
+    ImGui::SameLine();
+    ImGui::RadioButton("split", &view_, 1);
+    ImGui::SameLine();
+    ImGui::RadioButton("reference", &view_, 2);
+  }
+  if (truth_) {
+    ImGui::SameLine();
+    ImGui::RadioButton("truth", &view_, 4);
+  }
   ImGui::SameLine();
   ImGui::RadioButton("error", &view_, 3);
-  if (view_ == 1) {
+  if (view_ == 1 && reference_) {
     ImGui::SliderFloat("split", &split_, 0.0f, 1.0f, "%.2f");
     const ImVec2 size = ImGui::GetIO().DisplaySize;
     ImDrawList* fg = ImGui::GetForegroundDrawList();
@@ -364,36 +608,139 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
     fg->AddText(ImVec2(split_ * size.x + 8.0f, size.y - 22.0f), IM_COL32_WHITE, "live");
     ImGui::TextDisabled("left: reference, right: live frame");
   }
-  if (!stale && ImGui::Button("Compare the current frame")) compare_pending_ = true;
-  if (!metrics_) return;
-  const image::Metrics& m = *metrics_;
-  ImGui::Text("relative RMSE %.2f%%   RMSE %.4f", 100.0 * m.relative_rmse, m.rmse);
-  ImGui::Text("PSNR %.1f dB   SSIM %.4f", m.psnr_db, m.ssim);
-  ImGui::Text("max |error| %.3f at (%d, %d)", m.max_abs_error, m.max_abs_x, m.max_abs_y);
-  ImGui::Text("%.2f%% of %zu pixels over %.0f%% of peak", 100.0 * m.fraction_over_threshold,
-              m.compared_pixels, 100.0 * m.threshold);
-  if (view_ == 3) {  // the heat map's colour bar
-    ImDrawList* dl = ImGui::GetWindowDrawList();
-    const ImVec2 p = ImGui::GetCursorScreenPos();
-    const float w = ImGui::GetContentRegionAvail().x, h = 12.0f;
-    constexpr int kSteps = 32;
-    for (int i = 0; i < kSteps; ++i) {
-      const image::Rgb c = image::viridis((i + 0.5) / kSteps);
-      dl->AddRectFilled(ImVec2(p.x + w * i / kSteps, p.y), ImVec2(p.x + w * (i + 1) / kSteps, p.y + h),
-                        ImGui::GetColorU32(ImVec4(c[0], c[1], c[2], 1.0f)));
+  if (((reference_ && !stale) || truth_) && ImGui::Button("Compare the current frame"))
+    compare_pending_ = true;
+  draw_metrics();
+  if (view_ == 3) draw_map_controls();
+}
+
+void ViewerTools::draw_truth(const renderer::Renderer& r, const LiveState& live) {
+  ImGui::Separator();
+  ImGui::TextWrapped("Ground truth: the EXR of sss-reference --method random-walk of this view, "
+                     "at the window's size");
+  const bool enter = ImGui::InputText("##truth", truth_path_, sizeof truth_path_,
+                                      ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if (ImGui::Button("Load") || enter) (void)load_truth(truth_path_, r, live);
+  if (truth_) {
+    ImGui::SameLine();
+    if (ImGui::Button("Clear")) clear_truth();
+  }
+  if (!truth_message_.empty()) {
+    if (truth_error_) ImGui::PushStyleColor(ImGuiCol_Text, kRed);
+    ImGui::TextWrapped("%s", truth_message_.c_str());
+    if (truth_error_) ImGui::PopStyleColor();
+  }
+  if (!truth_warning_.empty()) ImGui::TextColored(kYellow, "%s", truth_warning_.c_str());
+}
+
+void ViewerTools::draw_metrics() {
+  int columns = 0;
+  for (const auto& res : results_) columns += res.has_value();
+  if (columns == 0) return;
+  if (!ImGui::BeginTable("metrics", 1 + columns, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg))
+    return;
+  static const char* kShort[kPairs] = {"frame/ref", "frame/truth", "ref/truth"};
+  ImGui::TableNextRow();
+  ImGui::TableNextColumn();
+  for (int p = 0; p < kPairs; ++p)
+    if (results_[p]) {
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(kShort[p]);
     }
-    ImGui::Dummy(ImVec2(w, h));
-    float top = float(heat_max_);
-    if (ImGui::SliderFloat("top", &top, 1e-3f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic) &&
-        reference_) {
-      heat_max_ = top;
-      render_heat(reference_->display.width, reference_->display.height);
+  const auto row = [&](const char* label, const char* tooltip, auto value) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(label);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tooltip);
+    for (const auto& res : results_)
+      if (res) {
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(value(*res).c_str());
+      }
+  };
+  const auto fmt = [](const char* f, double v) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, f, v);
+    return std::string(buf);
+  };
+  row("rel. RMSE", "sqrt(sum (a-b)^2 / sum b^2) of the display codes",
+      [&](const PairResult& x) { return fmt("%.2f%%", 100.0 * x.metrics.relative_rmse); });
+  row("PSNR", "dB, peak 1", [&](const PairResult& x) { return fmt("%.1f", x.metrics.psnr_db); });
+  row("SSIM", "mean SSIM of the luma", [&](const PairResult& x) { return fmt("%.4f", x.metrics.ssim); });
+  row("max |err|", "the largest max_c |a-b|",
+      [&](const PairResult& x) { return fmt("%.3f", x.metrics.max_abs_error); });
+  row("> 5% peak", "pixels whose error exceeds 5% of the peak",
+      [&](const PairResult& x) { return fmt("%.2f%%", 100.0 * x.metrics.fraction_over_threshold); });
+  row("mean log2", "mean log2(A/B) of the linear luminance: the bias in stops",
+      [&](const PairResult& x) { return fmt("%+.3f", x.log_stats.mean_log2); });
+  row("> +5%", "pixels more than 5% brighter than B (A > 1.05 B)",
+      [&](const PairResult& x) { return fmt("%.2f%%", 100.0 * x.log_stats.fraction_brighter); });
+  row("< -5%", "pixels more than 5% darker than B (A < B / 1.05)",
+      [&](const PairResult& x) { return fmt("%.2f%%", 100.0 * x.log_stats.fraction_darker); });
+  ImGui::EndTable();
+  if (const auto& m = results_[0])
+    ImGui::TextWrapped("frame/ref: max |err| at (%d, %d); %zu pixels compared", m->metrics.max_abs_x,
+                       m->metrics.max_abs_y, m->metrics.compared_pixels);
+}
+
+void ViewerTools::draw_map_controls() {
+  if (ImGui::BeginCombo("pair", pair_name(pair_))) {
+    for (int p = 0; p < kPairs; ++p) {
+      if (!results_[p]) continue;
+      if (ImGui::Selectable(pair_name(Pair(p)), pair_ == Pair(p)) && pair_ != Pair(p)) {
+        pair_ = Pair(p);
+        render_map();
+      }
+    }
+    ImGui::EndCombo();
+  }
+  int map = int(map_);
+  bool changed = ImGui::RadioButton("absolute error", &map, int(ErrorMap::Absolute));
+  const std::string ratio = std::string("signed log ratio ") + ratio_name(pair_);
+  changed |= ImGui::RadioButton(ratio.c_str(), &map, int(ErrorMap::LogRatio));
+  if (changed && map != int(map_)) {
+    map_ = ErrorMap(map);
+    render_map();
+  }
+  std::optional<PairResult>& res = results_[int(pair_)];
+  if (!res) return;
+  // The colour bar (the uploaded map has none).
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  const float w = ImGui::GetContentRegionAvail().x, h = 12.0f;
+  constexpr int kSteps = 32;
+  for (int i = 0; i < kSteps; ++i) {
+    const double t = (i + 0.5) / kSteps;
+    const image::Rgb c = map_ == ErrorMap::Absolute ? image::viridis(t) : image::diverging(2.0 * t - 1.0);
+    dl->AddRectFilled(ImVec2(p.x + w * i / kSteps, p.y), ImVec2(p.x + w * (i + 1) / kSteps, p.y + h),
+                      ImGui::GetColorU32(ImVec4(c[0], c[1], c[2], 1.0f)));
+  }
+  ImGui::Dummy(ImVec2(w, h));
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  if (map_ == ErrorMap::Absolute) {
+    ImGui::PopStyleColor();
+    float top = float(res->heat_max);
+    if (ImGui::SliderFloat("top", &top, 1e-3f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic)) {
+      res->heat_max = top;
+      render_map();
     }
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("|error| of the display codes, 0 to top (default: 99th percentile); "
                        "grey: no geometry in one image");
+  } else {
+    ImGui::Text("-%.2g stops %*s0%*s+%.2g stops", log_range_, 10, "", 10, "", log_range_);
     ImGui::PopStyleColor();
+    float range = float(log_range_);
+    if (ImGui::SliderFloat("range (stops)", &range, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+      set_log_range(range);
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s of the linear luminance: blue A darker, white equal, red A brighter, "
+                       "saturated beyond +-range (1 stop = 2x); grey: no geometry in one image; "
+                       "green: a non-finite value",
+                       ratio_name(pair_));
   }
+  ImGui::PopStyleColor();
 }
 
 std::string write_new_file(const std::string& path, const std::string& bytes, bool replace,

@@ -2,19 +2,26 @@
 //   - Open: a glTF/GLB by path (or dropped on the window; Window.cpp reloads it);
 //   - Compare: the CPU reference (renderer/reference) renders the current view on a
 //     worker thread with progress; then the frame can be shown split A/B against it,
-//     as the reference alone, or as an error heat map, with the metrics of sss-compare;
+//     as the reference alone, or as an error map, with the metrics of sss-compare. A
+//     stored ground truth (an EXR of `sss-reference --method random-walk`, the view's
+//     size) can be loaded beside it: then the same metrics and maps for frame vs truth
+//     and reference vs truth. The error map is the absolute error (the heat map of
+//     sss-compare --heatmap) or the signed log ratio log2(A/B) of the luminance (that of
+//     sss-compare --log-ratio), for the chosen pair;
 //   - Export: the current SSS materials into a new glTF (extras.sss, GltfExport.h; for
 //     built-in scenes a JSON of the blocks), and a material's kernel as JSON or C header
 //     (the format of `sss-fit fit --out`). Nothing is ever overwritten silently.
 // Every file is written atomically (image::write_file_atomically).
 #pragma once
 
+#include "renderer/image/HeatMap.h"
 #include "renderer/image/Image.h"
 #include "renderer/image/Metrics.h"
 #include "renderer/reference/ReferenceRenderer.h"
 #include "renderer/scene/Scene.h"
 #include "renderer/vk/Image.h"
 
+#include <array>
 #include <atomic>
 #include <filesystem>
 #include <memory>
@@ -87,16 +94,67 @@ class ViewerTools {
   // renderer draws now (same camera, size, exposure, materials and lights).
   void start_reference(const renderer::Renderer& r, const LiveState& live);
   bool reference_running() const { return job_.running(); }
+  // Takes a finished reference and runs a comparison that is due (a new reference or
+  // ground truth, the Compare button) once the frame is drawn at full size. draw() calls
+  // it every frame; tests call it directly.
+  void poll(renderer::Renderer& r, const LiveState& live);
   // The comparison of the finished reference with the frame, once there is one.
   const std::optional<image::Metrics>& metrics() const { return metrics_; }
   // Why the last reference or comparison failed (empty: it did not).
   const std::string& compare_error() const { return compare_error_; }
-  // 0 live, 1 split A/B, 2 reference, 3 error heat map (the radio buttons).
+  // 0 live, 1 split A/B, 2 reference, 3 error map, 4 ground truth (the radio buttons).
   void set_view(int view, float split = 0.5f) {
     view_ = view;
     split_ = split;
     expand_ = true;  // and show the panel with the metrics
   }
+  int view() const { return view_; }
+
+  // What the error map compares (A against B; B is the one nearer the truth) and how.
+  enum class Pair { FrameVsReference, FrameVsTruth, ReferenceVsTruth };
+  static constexpr int kPairs = 3;
+  static const char* pair_name(Pair p);   // "frame vs reference"
+  static const char* ratio_name(Pair p);  // "log2(frame/reference)"
+  enum class ErrorMap { Absolute, LogRatio };
+  // Selects the error view (3) with this map of this pair, and draws it.
+  void set_error_map(ErrorMap map, Pair pair = Pair::FrameVsReference);
+  ErrorMap error_map() const { return map_; }
+  Pair pair() const { return pair_; }
+  // The log-ratio map's range in stops (finite, > 0; else ignored).
+  void set_log_range(double stops);
+  double log_range() const { return log_range_; }
+
+  // One pair's comparison: sss-compare's metrics of the display images (8-bit codes),
+  // the log ratio log2(A/B) of the linear images' luminance with its statistics, and
+  // the per-pixel values the maps are drawn from.
+  struct PairResult {
+    image::Metrics metrics;
+    image::LogRatioStats log_stats;
+    int width = 0, height = 0;
+    std::vector<float> errors;       // max_c |a − b| of the display images
+    std::vector<float> log2_ratio;   // image::log2_luminance_ratio of the linear images
+    std::vector<std::uint8_t> mask;  // 1: geometry in both
+    double heat_max = 1.0;           // the absolute map's top
+  };
+  // Empty until the pair has been compared (or when one of its images is missing).
+  const std::optional<PairResult>& result(Pair p) const { return results_[int(p)]; }
+  // The error view's image as uploaded: the map of the chosen pair, without its colour
+  // bar (the panel draws that), frame size; empty when there is none.
+  const image::Image& map_image() const { return map_image_; }
+
+  // The "ground truth" source: an EXR of linear radiance (sss-reference --method
+  // random-walk --out, its mean, not its .var.exr) of this view at the window's size.
+  // Loading compares it with the frame at the next poll. On failure the previous truth
+  // (if any) stays and truth_message() says why, naming the file. Returns success.
+  bool load_truth(const std::string& path, const renderer::Renderer& r, const LiveState& live);
+  void clear_truth();
+  bool has_truth() const { return truth_.has_value(); }
+  // "ground truth: PATH (160x90, 535 spp, ...)" or why it did not load / compare.
+  const std::string& truth_message() const { return truth_message_; }
+  bool truth_error() const { return truth_error_; }
+  // A loaded truth whose settings name another built-in scene than the view's (the camera
+  // cannot be checked; the scene can): shown in yellow, empty otherwise.
+  const std::string& truth_warning() const { return truth_warning_; }
 
   // A new scene: cancels the reference and forgets the comparison.
   void reset();
@@ -119,12 +177,16 @@ class ViewerTools {
 
  private:
   void draw_open();
-  // Takes a finished reference: uploads it and compares it with the frame.
-  void poll_reference(renderer::Renderer& r, const LiveState& live);
   void draw_compare(renderer::Renderer& r, const LiveState& live);
+  void draw_truth(const renderer::Renderer& r, const LiveState& live);
+  void draw_metrics();
+  void draw_map_controls();
   void draw_export(const renderer::Renderer& r, const LiveState& live);
-  void compare_now(renderer::Renderer& r);
-  void render_heat(int width, int height);  // errors_ -> heat_image_ at heat_max_
+  // Compares every pair whose images are there (frame vs reference only while the
+  // reference is of the current view), then draws the chosen map.
+  void compare_now(renderer::Renderer& r, const LiveState& live);
+  void render_map();  // results_[pair_] -> map_image_, heat_image_
+  void show_truth(float exposure);  // truth_ -> truth_display_, truth_image_
   vk::Image upload(const image::Image& img, const char* name) const;
 
   const vk::Context& context_;
@@ -140,13 +202,25 @@ class ViewerTools {
   std::string job_key_;                          // the state the running job renders
   std::optional<reference::ReferenceImage> reference_;
   std::string reference_key_;                    // the state the reference shows
-  std::optional<image::Metrics> metrics_;
-  double heat_max_ = 0.0;
-  std::vector<float> errors_;          // per pixel, live vs reference display
-  std::vector<std::uint8_t> mask_;     // 1: geometry in both
+  std::optional<image::Metrics> metrics_;  // frame vs reference
+  std::array<std::optional<PairResult>, kPairs> results_;
+  Pair pair_ = Pair::FrameVsReference;
+  ErrorMap map_ = ErrorMap::Absolute;
+  double log_range_ = image::kDefaultLogRange;
+  image::Image frame_display_, frame_hdr_;  // the compared frame
+  image::Image map_image_;
   vk::Image reference_image_, heat_image_;
+  char truth_path_[512] = "";
+  std::optional<image::Image> truth_;  // linear, alpha 1 on geometry
+  std::string truth_source_;           // the path it was loaded from
+  float truth_exposure_ = -1.0f;       // of truth_display_
+  image::Image truth_display_;         // tonemapped at the view's exposure, 8-bit codes
+  vk::Image truth_image_;
+  std::string truth_message_, truth_warning_;
+  std::string truth_info_;  // the loaded truth's line (truth_message_ when all is well)
+  bool truth_error_ = false;
   bool expand_ = false;  // open the window and the Compare section at the next draw
-  int view_ = 0;  // 0 live, 1 split, 2 reference, 3 heat map
+  int view_ = 0;  // 0 live, 1 split, 2 reference, 3 error map, 4 ground truth
   float split_ = 0.5f;
   std::string compare_error_;
   bool compare_pending_ = false;  // the reference arrived; compare once the frame is full size

@@ -454,6 +454,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     if (!a.test_compare.empty() && frames == 2 && !tools.reference_running() && !tools.metrics()) {
       tools.start_reference(r, live);
       tools.set_view(a.test_compare == "split" ? 1 : a.test_compare == "reference" ? 2 : 3, 0.5f);
+      if (a.test_compare == "log-ratio") tools.set_error_map(ViewerTools::ErrorMap::LogRatio);
     }
     if (std::optional<std::string> path = tools.draw(r, live)) open_request_ui = *path;
     ImGui::Render();

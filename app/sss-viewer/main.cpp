@@ -139,7 +139,7 @@ int viewer_main(int argc, char** argv) {
   // --screenshot then waits for its refit to be presented (--stats prints its latency)
   app.add_option("--test-edit", a.test_edit)->group("");
   app.add_option("--test-open", a.test_open)->group("");  // tests: open a file, as a drop does
-  // tests: the Compare button at frame 2, then split | reference | error is shown;
+  // tests: the Compare button at frame 2, then split | reference | error | log-ratio is shown;
   // --screenshot waits for the comparison (--stats prints its metrics)
   app.add_option("--test-compare", a.test_compare)->group("");
   app.add_option("--soak", a.soak,
@@ -180,8 +180,8 @@ int viewer_main(int argc, char** argv) {
       return usage("--screenshot: expected a .png or .exr file name, got '" + a.screenshot + "'");
   }
   if (!a.test_compare.empty() && a.test_compare != "split" && a.test_compare != "reference" &&
-      a.test_compare != "error")
-    return usage("--test-compare: expected split, reference or error");
+      a.test_compare != "error" && a.test_compare != "log-ratio")
+    return usage("--test-compare: expected split, reference, error or log-ratio");
   if (!a.test_edit.empty() && !valid_script_edit(a.test_edit))
     return usage("--test-edit: expected preset=NAME or model=NAME, got '" + a.test_edit + "'");
   if (a.vsync != "on" && a.vsync != "off")

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 namespace sss::image {
@@ -66,6 +67,37 @@ std::string strip_zeros(std::string s) {
   return s;
 }
 
+
+// The canvas of every map: black, the per-pixel colours at (0, 0) (mask 0: grey), the
+// bar (`bar_colour` of t = 0 at its bottom row to t = 1 at its top) and the labelled
+// ticks of the layout.
+template <class PixelColour, class BarColour>
+Image draw_map(const HeatMapLayout& l, const std::vector<float>& values,
+               const std::vector<std::uint8_t>& mask, PixelColour pixel_colour,
+               BarColour bar_colour) {
+  const int width = l.image_width, height = l.image_height;
+  const std::size_t n = static_cast<std::size_t>(width) * height;
+  if (values.size() != n || mask.size() != n)
+    throw std::invalid_argument("heat map: values or mask do not match the image size");
+  Image img(l.width, l.height);
+  fill(img, 0, 0, l.width, l.height, kHeatMapBackground);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * width + x;
+      fill(img, x, y, 1, 1, mask[i] ? pixel_colour(values[i]) : kHeatMapMasked);
+    }
+  for (int y = 0; y < l.bar_height; ++y) {
+    const double t = l.bar_height > 1 ? double(l.bar_height - 1 - y) / (l.bar_height - 1) : 1.0;
+    fill(img, l.bar_x, l.bar_y + y, l.bar_width, 1, bar_colour(t));
+  }
+  const int text_h = kGlyphHeight * l.scale;
+  for (int i = 0; i < kHeatMapTicks; ++i) {
+    fill(img, l.tick_x, l.tick_y[i], l.tick_length, l.scale, kHeatMapText);
+    draw_text(img, l.label_x, l.tick_y[i] - text_h / 2, l.labels[i], l.scale, kHeatMapText);
+  }
+  return img;
+}
+
 }  // namespace
 
 Rgb viridis(double t) {
@@ -115,13 +147,21 @@ std::string format_tick(double value) {
 }
 
 HeatMapLayout heatmap_layout(int width, int height, double max_value) {
-  if (width < 1 || height < 1)
-    throw std::invalid_argument("heat map: image size must be at least 1x1");
   if (!std::isfinite(max_value) || !(max_value > 0.0))
     throw std::invalid_argument("heat map: the scale maximum must be finite and > 0");
+  return scale_bar_layout(width, height, 0.0, max_value, false);
+}
+
+HeatMapLayout scale_bar_layout(int width, int height, double min_value, double max_value,
+                               bool signed_labels) {
+  if (width < 1 || height < 1)
+    throw std::invalid_argument("heat map: image size must be at least 1x1");
+  if (!std::isfinite(min_value) || !std::isfinite(max_value) || !(min_value < max_value))
+    throw std::invalid_argument("heat map: the scale's ends must be finite, bottom < top");
   HeatMapLayout l;
   l.image_width = width;
   l.image_height = height;
+  l.min_value = min_value;
   l.max_value = max_value;
   const int s = std::clamp(height / 180, 1, 4);
   l.scale = s;
@@ -129,8 +169,12 @@ HeatMapLayout heatmap_layout(int width, int height, double max_value) {
   const int margin = pad + text_h / 2 + 1;  // room for the top and bottom labels
   int label_w = 0;
   for (int i = 0; i < kHeatMapTicks; ++i) {
-    l.tick_values[i] = max_value * i / (kHeatMapTicks - 1);
-    l.labels[i] = format_tick(l.tick_values[i]);
+    const double f = double(i) / (kHeatMapTicks - 1);
+    // The middle tick of a symmetric bar is exactly 0, not a rounding residue.
+    double v = min_value + (max_value - min_value) * f;
+    if (std::fabs(v) < 1e-12 * (max_value - min_value)) v = 0.0;
+    l.tick_values[i] = v;
+    l.labels[i] = (signed_labels && v > 0.0 ? "+" : "") + format_tick(v);
     label_w = std::max(label_w, text_width(l.labels[i], s));
   }
   l.bar_x = width + pad;
@@ -151,26 +195,108 @@ HeatMapLayout heatmap_layout(int width, int height, double max_value) {
 Image render_heatmap(const std::vector<float>& error, const std::vector<std::uint8_t>& mask,
                      int width, int height, double max_value) {
   const HeatMapLayout l = heatmap_layout(width, height, max_value);
-  const std::size_t n = static_cast<std::size_t>(width) * height;
-  if (error.size() != n || mask.size() != n)
-    throw std::invalid_argument("heat map: error or mask does not match the image size");
-  Image img(l.width, l.height);
-  fill(img, 0, 0, l.width, l.height, kHeatMapBackground);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * width + x;
-      fill(img, x, y, 1, 1, mask[i] ? viridis(error[i] / max_value) : kHeatMapMasked);
+  return draw_map(l, error, mask, [&](float e) { return viridis(e / max_value); },
+                  [](double t) { return viridis(t); });
+}
+
+// ---- signed log ratio ----------------------------------------------------------------
+
+Rgb diverging(double t) {
+  if (std::isnan(t)) return kLogRatioEqual;
+  t = std::clamp(t, -1.0, 1.0);
+  const Rgb& end = t < 0.0 ? kLogRatioDarker : kLogRatioBrighter;
+  const double u = std::fabs(t);
+  Rgb out{};
+  for (int c = 0; c < 3; ++c)
+    out[c] = static_cast<float>((1.0 - u) * kLogRatioEqual[c] + u * end[c]);
+  return out;
+}
+
+std::vector<float> log2_luminance_ratio(const Image& a, const Image& b, Encoding encoding) {
+  const std::vector<std::uint8_t> mask = geometry_mask(a, b);  // throws on a size mismatch
+  const std::size_t n = mask.size();
+  // Luminance of linear values (NaN for a non-finite R, G or B; negative counts as 0).
+  const auto luminance = [&](const Image& img, std::size_t i) {
+    const float* p = &img.rgba[4 * i];
+    double rgb[3];
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(p[c])) return std::numeric_limits<double>::quiet_NaN();
+      rgb[c] = encoding == Encoding::Display ? srgb_decode(p[c]) : p[c];
     }
-  for (int y = 0; y < l.bar_height; ++y) {
-    const double t = l.bar_height > 1 ? double(l.bar_height - 1 - y) / (l.bar_height - 1) : 1.0;
-    fill(img, l.bar_x, l.bar_y + y, l.bar_width, 1, viridis(t));
+    return std::max(0.0, 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]);
+  };
+  std::vector<double> ya(n), yb(n);
+  double sum_a = 0.0, sum_b = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    ya[i] = luminance(a, i);
+    yb[i] = luminance(b, i);
+    if (mask[i] && std::isfinite(ya[i]) && std::isfinite(yb[i])) {
+      sum_a += ya[i];
+      sum_b += yb[i];
+      ++count;
+    }
   }
-  const int text_h = kGlyphHeight * l.scale;
-  for (int i = 0; i < kHeatMapTicks; ++i) {
-    fill(img, l.tick_x, l.tick_y[i], l.tick_length, l.scale, kHeatMapText);
-    draw_text(img, l.label_x, l.tick_y[i] - text_h / 2, l.labels[i], l.scale, kHeatMapText);
+  const double level = count > 0 ? std::max(sum_a, sum_b) / double(count) : 0.0;
+  double floor = kLogRatioFloor * level;
+  if (!(floor >= double(std::numeric_limits<float>::min())))
+    floor = double(std::numeric_limits<float>::min());
+  std::vector<float> r(n);
+  for (std::size_t i = 0; i < n; ++i)
+    r[i] = std::isnan(ya[i]) || std::isnan(yb[i])
+               ? std::numeric_limits<float>::quiet_NaN()
+               : static_cast<float>(std::log2(std::max(ya[i], floor) / std::max(yb[i], floor)));
+  return r;
+}
+
+LogRatioStats log_ratio_stats(const std::vector<float>& log2_ratio,
+                              const std::vector<std::uint8_t>& mask, double tolerance) {
+  if (log2_ratio.size() != mask.size())
+    throw std::invalid_argument("log ratio statistics: the ratios and the mask differ in size");
+  if (!std::isfinite(tolerance) || !(tolerance > 0.0))
+    throw std::invalid_argument("log ratio statistics: the tolerance must be finite and > 0");
+  LogRatioStats s;
+  s.tolerance = tolerance;
+  const double limit = std::log2(1.0 + tolerance);
+  double sum = 0.0, sum_abs = 0.0;
+  std::size_t brighter = 0, darker = 0;
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    if (!mask[i]) continue;
+    const double r = log2_ratio[i];
+    if (!std::isfinite(r)) {
+      ++s.non_finite;
+      continue;
+    }
+    ++s.compared;
+    sum += r;
+    sum_abs += std::fabs(r);
+    brighter += r > limit;
+    darker += r < -limit;
   }
-  return img;
+  if (s.compared > 0) {
+    const double n = double(s.compared);
+    s.mean_log2 = sum / n;
+    s.mean_abs_log2 = sum_abs / n;
+    s.fraction_brighter = double(brighter) / n;
+    s.fraction_darker = double(darker) / n;
+  }
+  return s;
+}
+
+HeatMapLayout log_ratio_layout(int width, int height, double range_stops) {
+  if (!std::isfinite(range_stops) || !(range_stops > 0.0))
+    throw std::invalid_argument("log ratio map: the range must be a finite number of stops > 0");
+  return scale_bar_layout(width, height, -range_stops, range_stops, true);
+}
+
+Image render_log_ratio_map(const std::vector<float>& log2_ratio,
+                           const std::vector<std::uint8_t>& mask, int width, int height,
+                           double range_stops) {
+  const HeatMapLayout l = log_ratio_layout(width, height, range_stops);
+  return draw_map(
+      l, log2_ratio, mask,
+      [&](float r) { return std::isnan(r) ? kLogRatioInvalid : diverging(r / range_stops); },
+      [](double t) { return diverging(2.0 * t - 1.0); });
 }
 
 }  // namespace sss::image

@@ -230,7 +230,7 @@ std::pair<int, int> png_size(const std::string& bytes) {
 TEST_F(SssCompare, HelpDocumentsOptionsAndExitCodes) {
   const CliRun r = run("--help");
   EXPECT_EQ(r.code, 0);
-  for (const char* s : {"--heatmap", "--heatmap-max", "--json", "--tolerance", "--max-abs",
+  for (const char* s : {"--heatmap", "--heatmap-max", "--log-ratio", "--log-range", "--json", "--tolerance", "--max-abs",
                         "--max-fraction", "--min-ssim", "--threshold", "--exposure", "3 they do not"})
     EXPECT_TRUE(contains(r.out, s)) << s;
 }
@@ -412,6 +412,88 @@ TEST_F(SssCompare, HeatMapThatCannotBeWrittenIsARuntimeFailure) {
   EXPECT_TRUE(contains(r.err, heat)) << r.err;
   EXPECT_FALSE(fs::exists(heat));
   EXPECT_TRUE(no_temporaries());
+}
+
+// --log-ratio: A is B twice as bright on its left half, so log2(A/B) of the luminance is
+// exactly +1 there (doubling is exact in float) and 0 on the right: mean 0.5, half the
+// pixels more than 5% brighter, none darker. The map is the image and its colour bar.
+TEST_F(SssCompare, LogRatioMapIsWrittenWithItsStatistics) {
+  const Pixels b = texture(40, 30);
+  Pixels a = b;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 20; ++x)
+      for (int c = 0; c < 3; ++c) a.at(x, y)[c] *= 2.0f;
+  write_exr(path("a.exr"), a);
+  write_exr(path("b.exr"), b);
+  const std::string lr = path("ratio.png");
+  const CliRun r = run(path("a.exr") + " " + path("b.exr") + " --log-ratio " + lr + " --json");
+  EXPECT_EQ(r.code, 3) << r.err;  // written whether or not they agree
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["log_ratio"]["path"], lr);
+  EXPECT_EQ(doc["log_ratio"]["range_stops"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(doc["log_ratio"]["mean_log2"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(doc["log_ratio"]["mean_abs_log2"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(doc["log_ratio"]["fraction_brighter"].get<double>(), 0.5);
+  EXPECT_EQ(doc["log_ratio"]["fraction_darker"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(doc["log_ratio"]["tolerance"].get<double>(), 0.05);
+  EXPECT_TRUE(doc["heatmap"].is_null());
+  const auto [w, h] = png_size(slurp(lr));
+  EXPECT_GT(w, 40 + 20);  // the image, then the bar and its signed labels to its right
+  EXPECT_GE(h, 30);
+  EXPECT_TRUE(no_temporaries());
+  // Swapped, the sign flips; a wider range is stated in the table.
+  const CliRun swapped = run(path("b.exr") + " " + path("a.exr") + " --log-ratio " + lr +
+                             " --log-range 2 --heatmap " + path("heat.png"));
+  EXPECT_EQ(swapped.code, 3) << swapped.err;
+  EXPECT_TRUE(contains(swapped.out, "log ratio map: " + lr + " (log2(A/B) of the luminance, -2 to +2 stops)"))
+      << swapped.out;
+  EXPECT_TRUE(contains(swapped.out, "mean log2(A/B) -0.5")) << swapped.out;
+  EXPECT_TRUE(fs::exists(path("heat.png")));
+  // PNGs: the codes are sRGB-decoded, so a pair of PNGs gives a ratio of light. The
+  // same light (scaled into [0, 1]) encoded by the sRGB formula (IEC 61966-2-1): 0.5 stop
+  // on average again, to the codes' rounding.
+  const auto encode = [](Pixels p) {
+    for (std::size_t i = 0; i < p.rgba.size(); ++i)
+      if (i % 4 != 3) {
+        const float v = 0.4f * p.rgba[i];
+        p.rgba[i] = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+      }
+    return p;
+  };
+  write_png(path("a.png"), encode(a));
+  write_png(path("b.png"), encode(b));
+  const CliRun png = run(path("a.png") + " " + path("b.png") + " --log-ratio " + lr + " --json");
+  EXPECT_EQ(png.code, 3) << png.err;
+  EXPECT_NEAR(nlohmann::json::parse(png.out)["log_ratio"]["mean_log2"].get<double>(), 0.5, 0.02);
+}
+
+TEST_F(SssCompare, BadLogRangeIsRefusedAndNothingIsWritten) {
+  write_png(path("a.png"), texture(8, 8));
+  const std::string aa = path("a.png") + " " + path("a.png") + " --json ";
+  const std::string lr = path("lr.png");
+  for (const char* range : {"0", "-1", "nan", "inf", "-inf", "abc", "1e999"}) {
+    const CliRun r = run(aa + "--log-ratio " + lr + " --log-range " + std::string(range));
+    EXPECT_EQ(r.code, 2) << range;
+    EXPECT_TRUE(r.out.empty()) << range << r.out;
+    EXPECT_TRUE(contains(r.err, "--log-range")) << range << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(lr)) << range;
+  }
+  const CliRun alone = run(aa + "--log-range 1");  // without a map to draw
+  EXPECT_EQ(alone.code, 2);
+  EXPECT_TRUE(contains(alone.err, "--log-ratio")) << alone.err;
+  const CliRun jpg = run(aa + "--log-ratio " + path("lr.jpg"));
+  EXPECT_EQ(jpg.code, 2);
+  EXPECT_TRUE(contains(jpg.err, "--log-ratio")) << jpg.err;
+  EXPECT_FALSE(fs::exists(path("lr.jpg")));
+  // A folder that does not exist: a runtime failure, the file named, nothing left.
+  const std::string nowhere = path("no-such-folder/lr.png");
+  const CliRun unwritable = run(aa + "--log-ratio " + nowhere);
+  EXPECT_EQ(unwritable.code, 1);
+  EXPECT_TRUE(contains(unwritable.err, nowhere)) << unwritable.err;
+  EXPECT_FALSE(fs::exists(nowhere));
+  EXPECT_TRUE(no_temporaries());
+  EXPECT_EQ(run(aa + "--log-ratio " + lr + " --log-range 0.25").code, 0);
+  EXPECT_TRUE(fs::exists(lr));
 }
 
 TEST_F(SssCompare, SizeMismatchNamesBothFilesAndSizes) {

@@ -10,6 +10,7 @@
 #include "Tools.h"
 #include "Ui.h"
 
+#include "renderer/image/HeatMap.h"
 #include "renderer/image/Image.h"
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/scene/GltfExport.h"
@@ -23,12 +24,14 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "ViewerRun.h"
 
@@ -359,6 +362,243 @@ TEST_F(ViewerExport, AFailedOpenOpensTheToolsWindowWithTheError) {
     EXPECT_EQ(tools.message(), error);
     EXPECT_NE(window->StateStorage.GetInt(window->GetID("Open"), 1), 0);  // the section is open
   }
+}
+
+// ---- The Compare panel's error maps and ground truth (driven without ImGui) -----------
+
+class ViewerCompare : public renderer::testing::RenderTest {
+ protected:
+  static std::filesystem::path dir() {
+    const auto d = std::filesystem::temp_directory_path() / "sss_viewer_compare_test";
+    std::filesystem::create_directories(d);
+    return d;
+  }
+  static double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+};
+
+// A ground truth that is the frame's own radiance halved: the frame is then exactly one
+// stop brighter than the truth wherever the truth is above the log ratio's floor, so
+// the log-ratio view draws those pixels at the red end (range 1 stop) and its
+// statistics count them as brighter. No reference is needed for frame vs truth.
+TEST_F(ViewerCompare, LogRatioViewOfTheFrameAgainstAGroundTruth) {
+  const scene::Scene scene = scene::sphere_scene();
+  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(64, 36));
+  r.render_frame();
+  const image::Image frame = r.read_hdr();
+  image::Image truth = frame;
+  for (std::size_t i = 0; i < truth.rgba.size(); ++i)
+    if (i % 4 != 3) truth.rgba[i] *= 0.5f;  // exact in float
+  const std::string path = (dir() / "half.exr").string();
+  image::write_exr(path, truth);
+
+  ViewerTools tools(ctx());
+  const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 64, 36};
+  ASSERT_TRUE(tools.load_truth(path, r, live)) << tools.truth_message();
+  EXPECT_TRUE(tools.has_truth());
+  EXPECT_FALSE(tools.truth_error());
+  EXPECT_NE(tools.truth_message().find(path), std::string::npos) << tools.truth_message();
+  tools.poll(r, live);  // the comparison is due: frame vs truth only (no reference)
+  EXPECT_TRUE(tools.compare_error().empty()) << tools.compare_error();
+  EXPECT_FALSE(tools.result(ViewerTools::Pair::FrameVsReference).has_value());
+  EXPECT_FALSE(tools.result(ViewerTools::Pair::ReferenceVsTruth).has_value());
+  const auto& res = tools.result(ViewerTools::Pair::FrameVsTruth);
+  ASSERT_TRUE(res.has_value()) << tools.truth_message();
+
+  tools.set_error_map(ViewerTools::ErrorMap::LogRatio, ViewerTools::Pair::FrameVsTruth);
+  EXPECT_EQ(tools.view(), 3);
+  EXPECT_EQ(tools.error_map(), ViewerTools::ErrorMap::LogRatio);
+  const image::Image& map = tools.map_image();
+  ASSERT_EQ(map.width, 64);
+  ASSERT_EQ(map.height, 36);
+  const auto overlay = tools.overlay();  // the uploaded texture is what the window shows
+  ASSERT_TRUE(overlay.has_value());
+  EXPECT_EQ(overlay->image->width(), 64u);
+  EXPECT_EQ(overlay->split, 1.0f);
+
+  // Per pixel, from the definition: r = log2(Y_frame / Y_truth) = 1 where the truth's
+  // luminance is clearly above the floor (10x it: 1e-3 of the mean, at most 2x below).
+  double mean = 0.0;
+  std::size_t geometry = 0;
+  for (int i = 0; i < 64 * 36; ++i)
+    if (res->mask[i]) {
+      mean += luminance(&frame.rgba[4 * i]);
+      ++geometry;
+    }
+  ASSERT_GT(geometry, 100u);
+  mean /= double(geometry);
+  std::size_t lit = 0;
+  for (int y = 0; y < 36; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const int i = y * 64 + x;
+      if (!res->mask[i]) {
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(map.pixel(x, y)[c], image::kHeatMapMasked[c]) << x << "," << y;
+        continue;
+      }
+      if (luminance(truth.pixel(x, y)) < 1e-2 * mean) continue;
+      ++lit;
+      EXPECT_NEAR(res->log2_ratio[i], 1.0, 1e-5) << x << "," << y;
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(map.pixel(x, y)[c], image::kLogRatioBrighter[c], 1e-6) << x << "," << y;
+    }
+  EXPECT_GT(lit, geometry / 2);
+  EXPECT_GE(res->log_stats.fraction_brighter, double(lit) / double(geometry) - 1e-9);
+  EXPECT_EQ(res->log_stats.fraction_darker, 0.0);
+  EXPECT_EQ(res->log_stats.compared, geometry);
+  EXPECT_EQ(res->metrics.compared_pixels, geometry);
+  EXPECT_GT(res->metrics.relative_rmse, 0.0);  // and the display metrics are there
+
+  // A wider range: one stop is half way to red. The absolute map is another image.
+  tools.set_log_range(2.0);
+  EXPECT_EQ(tools.log_range(), 2.0);
+  tools.set_log_range(0.0);  // refused: the range stays
+  EXPECT_EQ(tools.log_range(), 2.0);
+  bool found = false;
+  for (int i = 0; i < 64 * 36 && !found; ++i)
+    if (res->mask[i] && std::fabs(res->log2_ratio[i] - 1.0f) < 1e-5f) {
+      const float* p = &tools.map_image().rgba[4 * i];
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], image::diverging(0.5)[c], 1e-6);
+      found = true;
+    }
+  EXPECT_TRUE(found);
+  const image::Image log_map = tools.map_image();
+  tools.set_error_map(ViewerTools::ErrorMap::Absolute, ViewerTools::Pair::FrameVsTruth);
+  EXPECT_EQ(tools.map_image().width, 64);
+  EXPECT_NE(tools.map_image().rgba, log_map.rgba);
+  {  // The panel draws both maps' controls and the metrics table; drawing keeps the state.
+    renderer::testing::HeadlessImGui imgui;
+    for (auto m : {ViewerTools::ErrorMap::LogRatio, ViewerTools::ErrorMap::Absolute}) {
+      tools.set_error_map(m, ViewerTools::Pair::FrameVsTruth);
+      imgui.io().DeltaTime = 1.0f / 60.0f;
+      ImGui::NewFrame();
+      (void)tools.draw(r, live);
+      ImGui::Render();
+      ImGuiWindow* window = ImGui::FindWindowByName("Tools");
+      ASSERT_NE(window, nullptr);
+      EXPECT_FALSE(window->Collapsed);  // set_error_map opens it on the Compare section
+      EXPECT_EQ(tools.error_map(), m);
+      EXPECT_EQ(tools.pair(), ViewerTools::Pair::FrameVsTruth);
+      EXPECT_EQ(tools.map_image().width, 64);
+    }
+  }
+  // The truth view shows the truth; clearing it forgets its pair.
+  tools.set_view(4);
+  ASSERT_TRUE(tools.overlay().has_value());
+  tools.clear_truth();
+  EXPECT_FALSE(tools.has_truth());
+  EXPECT_FALSE(tools.result(ViewerTools::Pair::FrameVsTruth).has_value());
+  EXPECT_FALSE(tools.overlay().has_value());
+  std::filesystem::remove(path);
+}
+
+// The reference of the view, rendered by the panel's worker, against the frame: the
+// log-ratio view of frame vs reference; with a truth loaded too, all three pairs.
+TEST_F(ViewerCompare, LogRatioViewOfTheFrameAgainstTheReference) {
+  const scene::Scene scene = scene::sphere_scene();
+  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(48, 27));
+  r.render_frame();
+  ViewerTools tools(ctx());
+  const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 48, 27};
+  tools.start_reference(r, live);
+  for (int i = 0; i < 1200 && tools.reference_running(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ASSERT_FALSE(tools.reference_running());
+  tools.poll(r, live);
+  ASSERT_TRUE(tools.compare_error().empty()) << tools.compare_error();
+  ASSERT_TRUE(tools.metrics().has_value());
+  const auto& res = tools.result(ViewerTools::Pair::FrameVsReference);
+  ASSERT_TRUE(res.has_value());
+  tools.set_error_map(ViewerTools::ErrorMap::LogRatio);
+  EXPECT_EQ(tools.pair(), ViewerTools::Pair::FrameVsReference);
+  EXPECT_EQ(tools.map_image().width, 48);
+  EXPECT_EQ(tools.map_image().height, 27);
+  ASSERT_TRUE(tools.overlay().has_value());
+  // The statistics are over the compared pixels, and the frame is near the reference
+  // (the panel's relative RMSE is below 3% here as in CompareGivesTheNumbersOfSssCompare).
+  EXPECT_EQ(res->log_stats.compared + res->log_stats.non_finite, res->metrics.compared_pixels);
+  EXPECT_LT(std::fabs(res->log_stats.mean_log2), 0.5);
+  EXPECT_EQ(res->metrics.relative_rmse, tools.metrics()->relative_rmse);
+  // Every compared pixel is drawn from diverging(r / range).
+  for (int i = 0; i < 48 * 27; ++i)
+    if (res->mask[i] && std::isfinite(res->log2_ratio[i])) {
+      const image::Rgb c = image::diverging(res->log2_ratio[i] / tools.log_range());
+      for (int k = 0; k < 3; ++k) ASSERT_NEAR(tools.map_image().rgba[4 * i + k], c[k], 1e-6) << i;
+    }
+
+  // A truth too (here the frame itself): reference vs truth joins; the pair can be chosen.
+  const std::string path = (dir() / "frame.exr").string();
+  image::write_exr(path, r.read_hdr());
+  ASSERT_TRUE(tools.load_truth(path, r, live)) << tools.truth_message();
+  tools.poll(r, live);
+  for (int p = 0; p < ViewerTools::kPairs; ++p)
+    EXPECT_TRUE(tools.result(ViewerTools::Pair(p)).has_value()) << ViewerTools::pair_name(ViewerTools::Pair(p));
+  const auto& self = tools.result(ViewerTools::Pair::FrameVsTruth);
+  EXPECT_EQ(self->log_stats.mean_abs_log2, 0.0);  // the frame against itself
+  EXPECT_LE(self->metrics.max_abs_error, 1.5 / 255);  // the GPU's and the CPU's tonemap
+  tools.set_error_map(ViewerTools::ErrorMap::LogRatio, ViewerTools::Pair::ReferenceVsTruth);
+  EXPECT_EQ(tools.pair(), ViewerTools::Pair::ReferenceVsTruth);
+  EXPECT_STREQ(ViewerTools::ratio_name(tools.pair()), "log2(reference/truth)");
+  // reference/truth = reference/frame: the frame-vs-reference ratios negated.
+  const auto& rt = tools.result(ViewerTools::Pair::ReferenceVsTruth);
+  for (int i = 0; i < 48 * 27; ++i) {
+    if (res->mask[i] && std::isfinite(res->log2_ratio[i])) {
+      ASSERT_NEAR(rt->log2_ratio[i], -res->log2_ratio[i], 1e-5) << i;
+    }
+  }
+  std::filesystem::remove(path);
+}
+
+// A truth that is not of this view's size, one that is not there, its variance instead
+// of its mean, a PNG: a message naming the file, nothing loaded, nothing compared.
+TEST_F(ViewerCompare, AGroundTruthThatDoesNotFitIsRefusedWithAMessage) {
+  const scene::Scene scene = scene::sphere_scene();
+  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(64, 36));
+  r.render_frame();
+  ViewerTools tools(ctx());
+  const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 64, 36};
+  const std::string golden = std::string(SSS_SOURCE_DIR) + "/tests/golden/ground-truth/";
+
+  EXPECT_FALSE(tools.load_truth(golden + "bunny.exr", r, live));  // 160x90
+  EXPECT_TRUE(tools.truth_error());
+  EXPECT_FALSE(tools.has_truth());
+  EXPECT_NE(tools.truth_message().find(golden + "bunny.exr is 160x90 but the view is 64x36"),
+            std::string::npos)
+      << tools.truth_message();
+
+  const std::string missing = (dir() / "no-such-truth.exr").string();
+  EXPECT_FALSE(tools.load_truth(missing, r, live));
+  EXPECT_TRUE(tools.truth_error());
+  EXPECT_NE(tools.truth_message().find(missing), std::string::npos) << tools.truth_message();
+
+  EXPECT_FALSE(tools.load_truth(golden + "bunny.var.exr", r, live));
+  EXPECT_NE(tools.truth_message().find("variance"), std::string::npos) << tools.truth_message();
+  EXPECT_NE(tools.truth_message().find("bunny.var.exr"), std::string::npos) << tools.truth_message();
+
+  EXPECT_FALSE(tools.load_truth(golden + "bunny.png", r, live));
+  EXPECT_NE(tools.truth_message().find("bunny.png is not an EXR"), std::string::npos) << tools.truth_message();
+
+  EXPECT_FALSE(tools.load_truth("", r, live));
+  EXPECT_FALSE(tools.has_truth());
+  tools.poll(r, live);  // nothing to compare, nothing drawn
+  for (int p = 0; p < ViewerTools::kPairs; ++p) EXPECT_FALSE(tools.result(ViewerTools::Pair(p)).has_value());
+  tools.set_error_map(ViewerTools::ErrorMap::LogRatio, ViewerTools::Pair::FrameVsTruth);
+  EXPECT_FALSE(tools.overlay().has_value());
+  EXPECT_EQ(tools.map_image().width, 0);
+
+  // The right size loads, and its summary attributes are shown; a truth of another
+  // built-in scene is loaded with a warning (the camera cannot be checked, the scene can).
+  renderer::Renderer big(ctx(), scene, renderer::testing::small_options(160, 90));
+  big.render_frame();
+  const LiveState live_big{&scene, "builtin:sphere", scene.materials, scene.lights, 160, 90};
+  ASSERT_TRUE(tools.load_truth(golden + "bunny.exr", big, live_big)) << tools.truth_message();
+  EXPECT_NE(tools.truth_message().find("spp"), std::string::npos) << tools.truth_message();
+  EXPECT_EQ(tools.truth_warning(), "rendered from builtin:bunny, the view shows builtin:sphere");
+  // A failed load afterwards keeps the loaded truth and says so.
+  EXPECT_FALSE(tools.load_truth(missing, big, live_big));
+  EXPECT_TRUE(tools.has_truth());
+  EXPECT_NE(tools.truth_message().find("the previous truth stays"), std::string::npos) << tools.truth_message();
+  tools.poll(big, live_big);
+  EXPECT_TRUE(tools.result(ViewerTools::Pair::FrameVsTruth).has_value()) << tools.truth_message();
+  EXPECT_FALSE(tools.truth_error()) << tools.truth_message();
 }
 
 // A built-in scene has no glTF: the blocks go to a JSON that parse_sss_extras reads back.
