@@ -387,5 +387,6 @@ image::Image Renderer::read_atlas(std::size_t object, Atlas which) const {
 
 image::Image Renderer::read_hdr() const { return read(targets_.hdr); }
 image::Image Renderer::read_display() const { return read(targets_.display); }
+image::Image Renderer::read_specular() const { return read(targets_.specular); }
 
 }  // namespace sss::renderer

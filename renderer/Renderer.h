@@ -103,6 +103,9 @@ class Renderer {
   // the display image (tonemapped, sRGB-encoded, codes / 255).
   image::Image read_hdr() const;
   image::Image read_display() const;
+  // The last frame's specular radiance towards the eye (rgb, linear), the part of read_hdr()
+  // that does not scatter: the error budget takes it apart from the scattered light.
+  image::Image read_specular() const;
 
   const MaterialData& materials() const { return materials_.data(); }
   // The texture path (--sss texture), or null in the other modes: its objects and their

@@ -254,6 +254,7 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
   const CameraRays camera(s.cameras[0], o.width, o.height, s.mm_per_unit);
   out.hdr = image::Image(int(o.width), int(o.height));
   out.variance = image::Image(int(o.width), int(o.height));
+  out.specular = image::Image(int(o.width), int(o.height));
   std::vector<std::vector<ProbePixel>> rows(o.height);
   arena.execute([&] {
     tbb::parallel_for(std::uint32_t(0), o.height, [&](std::uint32_t y) {
@@ -267,6 +268,10 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
         float* px = out.hdr.pixel(int(x), int(y));
         px[3] = 1.0f;
         out.variance.pixel(int(x), int(y))[3] = 1.0f;
+        float* sp = out.specular.pixel(int(x), int(y));
+        if (!o.diffuse_only)
+          for (int c = 0; c < 3; ++c) sp[c] = float(v.specular[c]);
+        sp[3] = 1.0f;
         const ProbeGroup* g = v.subsurface ? estimator->group(v.point.material) : nullptr;
         if (!g) {
           const glm::dvec3 L = o.diffuse_only ? glm::dvec3(0.0) : v.opaque_radiance();

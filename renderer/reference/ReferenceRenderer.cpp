@@ -305,6 +305,7 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
   std::vector<int> group_of(s.materials.size(), -1);
   for (std::size_t k = 0; k < groups.size(); ++k) group_of[groups[k].material] = int(k);
   out.hdr = image::Image(int(o.width), int(o.height));
+  out.specular = image::Image(int(o.width), int(o.height));
   std::atomic<std::uint32_t> rows_done{0};
   arena.execute([&] {
     tbb::parallel_for(std::uint32_t(0), o.height, [&](std::uint32_t y) {
@@ -332,6 +333,10 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
         px[1] = float(L.y);
         px[2] = float(L.z);
         px[3] = 1.0f;
+        float* sp = out.specular.pixel(int(x), int(y));
+        if (!o.diffuse_only)
+          for (int c = 0; c < 3; ++c) sp[c] = float(v.specular[c]);
+        sp[3] = 1.0f;
       }
       const std::uint32_t done = rows_done.fetch_add(1) + 1;
       reporter.report("render", double(done) / double(o.height));

@@ -112,6 +112,7 @@ struct ReferenceImage {
   image::Image hdr;      // linear radiance, alpha 1 on geometry, 0 on background
   image::Image display;  // tonemapped, sRGB codes / 255
   image::Image variance; // probe estimator: the per-pixel variance of the mean (empty otherwise)
+  image::Image specular; // the specular radiance in hdr (0 with diffuse_only), alpha as hdr's
   ReferenceStats stats;
 };
 

@@ -18,6 +18,7 @@ struct Frame {
   image::Image display;  // tonemapped, sRGB codes / 255
   FrameStats stats;
   MaterialData materials;  // the fits and kernels the frame used
+  image::Image specular;   // the specular radiance in hdr (Renderer::read_specular)
 };
 
 class RenderTest : public vk::testing::VulkanTest {
@@ -26,7 +27,8 @@ class RenderTest : public vk::testing::VulkanTest {
     EXPECT_TRUE(ctx().validation_enabled()) << "the validation layer is not installed";
     Renderer renderer(ctx(), scene, options);
     for (int i = 0; i < frames; ++i) renderer.render_frame();
-    return {renderer.read_hdr(), renderer.read_display(), renderer.stats(), renderer.materials()};
+    return {renderer.read_hdr(), renderer.read_display(), renderer.stats(), renderer.materials(),
+            renderer.read_specular()};
   }
 };
 
