@@ -22,13 +22,10 @@ class Context;
 
 namespace sss::renderer {
 
-using profiles::fit_transmittance;
-using profiles::TransmittanceFit;
-
 struct MaterialProfile {
   profiles::GaussianFit fit;
   profiles::SeparableKernel kernel;
-  std::optional<TransmittanceFit> transmittance;  // slabs (Medium::is_slab) only
+  std::optional<profiles::TransmittanceFit> transmittance;  // slabs (Medium::is_slab) only
 };
 
 // The GPU view of the scene's materials; profiles[i] is set for SSS materials. Throws

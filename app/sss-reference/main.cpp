@@ -202,6 +202,23 @@ std::string pixel_settings(int argc, char** argv) {
   return out;
 }
 
+// What every --summary of the two per-pixel Monte Carlo renderers (the probe estimator and
+// the ground truth) says alike: the command, the pixels' settings, the size, and how far
+// the passes went. Each adds its own counts.
+template <class Stats>
+nlohmann::json summary_common(int argc, char** argv, const std::string& settings, int width, int height,
+                              const Stats& stats, int threads) {
+  return {{"command", command_line(argc, argv)},
+          {"settings", settings},
+          {"width", width},
+          {"height", height},
+          {"spp", stats.spp},
+          {"passes", stats.passes},
+          {"relative_standard_error", stats.relative_standard_error},
+          {"subsurface_pixels", stats.subsurface_pixels},
+          {"threads", threads}};
+}
+
 int merge_usage(const std::string& message) { return usage_error("sss-reference merge", message); }
 
 int merge_main(int argc, char** argv) {
@@ -417,6 +434,7 @@ int main(int argc, char** argv) {
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
   for (const std::string& w : s.warnings) std::cerr << "sss-reference: warning: " << w << '\n';
 
+  const int used_threads = threads > 0 ? threads : int(std::thread::hardware_concurrency());
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
   ProgressBar bar(!quiet);
@@ -458,24 +476,15 @@ int main(int argc, char** argv) {
       if (!variance.empty()) image::write_exr(variance, r.variance);
       if (!png.empty()) image::write_png(png, r.display);
       if (!summary.empty()) {
-        const std::string command = command_line(argc, argv);
-        nlohmann::json j = {{"command", command},
-                            {"settings", pixel_settings(argc, argv)},
-                            {"method", "diffusion"},
-                            {"estimator", "probe"},
-                            {"kernel", kernel},
-                            {"shadows", shadows},
-                            {"width", width},
-                            {"height", height},
-                            {"spp", r.stats.spp},
-                            {"passes", r.stats.passes},
-                            {"relative_standard_error", r.stats.relative_standard_error},
-                            {"subsurface_pixels", r.stats.subsurface_pixels},
-                            {"probes", r.stats.probes},
-                            {"hits", r.stats.hits},
-                            {"shadow_rays", r.stats.shadow_rays},
-                            {"threads", threads > 0 ? threads : int(std::thread::hardware_concurrency())},
-                            {"seconds", r.stats.total_ms * 1e-3}};
+        nlohmann::json j = summary_common(argc, argv, pixel_settings(argc, argv), width, height, r.stats, used_threads);
+        j.update({{"method", "diffusion"},
+                  {"estimator", "probe"},
+                  {"kernel", kernel},
+                  {"shadows", shadows},
+                  {"probes", r.stats.probes},
+                  {"hits", r.stats.hits},
+                  {"shadow_rays", r.stats.shadow_rays},
+                  {"seconds", r.stats.total_ms * 1e-3}});
         image::write_file_atomically(summary, j.dump(2) + "\n");
       }
       if (stats) print_stats(r.stats);
@@ -506,28 +515,18 @@ int main(int argc, char** argv) {
       else image::write_png(out, r.display);
       if (!variance.empty()) image::write_exr(variance, r.variance);
       if (!png.empty()) image::write_png(png, r.display);
-      const int used_threads = threads > 0 ? threads : int(std::thread::hardware_concurrency());
       if (!summary.empty()) {
-        const std::string command = command_line(argc, argv);
         const reference::WalkStats& w = r.stats.walk;
-        nlohmann::json j = {{"command", command},
-                            {"settings", settings},
-                            {"width", width},
-                            {"height", height},
-                            {"spp", r.stats.spp},
-                            {"passes", r.stats.passes},
-                            {"relative_standard_error", r.stats.relative_standard_error},
-                            {"subsurface_pixels", r.stats.subsurface_pixels},
-                            {"paths", w.paths},
-                            {"scattering_events", w.scattering_events},
-                            {"boundary_reflections", w.boundary_hits},
-                            {"direct_beams", w.beams},
-                            {"escaped", w.escaped},
-                            {"truncated", w.truncated},
-                            {"threads", used_threads},
-                            {"setup_seconds", r.stats.setup_seconds},
-                            {"seconds", r.stats.seconds},
-                            {"warnings", r.stats.warnings}};
+        nlohmann::json j = summary_common(argc, argv, settings, width, height, r.stats, used_threads);
+        j.update({{"paths", w.paths},
+                  {"scattering_events", w.scattering_events},
+                  {"boundary_reflections", w.boundary_hits},
+                  {"direct_beams", w.beams},
+                  {"escaped", w.escaped},
+                  {"truncated", w.truncated},
+                  {"setup_seconds", r.stats.setup_seconds},
+                  {"seconds", r.stats.seconds},
+                  {"warnings", r.stats.warnings}});
         image::write_file_atomically(summary, j.dump(2) + "\n");
       }
       if (stats) print_stats(r.stats, used_threads);

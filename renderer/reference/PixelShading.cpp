@@ -62,4 +62,11 @@ VisibleSurface visible_surface(const scene::Scene& s, const RayScene& rays, cons
   return v;
 }
 
+void store_specular(image::Image& specular, std::uint32_t x, std::uint32_t y, const VisibleSurface& v,
+                    bool diffuse_only) {
+  float* sp = specular.pixel(int(x), int(y));
+  for (int c = 0; c < 3; ++c) sp[c] = diffuse_only ? 0.0f : float(v.specular[c]);
+  sp[3] = 1.0f;
+}
+
 }  // namespace sss::reference

@@ -8,6 +8,7 @@
 //     its square root for pre/post albedo, times 1 - metallic).
 #pragma once
 
+#include "renderer/image/Image.h"
 #include "renderer/reference/RayScene.h"
 #include "renderer/reference/Shading.h"
 #include "renderer/scene/Scene.h"
@@ -59,5 +60,10 @@ struct VisibleSurface {
 VisibleSurface visible_surface(const scene::Scene& scene, const RayScene& rays, const CameraRays& camera,
                                const Hit& hit, const glm::vec3& direction, bool diffuse_only,
                                const ShadowMaps* maps = nullptr);
+
+// Writes v's specular radiance (0 with diffuse_only) and alpha 1 into pixel (x, y) of
+// `specular`: the part of the radiance the error budget takes apart from the scattered light.
+void store_specular(image::Image& specular, std::uint32_t x, std::uint32_t y, const VisibleSurface& v,
+                    bool diffuse_only);
 
 }  // namespace sss::reference

@@ -268,10 +268,7 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
         float* px = out.hdr.pixel(int(x), int(y));
         px[3] = 1.0f;
         out.variance.pixel(int(x), int(y))[3] = 1.0f;
-        float* sp = out.specular.pixel(int(x), int(y));
-        if (!o.diffuse_only)
-          for (int c = 0; c < 3; ++c) sp[c] = float(v.specular[c]);
-        sp[3] = 1.0f;
+        store_specular(out.specular, x, y, v, o.diffuse_only);
         const ProbeGroup* g = v.subsurface ? estimator->group(v.point.material) : nullptr;
         if (!g) {
           const glm::dvec3 L = o.diffuse_only ? glm::dvec3(0.0) : v.opaque_radiance();

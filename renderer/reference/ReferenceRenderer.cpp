@@ -333,10 +333,7 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
         px[1] = float(L.y);
         px[2] = float(L.z);
         px[3] = 1.0f;
-        float* sp = out.specular.pixel(int(x), int(y));
-        if (!o.diffuse_only)
-          for (int c = 0; c < 3; ++c) sp[c] = float(v.specular[c]);
-        sp[3] = 1.0f;
+        store_specular(out.specular, x, y, v, o.diffuse_only);
       }
       const std::uint32_t done = rows_done.fetch_add(1) + 1;
       reporter.report("render", double(done) / double(o.height));

@@ -150,13 +150,13 @@ DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const Surf
     }
     const float n_dot_l = glm::dot(n, l);
     if (n_dot_l <= 0.0f) continue;
-    const glm::vec3 side = glm::dot(p.geometric_normal, l) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
     double visibility = 1.0;
     if (maps) {
       visibility = maps->visibility(index, p.position_mm, n);
       if (!(visibility > 0.0)) continue;
-    } else if (rays.occluded(p.position_mm + side * offset, l, 0.0f, distance - 2.0f * offset)) {
-      continue;
+    } else {
+      const glm::vec3 side = glm::dot(p.geometric_normal, l) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
+      if (rays.occluded(p.position_mm + side * offset, l, 0.0f, distance - 2.0f * offset)) continue;
     }
     const glm::dvec3 incident = radiance * double(n_dot_l) * visibility;
     out.irradiance += incident;

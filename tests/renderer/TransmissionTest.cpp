@@ -72,7 +72,7 @@ TEST(TransmittanceFit, SlabFitKeepsTheMultipoleTotalWithTheReflectanceVariances)
   const MaterialData data = build_material_data(s, 17);
   ASSERT_TRUE(data.profiles[0]);
   ASSERT_TRUE(data.profiles[0]->transmittance);
-  const TransmittanceFit& t = *data.profiles[0]->transmittance;
+  const profiles::TransmittanceFit& t = *data.profiles[0]->transmittance;
   const profiles::RgbProfile rgb(s.materials[0].sss.model, s.materials[0].sss.effective_medium());
   const Rgb total = rgb.total_transmittance();
   ASSERT_EQ(t.weights.size(), data.profiles[0]->fit.variances_mm2.size());
