@@ -104,7 +104,9 @@ class Renderer {
   image::Image read_hdr() const;
   image::Image read_display() const;
   // The last frame's specular radiance towards the eye (rgb, linear), the part of read_hdr()
-  // that does not scatter: the error budget takes it apart from the scattered light.
+  // that does not scatter: the error budget takes it apart from the scattered light. Only
+  // pixels with geometry (read_hdr()'s alpha > 0.5) hold a value; the target is not cleared
+  // behind the background.
   image::Image read_specular() const;
 
   const MaterialData& materials() const { return materials_.data(); }

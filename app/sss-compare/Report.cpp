@@ -109,6 +109,7 @@ nlohmann::ordered_json to_json(const Report& r) {
         {"pixels_over_threshold", m.pixels_over_threshold},
         {"fraction_over_threshold", number(m.fraction_over_threshold)},
         {"ssim", number(m.ssim)},
+        {"sum_ratio", {number(m.sum_ratio[0]), number(m.sum_ratio[1]), number(m.sum_ratio[2])}},
         {"reference_noise", m.has_reference_noise ? number(m.reference_noise) : nlohmann::ordered_json()},
         {"relative_rmse_noise_subtracted",
          m.has_reference_noise ? number(m.relative_rmse_noise_subtracted) : nlohmann::ordered_json()}}},
@@ -159,6 +160,8 @@ std::string to_table(const Report& r) {
       format("%zu pixels with error > %s", m.pixels_over_threshold, g(m.threshold * m.peak).c_str()),
       "fraction_over_threshold");
   row("SSIM", g(m.ssim), "", "ssim");
+  row("summed A / B", format("%.4f %.4f %.4f", m.sum_ratio[0], m.sum_ratio[1], m.sum_ratio[2]),
+      "R G B: the bias", nullptr);
   if (r.heatmap)
     out += format("\nheat map: %s (error 0 to %s)\n", r.heatmap->c_str(), g(r.heatmap_max).c_str());
   if (r.log_ratio) {

@@ -282,7 +282,7 @@ int main(int argc, char** argv) {
   std::size_t max_points = 8'000'000;
   std::uint64_t seed = 1, spp = 0;
   float exposure = 1.0f;
-  bool brute = false, diffuse_only = false, quiet = false, stats = false, exitance = false;
+  bool brute = false, diffuse_only = false, no_specular = false, quiet = false, stats = false, exitance = false;
   MaterialOverrideArgs material;
   app.add_option("scene", scene_name, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
   app.add_option("--out", out, "Output: FILE.exr (linear radiance) or FILE.png (tonemapped)")->required();
@@ -339,6 +339,10 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Worker threads (default 0: all cores)")->check(CLI::Range(0, 1024));
   app.add_option("--seed", seed, "Seed of the point sets or of the walks (default 1)");
   app.add_option("--exposure", exposure, "Exposure of the PNG (default 1)");
+  app.add_flag("--no-specular", no_specular,
+               "diffusion, EXR --out: write the frame less its specular term, the light that scattered (with its "
+               "albedo) and the opaque diffuse; compare with sss-viewer --no-specular (the error budget's "
+               "scattered light)");
   app.add_flag("--quiet", quiet, "No progress bar");
   app.add_flag("--stats", stats, "Print counts, rates and stage times on stderr");
   // CLI11 wraps "-1" to 2^64 - 1 for an unsigned option.
@@ -408,6 +412,14 @@ int main(int argc, char** argv) {
   const std::string ext = lower_extension(out);
   if (ext != ".exr" && ext != ".png") return usage("--out: expected a .exr or .png file name, got '" + out + "'");
   if (!tile.whole() && ext != ".exr") return usage("--out: a tile is written as .exr (merge reads linear values), got '" + out + "'");
+  if (no_specular) {
+    if (walk)
+      return usage("--no-specular: applies to --method diffusion only (the ground truth's specular is not a "
+                   "separate term; take off the diffusion reference's, as the error budget does)");
+    if (diffuse_only) return usage("--no-specular: --diffuse-only already has no specular");
+    if (ext != ".exr") return usage("--no-specular: writes linear values, --out must be a .exr file, got '" + out + "'");
+    if (!png.empty()) return usage("--no-specular: --png would still show the specular; leave it out");
+  }
   if (!png.empty() && lower_extension(png) != ".png") return usage("--png: expected a .png file name, got '" + png + "'");
   if (!variance.empty() && lower_extension(variance) != ".exr")
     return usage("--variance: expected a .exr file name, got '" + variance + "'");
@@ -471,7 +483,8 @@ int main(int argc, char** argv) {
         r.hdr.attributes = reference::ground_truth_attributes("mean", "", settings, r.stats.spp, error);
         r.variance.attributes = reference::ground_truth_attributes("variance", "", settings, r.stats.spp, error);
       }
-      if (ext == ".exr") image::write_exr(out, r.hdr);
+      if (no_specular) image::write_exr(out, image::subtract_rgb(r.hdr, r.specular));
+      else if (ext == ".exr") image::write_exr(out, r.hdr);
       else image::write_png(out, r.display);
       if (!variance.empty()) image::write_exr(variance, r.variance);
       if (!png.empty()) image::write_png(png, r.display);

@@ -24,6 +24,15 @@ inline void write_frame(const renderer::Renderer& r, const std::string& path) {
     image::write_png(path, r.read_display());
 }
 
+// --no-specular: the linear frame less its specular target, where the frame has geometry
+// (the specular target is not cleared behind the background, which stays as read_hdr()'s).
+inline image::Image frame_less_specular(const renderer::Renderer& r) {
+  image::Image hdr = r.read_hdr(), specular = r.read_specular();
+  for (std::size_t i = 0; i < specular.rgba.size(); i += 4)
+    if (!(hdr.rgba[i + 3] > 0.5f)) specular.rgba[i] = specular.rgba[i + 1] = specular.rgba[i + 2] = 0.0f;
+  return image::subtract_rgb(hdr, specular);
+}
+
 // The Vulkan context of a headless run (a frame, --frames N, --soak): --device and
 // --validation (with synchronization checks, as SSS_VALIDATION=1).
 inline vk::ContextOptions headless_context_options(const ViewerArgs& a) {

@@ -33,6 +33,7 @@ struct ViewerArgs {
   std::string texture_update = "on-change";  // --texture-update every-frame | on-change
   std::vector<std::string> texture_objects;  // --texture-object NAME=SIZE[:POLICY], repeatable
   std::string atlas_out;  // --atlas-out PREFIX: headless --sss texture writes the atlases
+  bool no_specular = false;  // --no-specular: headless EXR --out less the specular target
   bool stats = false;
   std::string device;
   std::string vsync = "on";  // window: on (FIFO) | off (MAILBOX / IMMEDIATE)

@@ -117,6 +117,10 @@ int viewer_main(int argc, char** argv) {
                  "Headless --sss texture: also write each object's atlases as linear EXR, "
                  "PREFIX-I-NAME-irradiance.exr (E), -scattered.exr (sum of w_i E*G_i) and "
                  "-stretch.exr (mm per texel along u, v); alpha is the UV island + 1");
+  app.add_flag("--no-specular", a.no_specular,
+               "Headless, EXR --out: write the frame less its specular, the light that scattered (with its "
+               "albedo) and the opaque diffuse; compare with sss-reference --no-specular (the error budget's "
+               "scattered light)");
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
   app.add_option("--vsync", a.vsync, "Window: on (FIFO, default) | off (MAILBOX or IMMEDIATE)");
@@ -172,7 +176,10 @@ int viewer_main(int argc, char** argv) {
     ext = lower_extension(a.out);
     if (!a.out.empty() && ext != ".png" && ext != ".exr")
       return usage("--out: expected a .png or .exr file name, got '" + a.out + "'");
+    if (a.no_specular && ext != ".exr")
+      return usage("--no-specular: writes linear values, --out must be a .exr file, got '" + a.out + "'");
   } else {
+    if (a.no_specular) return usage("--no-specular needs --headless and --out FILE.exr");
     if (!a.out.empty())
       return usage("--out needs --headless (the window saves with --screenshot FILE)");
     const std::string shot = lower_extension(a.screenshot);
@@ -256,7 +263,10 @@ int viewer_main(int argc, char** argv) {
       cpu_total += r.stats().cpu_ms;
       if (a.test_host_oom == "frame") throw std::bad_alloc();
     }
-    write_frame(r, a.out);
+    if (a.no_specular)
+      image::write_exr(a.out, frame_less_specular(r));
+    else
+      write_frame(r, a.out);
     if (!a.atlas_out.empty()) write_atlases(r, a.atlas_out, inputs);
     if (a.stats) print_stats(r, a.frames, cpu_total);
   } catch (const std::bad_alloc&) {

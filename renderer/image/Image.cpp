@@ -15,6 +15,8 @@
 #include <iterator>
 #include <memory>
 #include <span>
+#include <stdexcept>
+#include <string>
 
 namespace sss::image {
 
@@ -170,6 +172,16 @@ Image encode_srgb(const Image& linear) {
   Image out = linear;
   for (std::size_t i = 0; i < out.rgba.size(); ++i)
     if (i % 4 != 3) out.rgba[i] = srgb_encode(out.rgba[i]);
+  return out;
+}
+
+Image subtract_rgb(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height)
+    throw std::invalid_argument("subtract_rgb: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                                " less " + std::to_string(b.width) + "x" + std::to_string(b.height));
+  Image out = a;
+  for (std::size_t i = 0; i < out.rgba.size(); ++i)
+    if (i % 4 != 3) out.rgba[i] -= b.rgba[i];
   return out;
 }
 

@@ -62,4 +62,8 @@ float srgb_encode(float linear);
 float srgb_decode(float encoded);
 Image encode_srgb(const Image& linear);
 
+// a with b's R, G, B taken off, alpha and attributes a's: a frame less its specular (the
+// error budget's scattered light). Throws std::invalid_argument when the sizes differ.
+Image subtract_rgb(const Image& a, const Image& b);
+
 }  // namespace sss::image

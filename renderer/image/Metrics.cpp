@@ -187,11 +187,14 @@ Metrics compare(const Image& a, const Image& b, const CompareOptions& options) {
   const double limit = options.threshold * std::max(m.peak, 0.0);
 
   double se = 0.0, sb = 0.0;
+  std::array<double, 3> sum_a{}, sum_b{};
   for (std::size_t i = 0; i < mask.size(); ++i) {
     if (!mask[i]) continue;
     double e = 0.0;
     for (int c = 0; c < 3; ++c) {
       const double av = a.rgba[i * 4 + c], bv = b.rgba[i * 4 + c], d = av - bv;
+      sum_a[std::size_t(c)] += av;
+      sum_b[std::size_t(c)] += bv;
       se += d * d;
       sb += bv * bv;
       e = std::max(e, std::fabs(d));
@@ -203,6 +206,10 @@ Metrics compare(const Image& a, const Image& b, const CompareOptions& options) {
     }
     if (e > limit) ++m.pixels_over_threshold;
   }
+  for (std::size_t c = 0; c < 3; ++c)
+    m.sum_ratio[c] = sum_b[c] != 0.0 ? sum_a[c] / sum_b[c]
+                     : sum_a[c] == 0.0 ? 1.0
+                                       : std::numeric_limits<double>::infinity();
   if (const Image* v = options.reference_variance) {
     if (options.encoding != Encoding::Linear)
       throw std::invalid_argument("a reference variance applies to linear (EXR) images only");

@@ -57,6 +57,7 @@
 
 #include "renderer/image/Image.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -98,6 +99,9 @@ struct Metrics {
   std::size_t pixels_over_threshold = 0;
   double fraction_over_threshold = 0.0;
   double ssim = 1.0;
+  // Σ a_c / Σ b_c over the compared pixels, per channel: the summed radiance's ratio, the
+  // bias that a relative RMSE does not show (inf where B sums to 0 and A does not).
+  std::array<double, 3> sum_ratio{1.0, 1.0, 1.0};
   bool has_reference_noise = false;  // a reference variance was given
   double reference_noise = 0.0;
   double relative_rmse_noise_subtracted = 0.0;

@@ -4,9 +4,11 @@
 #ifdef SSS_REFERENCE_EXE
 
 #include "common/CliRun.h"
+#include "renderer/image/Image.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <csignal>
@@ -16,6 +18,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 #include <spawn.h>
@@ -57,6 +60,30 @@ TEST(SssReferenceApp, RendersExrAndPng) {
   EXPECT_TRUE(starts_with(slurp(png), "\x89PNG"));
   EXPECT_NE(r.err.find("irradiance points"), std::string::npos);  // --stats
   EXPECT_NE(r.err.find("render done"), std::string::npos);        // progress (not a tty)
+}
+
+// --no-specular: the same render less its specular term (the same points: same seed).
+TEST(SssReferenceApp, NoSpecularIsTheFrameLessItsHighlight) {
+  const fs::path whole = scratch() / "whole.exr", scattered = scratch() / "scattered.exr";
+  const std::string args = "builtin:sphere --width 48 --height 27 --spacing 2 --quiet --out ";
+  ASSERT_EQ(reference(args + whole.string()).code, 0);
+  const CliRun r = reference(args + scattered.string() + " --no-specular");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto a = sss::image::read_image(whole.string()), b = sss::image::read_image(scattered.string());
+  ASSERT_TRUE(std::holds_alternative<sss::image::Image>(a) && std::holds_alternative<sss::image::Image>(b));
+  const auto& w = std::get<sss::image::Image>(a);
+  const auto& s = std::get<sss::image::Image>(b);
+  ASSERT_EQ(w.rgba.size(), s.rgba.size());
+  double less = 0.0;
+  for (std::size_t i = 0; i < w.rgba.size(); ++i) {
+    if (i % 4 == 3) {
+      EXPECT_EQ(w.rgba[i], s.rgba[i]) << "alpha at " << i / 4;
+      continue;
+    }
+    EXPECT_LE(s.rgba[i], w.rgba[i] * (1.0f + 1e-6f) + 1e-7f) << i;
+    less = std::max(less, double(w.rgba[i] - s.rgba[i]));
+  }
+  EXPECT_GT(less, 0.01) << "no pixel lost a highlight";
 }
 
 TEST(SssReferenceApp, MaterialOptionsOverrideTheScene) {

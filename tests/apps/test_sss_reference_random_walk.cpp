@@ -241,6 +241,12 @@ TEST(SssReferenceProbe, WritesMeanVarianceAndSummaryAndRefusesOctreeOptions) {
       {octree + " --shadows shadow-map --shadow-map-size 0", "--shadow-map-size"},
       {"builtin:sphere --method random-walk --kernel fit --spp 2 --quiet --out " + out, "--kernel"},
       {"builtin:sphere --method random-walk --shadows shadow-map --spp 2 --quiet --out " + out, "--shadows"},
+      // The scattered light alone: linear EXR, diffusion only, and not twice without specular.
+      {"builtin:sphere --method random-walk --no-specular --spp 2 --quiet --out " + out, "--no-specular"},
+      {octree + " --no-specular --diffuse-only", "--no-specular"},
+      {"builtin:sphere --width 12 --height 8 --quiet --no-specular --out " + (bad_dir / "x.png").string(),
+       "--no-specular"},
+      {octree + " --no-specular --png " + (bad_dir / "x.png").string(), "--no-specular"},
   };
   for (const Case& c : cases) {
     const CliRun b = reference(c.args);

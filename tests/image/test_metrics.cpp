@@ -100,6 +100,25 @@ TEST(Metrics, RelativeRmseOfAScaledImageIsTheScaleError) {
   }
 }
 
+// The summed ratio is the bias per channel: k for a copy scaled by k, per channel, over the
+// compared pixels only; a zero-mean perturbation leaves it at 1 while the RMSE grows.
+TEST(Metrics, SumRatioIsEachChannelsScale) {
+  const Image b = texture(20, 20);
+  const float k[3] = {0.9f, 1.0f, 1.25f};
+  Image a = map_image(b, [&](float v, std::size_t i) { return k[i % 4] * v; });
+  a.pixel(0, 0)[3] = 0.0f;  // background in A: left out of both sums
+  a.pixel(0, 0)[0] = 1e6f;
+  const Metrics m = compare(a, b, linear());
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(m.sum_ratio[std::size_t(c)], k[c], 1e-6) << c;
+  const Image wiggle = map_image(b, [](float v, std::size_t i) { return v + ((i / 4) % 2 ? 0.05f : -0.05f); });
+  const Metrics w = compare(wiggle, b, linear());  // 400 pixels: as many + as -
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(w.sum_ratio[std::size_t(c)], 1.0, 1e-6) << c;
+  EXPECT_GT(w.relative_rmse, 0.05);
+  const Metrics zero = compare(flat(4, 4, 0.0f), flat(4, 4, 0.0f), linear());
+  EXPECT_EQ(zero.sum_ratio[0], 1.0);  // 0 / 0: equal
+  EXPECT_TRUE(std::isinf(compare(flat(4, 4, 1.0f), flat(4, 4, 0.0f), linear()).sum_ratio[1]));
+}
+
 TEST(Metrics, RandomSignNoiseOfFixedSize) {
   // |a − b| = c at every sample: RMSE = max = c exactly, relative RMSE = c / rms(b).
   const Image b = flat(50, 40, 0.5f);

@@ -231,12 +231,7 @@ std::optional<Links> budget_links(const image::Image& truth, double noise, const
 }
 
 // a less b's colour (alpha kept): an image less its specular.
-image::Image minus(const image::Image& a, const image::Image& b) {
-  image::Image out = a;
-  for (std::size_t i = 0; i < out.rgba.size(); ++i)
-    if (i % 4 != 3) out.rgba[i] -= b.rgba[i];
-  return out;
-}
+image::Image minus(const image::Image& a, const image::Image& b) { return image::subtract_rgb(a, b); }
 
 void write_report(const fs::path& path, const std::vector<Row>& rows, const nlohmann::json& tolerances,
                   const std::map<std::string, Truth>& truths) {

@@ -5,6 +5,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -36,6 +37,38 @@ TEST(ViewerApp, HeadlessWritesPngAndExr) {
     EXPECT_EQ(std::get<sss::image::Image>(image).height, 54);
     std::filesystem::remove(out);
   }
+}
+
+// --no-specular writes the frame less its specular target: never brighter than the whole
+// frame (specular >= 0), darker where the sphere has its highlight, and the same where the
+// specular is 0 (the background, the sphere's unlit side).
+TEST(ViewerApp, NoSpecularIsTheFrameLessItsHighlight) {
+  const std::string whole = temp_path("whole.exr"), scattered = temp_path("scattered.exr");
+  const std::string args = "builtin:sphere --headless --width 96 --height 54 --out ";
+  ASSERT_EQ(run(args + whole).code, 0);
+  const ViewerRun r = run(args + scattered + " --no-specular");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto a = sss::image::read_image(whole), b = sss::image::read_image(scattered);
+  ASSERT_TRUE(std::holds_alternative<sss::image::Image>(a) && std::holds_alternative<sss::image::Image>(b));
+  const auto& w = std::get<sss::image::Image>(a);
+  const auto& s = std::get<sss::image::Image>(b);
+  ASSERT_EQ(w.rgba.size(), s.rgba.size());
+  double less = 0.0, same = 0.0;
+  for (std::size_t i = 0; i < w.rgba.size(); ++i) {
+    if (i % 4 == 3) {
+      EXPECT_EQ(w.rgba[i], s.rgba[i]) << "alpha at " << i / 4;
+      continue;
+    }
+    // The GPU's hdr and specular targets are float: the difference rounds at 2^-23 relative.
+    EXPECT_LE(s.rgba[i], w.rgba[i] * (1.0f + 1e-6f) + 1e-7f) << i;
+    less = std::max(less, double(w.rgba[i] - s.rgba[i]));
+    if (w.rgba[i] == s.rgba[i]) ++same;
+  }
+  EXPECT_GT(less, 0.01) << "no pixel lost a highlight";
+  // The sphere covers under half of the 16:9 frame; the background has no specular.
+  EXPECT_GT(same, 0.5 * 0.75 * double(w.rgba.size())) << "the background should be untouched";
+  std::filesystem::remove(whole);
+  std::filesystem::remove(scattered);
 }
 
 TEST(ViewerApp, StatsPrintEveryPassAndTheCpuFrameTime) {
@@ -107,6 +140,8 @@ TEST(ViewerApp, DocumentedErrors) {
       {"builtin:sphere --headless --out " + out + " --width 16384 --height 16384", 2,
        "--width x --height"},
       {"builtin:sphere --headless --out " + out + " --albedo half", 2, "--albedo"},
+      {"builtin:sphere --headless --out " + out + " --no-specular", 2, "--no-specular"},
+      {"builtin:sphere --no-specular", 2, "--no-specular needs --headless"},
       {"builtin:nothing --headless --out " + out, 2, "builtin:nothing"},
       {"/nonexistent/scene.gltf --headless --out " + out, 2, "scene.gltf"},
       {"builtin:sphere --headless --out " + out + " --width 0", 2, "width"},
