@@ -45,7 +45,13 @@ void main() {
   vec3 center = texelFetch(input_tex, p, 0).rgb;
   float width_mm = materials[id].kernel.y;
   float z = here.x;
-  float sigma_px = sqrt(max(variance(id, g) - variance(id, g - 1), 0.0)) * pixels_per_mm(dir, z);
+  // The surface's depth slope along dir from the centre's two neighbours, and the pixels
+  // per mm of surface: the camera plane's over the foreshortening (sss.glsl).
+  float ppm_plane = pixels_per_mm(dir, z);
+  vec2 s_minus = surface_at(clamp(p - ivec2(dir), lo, hi)), s_plus = surface_at(clamp(p + ivec2(dir), lo, hi));
+  float slope = depth_slope(s_minus.x - z, int(s_minus.y) == id, s_plus.x - z, int(s_plus.y) == id, ppm_plane);
+  float sigma_px = sqrt(max(variance(id, g) - variance(id, g - 1), 0.0)) * ppm_plane / foreshortening(slope);
+  float z_per_px = slope / ppm_plane;  // the tangent plane's depth change per pixel
   vec3 result = center;
   GaussianTaps taps = gaussian_taps(sigma_px);
   if (taps.blurs) {
@@ -57,7 +63,7 @@ void main() {
       ivec2 q = clamp(p + ivec2(dir * offset), lo, hi);
       vec2 there = surface_at(q);
       vec3 value = follow_surface(texelFetch(input_tex, q, 0).rgb, center, int(there.y), id,
-                                  there.x, z, width_mm);
+                                  there.x, z + z_per_px * offset, width_mm);
       float weight = exp(-offset * offset * taps.inv_two_var);
       sum += weight * value;
       weight_sum += weight;

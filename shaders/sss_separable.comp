@@ -46,24 +46,34 @@ void main() {
   }
   vec2 dir = blur.direction.xy;
   float z = key_depth(center.a, id);
-  float ppm = pixels_per_mm(dir, z);
-  float inv_width = 1.0 / materials[id].kernel.y;
-  int taps = int(materials[id].kernel.x);
   ivec2 lo = ivec2(frame.rect.xy), hi = ivec2(frame.rect.zw) - 1;  // border: background
   ivec2 step = ivec2(dir);
+  // The surface's depth slope along dir from the centre's two neighbours' keys, and the
+  // pixels per mm of surface: the camera plane's over the foreshortening (sss.glsl).
+  float ppm_plane = pixels_per_mm(dir, z);
+  vec4 key_minus = texelFetch(input_tex, clamp(p - step, lo, hi), 0);
+  vec4 key_plus = texelFetch(input_tex, clamp(p + step, lo, hi), 0);
+  float slope = depth_slope(key_depth(key_minus.a, id) - z, key_material(key_minus.a) == id,
+                            key_depth(key_plus.a, id) - z, key_material(key_plus.a) == id, ppm_plane);
+  float ppm = ppm_plane / foreshortening(slope);
+  float key_per_px = slope / ppm_plane;  // the tangent plane's depth (key) change per pixel
+  float inv_width = 1.0 / materials[id].kernel.y;
+  int taps = int(materials[id].kernel.x);
   vec3 sum = vec3(0.0);
   for (int i = 0; i < taps; ++i) {
     vec4 tap = materials[id].taps[i];
     // Linear interpolation along dir between the two texels around the tap (the tap sits
     // on the pixel row or column, so this is the bilinear sample), each replaced first by
-    // follow surface: lerped toward the centre by its key difference over the range, the
-    // centre value itself on another material or the background.
+    // follow surface: lerped toward the centre by its key's distance from the centre's
+    // tangent plane over the range (sss.glsl), the centre value itself on another
+    // material or the background.
     float t = tap.w * ppm;  // in pixels from p
     float f = floor(t);
     vec4 s0 = texelFetch(input_tex, clamp(p + step * int(f), lo, hi), 0);
     vec4 s1 = texelFetch(input_tex, clamp(p + step * int(f + 1.0), lo, hi), 0);
-    vec3 v0 = mix(s0.rgb, center.rgb, clamp(abs(s0.a - center.a) * inv_width, 0.0, 1.0));
-    vec3 v1 = mix(s1.rgb, center.rgb, clamp(abs(s1.a - center.a) * inv_width, 0.0, 1.0));
+    float plane0 = center.a + key_per_px * f, plane1 = center.a + key_per_px * (f + 1.0);
+    vec3 v0 = mix(s0.rgb, center.rgb, clamp(abs(s0.a - plane0) * inv_width, 0.0, 1.0));
+    vec3 v1 = mix(s1.rgb, center.rgb, clamp(abs(s1.a - plane1) * inv_width, 0.0, 1.0));
     sum += tap.rgb * mix(v0, v1, t - f);
   }
   if (!vertical) {

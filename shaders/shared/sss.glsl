@@ -29,13 +29,35 @@ float pixels_per_mm(vec2 dir, float z_mm) {
   return frame.camera.w > 0.5 ? focal_px / frame.scale.x : focal_px / z_mm;
 }
 
+// The surface's depth slope along `dir`, in mm of depth per mm of the camera plane: the
+// one-sided difference to the neighbour of the centre's material with the smaller
+// magnitude, so that a depth step on one side (an occluding edge) is not taken for slope;
+// 0 without such a neighbour. dz_minus, dz_plus: z(p - dir) - z(p) and z(p + dir) - z(p)
+// in mm, used where the flag says that neighbour is of the centre's material; ppm: the
+// camera plane's pixels per mm at the centre.
+float depth_slope(float dz_minus, bool minus_same, float dz_plus, bool plus_same, float ppm) {
+  float forward = dz_plus * ppm, backward = -dz_minus * ppm;
+  if (minus_same && plus_same) return abs(forward) < abs(backward) ? forward : backward;
+  return plus_same ? forward : (minus_same ? backward : 0.0);
+}
+
+// Foreshortening: mm of surface per mm of the camera plane along a direction of depth
+// slope s, sqrt(1 + s²). A kernel laid out in camera-plane mm reaches that much too far
+// over a surface that turns away from the view (toward a silhouette) and mixes in light
+// from beyond the profile's reach; dividing the pixels per mm by it keeps each tap at its
+// surface distance (the stretch factors of Jimenez et al. 2009, "Screen-space perceptual
+// rendering of human skin", with the measured slope instead of tuned constants).
+float foreshortening(float slope) { return sqrt(1.0 + slope * slope); }
+
 // A tap's value as the blur sees it: the centre value when the tap lies on another
-// material or the background, and otherwise lerped toward the centre by its depth
-// difference relative to the kernel width (follow surface, Jimenez 2015).
-vec3 follow_surface(vec3 tap, vec3 center, int tap_id, int id, float tap_z, float z,
+// material or the background, and otherwise lerped toward the centre by how far its depth
+// leaves the centre's tangent plane (z + slope x the tap's camera-plane offset), relative
+// to the kernel width: follow surface (Jimenez 2015), measured from the plane so that a
+// tilted surface keeps its whole kernel and only a depth step pulls the tap back.
+vec3 follow_surface(vec3 tap, vec3 center, int tap_id, int id, float tap_z, float plane_z,
                     float width_mm) {
   if (tap_id != id) return center;
-  return mix(tap, center, clamp(abs(tap_z - z) / width_mm, 0.0, 1.0));
+  return mix(tap, center, clamp(abs(tap_z - plane_z) / width_mm, 0.0, 1.0));
 }
 
 #endif

@@ -103,8 +103,11 @@ class EdgeTest : public RenderTest {
  protected:
   // height_mm > 0: a perspective camera that high above the slab, looking straight down,
   // whose field of view spans the same [-half_width, half_width] mm on the slab.
+  // tilt_deg > 0: the orthographic camera turned about the edge's line (z) by that angle
+  // from the normal, toward +x: surface x appears at x cos(tilt) on the image.
   EdgeRun render_edge(const std::string& preset, SssKind kind, double half_width_mm = kHalfWidthMm,
-                      int width = kWidth, double height_mm = 0.0, double material_scale = 1.0) {
+                      int width = kWidth, double height_mm = 0.0, double material_scale = 1.0,
+                      double tilt_deg = 0.0) {
     scene::EdgeOptions eo;
     eo.preset = preset;
     eo.half_width_mm = half_width_mm;
@@ -121,6 +124,12 @@ class EdgeTest : public RenderTest {
       cam.zfar = float(10.0 * height_mm * 1e-3);
       cam.world = scene::look_at_world({0.0f, float(height_mm * 1e-3), 0.0f}, glm::vec3(0.0f),
                                        {0.0f, 0.0f, -1.0f});
+    }
+    if (tilt_deg > 0.0) {
+      const double t = tilt_deg * kPi / 180.0;
+      const float d = float(100.0 * 1e-3);  // 100 mm from the origin, as the default camera
+      run.scene.cameras[0].world = scene::look_at_world({d * float(std::sin(t)), d * float(std::cos(t)), 0.0f},
+                                                        glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
     }
     const Frame f = render(run.scene, small_options(width, kHeight, SssMode::Screen, kind));
     for (int x = 0; x < width; ++x) {
@@ -146,17 +155,21 @@ std::vector<double> cell_boundaries(const profiles::SeparableKernel& k) {
   return b;
 }
 
-void check_separable(const std::string& preset, const EdgeRun& run) {
+// cos_tilt < 1: the slab seen at that tilt (render_edge's tilt_deg): pixel x shows surface
+// x = pixel_center_mm(x) / cos_tilt and spans kPixelMm / cos_tilt of it, and the renderer
+// must scatter over those surface mm, as on the untilted slab (foreshortening, sss.glsl).
+void check_separable(const std::string& preset, const EdgeRun& run, double cos_tilt = 1.0) {
   const profiles::RgbProfile profile = exact_profile(run.scene);
   const MaterialProfile& mp = *run.materials.profiles[0];
   const profiles::SeparableKernel& k = mp.kernel;
   const Rgb T = profile.total_reflectance();
   const std::vector<double> b = cell_boundaries(k);
   double worst_ratio = 0.0, worst_impl = 0.0;
+  const double h = kPixelMm / cos_tilt;  // surface mm per pixel
   for (int x = 0; x < kWidth; ++x) {
-    const double xc = pixel_center_mm(x);
+    const double xc = pixel_center_mm(x) / cos_tilt;
     // Cells met by [x - h/2, x + h/2]: lower boundary of the first, upper of the last.
-    const double lo_x = xc - 0.5 * kPixelMm, hi_x = xc + 0.5 * kPixelMm;
+    const double lo_x = xc - 0.5 * h, hi_x = xc + 0.5 * h;
     const auto first = std::upper_bound(b.begin(), b.end(), lo_x) - 1;
     const auto last = std::upper_bound(b.begin(), b.end(), hi_x);
     const Rgb M = profiles::edge_response(profile, xc);
@@ -173,12 +186,17 @@ void check_separable(const std::string& preset, const EdgeRun& run) {
       double cpu = 0.0;
       for (std::size_t i = 0; i < k.offsets_mm.size(); ++i) {
         const double y = xc + float(k.offsets_mm[i]);
-        cpu += float(k.weights[i][c]) * std::clamp(0.5 - y / kPixelMm, 0.0, 1.0);
+        cpu += float(k.weights[i][c]) * std::clamp(0.5 - y / h, 0.0, 1.0);
       }
       cpu *= float(T[c]);
       EXPECT_NEAR(run.pi_L[x][c], cpu, eps) << preset << " implementation at x=" << xc;
       worst_impl = std::max(worst_impl, std::fabs(run.pi_L[x][c] - cpu) / T[c]);
     }
+  }
+  if (cos_tilt < 1.0) {
+    std::printf("[ separable %s, tilted (cos %.3f) ] worst err/tol %.3f, worst |GPU-CPU|/T %.2e\n", preset.c_str(),
+                cos_tilt, worst_ratio, worst_impl);
+    return;
   }
   // 2 mm into the shadow (pixel 140).
   const Rgb M2 = profiles::edge_response(profile, 2.0);
@@ -188,20 +206,21 @@ void check_separable(const std::string& preset, const EdgeRun& run) {
               M2[2], worst_ratio, worst_impl);
 }
 
-void check_gaussians(const std::string& preset, const EdgeRun& run) {
+void check_gaussians(const std::string& preset, const EdgeRun& run, double cos_tilt = 1.0) {
   const profiles::RgbProfile profile = exact_profile(run.scene);
   const profiles::GaussianFit& fit = run.materials.profiles[0]->fit;
   const Rgb T = profile.total_reflectance();
   double worst_ratio = 0.0, worst_fit_gap = 0.0;
+  const double h = kPixelMm / cos_tilt;  // surface mm per pixel
   for (int x = 0; x < kWidth; ++x) {
-    const double xc = pixel_center_mm(x);
+    const double xc = pixel_center_mm(x) / cos_tilt;
     const Rgb M = profiles::edge_response(profile, xc);
     for (int c = 0; c < 3; ++c) {
       const auto m_exact = [&](double t) { return profiles::edge_response(profile, t)[c]; };
       const auto m_fit = [&](double t) { return profiles::edge_response(fit, t)[c]; };
-      const double avg_exact = box_average(m_exact, xc, kPixelMm);
-      const double avg_fit = box_average(m_fit, xc, kPixelMm);
-      const double eps = gaussians_eps(fit) * T[c] + sampling_error(fit, c, xc, kPixelMm);
+      const double avg_exact = box_average(m_exact, xc, h);
+      const double avg_fit = box_average(m_fit, xc, h);
+      const double eps = gaussians_eps(fit) * T[c] + sampling_error(fit, c, xc, h);
       // The renderer's own target: the fit's response over the pixel.
       EXPECT_NEAR(run.pi_L[x][c], avg_fit, eps) << preset << " implementation at x=" << xc;
       worst_fit_gap = std::max(worst_fit_gap, std::fabs(run.pi_L[x][c] - avg_fit) / T[c]);
@@ -211,6 +230,11 @@ void check_gaussians(const std::string& preset, const EdgeRun& run) {
                           << " rendered=" << run.pi_L[x][c];
       worst_ratio = std::max(worst_ratio, err / tol);
     }
+  }
+  if (cos_tilt < 1.0) {
+    std::printf("[ gaussians %s, tilted (cos %.3f) ] worst err/tol %.3f, worst |GPU-fit|/T %.2e\n", preset.c_str(),
+                cos_tilt, worst_ratio, worst_fit_gap);
+    return;
   }
   const Rgb M2 = profiles::edge_response(profile, 2.0);
   const Rgb F2 = profiles::edge_response(fit, 2.0);
@@ -298,6 +322,20 @@ TEST_F(EdgeTest, ZoomingDoesNotChangeTheProfileInMm) {
 // sees the slab exactly as the orthographic camera does (a plane facing the camera maps
 // linearly to the image), so the frames must agree to both frames' eps: dollying in or
 // out does not change the look.
+// A slab seen at 60 degrees from its normal: each pixel spans twice the surface mm, and
+// the screen-space kernels must still scatter over surface distances, so the frame is the
+// untilted checks' exact edge response at x / cos(60°), with the same bounds computed for
+// pixels 2 x 0.16 mm wide. Without the foreshortening (the kernel laid out in camera-plane
+// mm) the response would be that of a profile twice as wide across the edge, and with
+// follow surface measured from the centre's depth rather than its tangent plane, each tap
+// would be pulled toward the centre by sin(60°) x its distance over the kernel width:
+// both fail here by many times the bound.
+TEST_F(EdgeTest, ATiltedSlabScattersOverItsSurfaceNotTheScreen) {
+  const double cos_tilt = 0.5;
+  check_separable("skin1", render_edge("skin1", SssKind::Separable, kHalfWidthMm, kWidth, 0.0, 1.0, 60.0), cos_tilt);
+  check_gaussians("skin1", render_edge("skin1", SssKind::Gaussians, kHalfWidthMm, kWidth, 0.0, 1.0, 60.0), cos_tilt);
+}
+
 TEST_F(EdgeTest, PerspectiveCameraAtAnyDistanceSeesTheSameProfile) {
   for (SssKind kind : {SssKind::Separable, SssKind::Gaussians}) {
     const EdgeRun ortho = render_edge("skin1", kind);
