@@ -75,8 +75,21 @@ void main() {
     c = display_encode(diffuse / kPi);
   } else if (view == 4) {  // kernel radius in pixels
     if (scatters) {
+      // The kernel's reach as the blur lays it out (sss.glsl): along each axis the camera
+      // plane's pixels per mm over the surface's foreshortening; the shorter of the two.
       float z = key_depth(irradiance.a, id);
-      float radius_px = materials[id].kernel.y * pixels_per_mm(vec2(1.0, 0.0), z);
+      ivec2 hi = textureSize(irradiance_tex, 0) - 1;
+      float radius_px = 1e30;
+      for (int axis = 0; axis < 2; ++axis) {
+        vec2 dir = axis == 0 ? vec2(1.0, 0.0) : vec2(0.0, 1.0);
+        ivec2 step = ivec2(dir);
+        float km = texelFetch(irradiance_tex, clamp(p - step, ivec2(0), hi), 0).a;
+        float kp = texelFetch(irradiance_tex, clamp(p + step, ivec2(0), hi), 0).a;
+        float ppm = pixels_per_mm(dir, z);
+        float slope = depth_slope(key_depth(km, id) - z, key_material(km) == id, key_depth(kp, id) - z,
+                                  key_material(kp) == id, ppm);
+        radius_px = min(radius_px, materials[id].kernel.y * ppm / foreshortening(slope));
+      }
       c = radius_px < 1.0 ? kUndersampled : viridis(log2(radius_px) / debug.view.z);
     }
   } else if (view == 5) {  // profile / material id
