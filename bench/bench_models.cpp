@@ -8,6 +8,7 @@
 #include "profiles/ClassicalDipole.h"
 #include "profiles/Multipole.h"
 #include "profiles/PhotonBeamDiffusion.h"
+#include "profiles/QuantizedDiffusion.h"
 
 #include <benchmark/benchmark.h>
 
@@ -67,6 +68,13 @@ void BM_ModelBetterDipole(benchmark::State& state) { run(state, BetterDipole(kSk
 void BM_ModelBurley(benchmark::State& state) { run(state, Burley(kSkin1Red)); }
 // A 5 mm slab (about 4 reduced mean free paths); the cost does not depend on it.
 void BM_ModelMultipole10(benchmark::State& state) { run(state, Multipole(kSkin1Red, 5.0, 10)); }
+// Quantized diffusion with the default schedule (one Gaussian per time step: its R(r) is a
+// sum of exp, so the cost is the number of terms, reported beside it).
+void BM_ModelQd(benchmark::State& state) {
+  const QuantizedDiffusion q(kSkin1Red);
+  state.counters["gaussians"] = static_cast<double>(q.terms().size());
+  run(state, q);
+}
 
 template <BeamSampling S>
 void BM_ModelPbd(benchmark::State& state) {
@@ -78,6 +86,7 @@ void BM_ModelPbd(benchmark::State& state) {
 
 BENCHMARK(BM_ModelClassicalDipole);
 BENCHMARK(BM_ModelBetterDipole);
+BENCHMARK(BM_ModelQd);
 BENCHMARK(BM_ModelBurley);
 BENCHMARK(BM_ModelMultipole10);
 BENCHMARK(BM_ModelPbd<BeamSampling::Exponential>)->RangeMultiplier(2)->Range(4, 64);

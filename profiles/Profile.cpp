@@ -4,6 +4,7 @@
 #include "profiles/Burley.h"
 #include "profiles/ClassicalDipole.h"
 #include "profiles/McTableProfile.h"
+#include "profiles/QuantizedDiffusion.h"
 #include "profiles/MonteCarlo.h"
 #include "profiles/Multipole.h"
 #include "profiles/PhotonBeamDiffusion.h"
@@ -24,6 +25,7 @@ std::string_view model_name(Model m) {
     case Model::Multipole: return "multipole";
     case Model::MonteCarlo: return "mc";
     case Model::McTable: return "mc-table";
+    case Model::Qd: return "qd";
   }
   return "?";
 }
@@ -100,6 +102,8 @@ std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
     // viewer's menu expects its reflectance profile, as with the other semi-infinite
     // models, not an error. The multipole is the model for a slab's own profile.
     case Model::McTable: return std::make_unique<McTableProfile>(c);
+    // Quantized diffusion (d'Eon & Irving 2011): semi-infinite, as the dipoles.
+    case Model::Qd: return std::make_unique<QuantizedDiffusion>(c);
   }
   throw std::invalid_argument("unknown model");
 }

@@ -17,11 +17,11 @@
 
 namespace sss::profiles {
 
-enum class Model { Dipole, BetterDipole, Pbd, Burley, Multipole, MonteCarlo, McTable };
+enum class Model { Dipole, BetterDipole, Pbd, Burley, Multipole, MonteCarlo, McTable, Qd };
 
-inline constexpr std::array<Model, 7> kAllModels = {
-    Model::Dipole,    Model::BetterDipole, Model::Pbd,    Model::Burley,
-    Model::Multipole, Model::MonteCarlo,   Model::McTable};
+inline constexpr std::array<Model, 8> kAllModels = {
+    Model::Dipole,    Model::BetterDipole, Model::Pbd,     Model::Burley,
+    Model::Multipole, Model::MonteCarlo,   Model::McTable, Model::Qd};
 
 // The model used wherever none is named: sss-fit --model, sss-viewer and sss-reference
 // (scenes and --color/--mfp inversion), glTF extras.sss without "model", the viewer's
@@ -34,7 +34,7 @@ inline constexpr std::array<Model, 7> kAllModels = {
 // Change this one line to change the default everywhere.
 inline constexpr Model kDefaultModel = Model::McTable;
 
-// CLI names: dipole | better-dipole | pbd | burley | multipole | mc | mc-table
+// CLI names: dipole | better-dipole | pbd | burley | multipole | mc | mc-table | qd
 std::string_view model_name(Model m);
 std::optional<Model> parse_model(std::string_view name);
 // A comma-separated list of every model name, for messages.

@@ -39,7 +39,7 @@ struct SeparableKernel {
 // table: ~9 ms instead of ~560 ms for pbd, and the weights differ from Exact's by < 4e-7
 // (absolute; they sum to 1, and the GPU stores them as floats), the range by < 1e-5
 // relative (tests/profiles/test_separable_kernel_quadrature.cpp, pbd and multipole).
-// Auto picks Tabulated for the models whose R is numerical (pbd, multipole) and Exact for
+// Auto picks Tabulated for the models whose R is costly (pbd, multipole, qd) and Exact for
 // the closed forms (dipole, better-dipole, burley) and tabulated Monte Carlo, where it is
 // already cheap.
 enum class KernelQuadrature { Auto, Exact, Tabulated };

@@ -29,7 +29,7 @@ bool inside_mc_table(const Medium& m) {
 }  // namespace
 
 std::vector<Model> default_validation_models(const Medium& m) {
-  std::vector<Model> models = {Model::Dipole, Model::BetterDipole, Model::Pbd, Model::Burley};
+  std::vector<Model> models = {Model::Dipole, Model::BetterDipole, Model::Pbd, Model::Qd, Model::Burley};
   // mc-table is semi-infinite like the four above (on a slab they are all compared with
   // the slab's Monte Carlo, which is what a user choosing them for a slab gets).
   if (inside_mc_table(m)) models.push_back(Model::McTable);

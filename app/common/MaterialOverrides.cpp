@@ -14,7 +14,7 @@ bool any_medium(const MediumArgs& m) {
 void add_material_override_options(CLI::App& app, MaterialOverrideArgs& args) {
   app.add_option("--model", args.model,
                  "Profile model for every SSS material: dipole | better-dipole | pbd | burley | "
-                 "multipole | mc | mc-table (default: each material's own; " +
+                 "multipole | mc | mc-table | qd (default: each material's own; " +
                      std::string(profiles::model_name(profiles::kDefaultModel)) +
                      " where the scene names none)");
   app.add_option("--gaussians", args.gaussians, "Gaussians per fit, 1..8");

@@ -16,7 +16,7 @@ void add_common(CLI::App& cmd, CommonArgs& a, bool with_model) {
   add_medium_options(cmd, a.medium);
   if (with_model)
     cmd.add_option("--model", a.model,
-                   "dipole | better-dipole | pbd | burley | multipole | mc | mc-table "
+                   "dipole | better-dipole | pbd | burley | multipole | mc | mc-table | qd "
                    "(default " + std::string(sss::profiles::model_name(sss::profiles::kDefaultModel)) + ")");
   cmd.add_flag("--json", a.json, "Print one JSON document on stdout and nothing else");
   cmd.add_option("--pbd-samples", a.pbd_samples, "PBD depth samples per strategy (default 32)")

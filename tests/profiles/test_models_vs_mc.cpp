@@ -18,6 +18,8 @@
 //  - Burley: takes the better dipole's total (exactly) and a fitted shape whose tail is
 //    far shorter than diffusion's at high albedo: 40–80% RMS on [0.25, 8] mfp.
 //  - multipole: the classical dipole's approximations for a finite slab.
+//  - qd: diffusion of the beam's first scattering (no single scattering): short of the
+//    total by the once-scattered light at low albedo, converging at high albedo.
 #include "profiles/HFunction.h"
 #include "profiles/Presets.h"
 #include "profiles/Validation.h"
@@ -174,5 +176,23 @@ TEST(ModelsVsExactTransport, IndexMatchedTotals) {
     EXPECT_LT(std::fabs(err(Model::BetterDipole)), r.better);
     EXPECT_GT(err(Model::Pbd), r.pbd_lo);
     EXPECT_LT(err(Model::Pbd), r.pbd_hi);
+  }
+  // Quantized diffusion has no single scattering (QuantizedDiffusion.h), which the exact
+  // total counts: it is short by -66% at α = 0.3 and -17% at 0.8 (measured), and must
+  // converge as the once-scattered share vanishes: |error| falls with α, and at α >= 0.99
+  // it is within 1%: the default schedule's quantization (<= 0.5%, the bound
+  // test_quantized_diffusion.cpp holds it to) plus the better dipole's own error there
+  // (0.96% at 0.99, 0.06% at 0.999: the same diffusion with the same boundary).
+  double previous = 1.0;
+  for (const Row& r : rows) {
+    const Coefficients k{1.0 - r.albedo, r.albedo, 0.0, 1.0};
+    const double exact = exact_total_reflectance_index_matched(r.albedo);
+    const double e = std::fabs(make_profile(Model::Qd, k, kSemiInfinite, opt)->total_reflectance() / exact - 1.0);
+    EXPECT_LT(e, previous) << "qd, albedo " << r.albedo;
+    previous = e;
+    if (r.albedo >= 0.99) {
+      const double better = std::fabs(make_profile(Model::BetterDipole, k, kSemiInfinite, opt)->total_reflectance() / exact - 1.0);
+      EXPECT_LT(e, 0.005 + better) << "qd, albedo " << r.albedo;
+    }
   }
 }

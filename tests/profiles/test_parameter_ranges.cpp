@@ -8,6 +8,7 @@
 #include "profiles/McTableProfile.h"
 #include "profiles/Medium.h"
 #include "profiles/PhotonBeamDiffusion.h"
+#include "profiles/QuantizedDiffusion.h"
 #include "profiles/Profile.h"
 
 #include <gtest/gtest.h>
@@ -148,6 +149,8 @@ std::unique_ptr<RadialProfile> build(Model m, const Coefficients& c) {
 //  - PBD (PhotonBeamDiffusion.h): r is clamped to min_radius(), so R(0) = R(min_radius);
 //    r R(r) tends to a finite limit near 0 (single scattering ~ 1/r, multiple
 //    scattering stays finite);
+//  - qd (QuantizedDiffusion.h): a sum of Gaussians in r, smooth and even, within the bound
+//    its narrowest Gaussian sets (below);
 //  - Monte Carlo (TabulatedProfile): constant below the first node, R(0) = R(inner);
 //  - mc-table (McTableProfile.h): r is clamped to min_radius() (1e-9 mean free paths), so
 //    R(0) = R(min_radius); only media inside the table (η on its axis, α' up to its last
@@ -183,6 +186,17 @@ TEST(ParameterRanges, NoProfileIsSingularAtZero) {
             case Model::Multipole:
               EXPECT_NEAR(p->reflectance(1e-6 * inner), r0, 1e-9 * r0) << at;
               break;
+            case Model::Qd: {
+              // A sum of Gaussians c_i N₂(v_i; r), each with 1 - e^{-ε²/2v} <= ε²/2v of its
+              // value gone at ε: |R(ε) - R(0)| <= R(0) ε²/(2 v_min). Its earliest Gaussians
+              // are far narrower than a mean free path (v_min ~ 1e-5 inner² at high albedo).
+              const auto& q = dynamic_cast<const QuantizedDiffusion&>(*p);
+              double v_min = q.terms().front().variance_mm2;
+              for (const auto& t : q.terms()) v_min = std::min(v_min, t.variance_mm2);
+              const double eps = 1e-6 * inner;
+              EXPECT_NEAR(q.reflectance(eps), r0, r0 * (eps * eps / (2.0 * v_min) + 1e-12)) << at;
+              break;
+            }
             case Model::Burley: {
               const auto& b = dynamic_cast<const Burley&>(*p);
               const double d = b.scale_d(), A = b.total_reflectance();
@@ -220,7 +234,7 @@ TEST(ParameterRanges, NoProfileIsSingularAtZero) {
   // mc-table: every albedo but 1 - 1e-6 (α' above 0.9999), at every g and eta (the
   // table covers eta in [1, 2.5]): 4 x 3 x 3.
   EXPECT_EQ(mc_table_checked, 4 * 3 * 3);
-  EXPECT_EQ(checked, 5 * (5 * 3 * 3) + 3 + mc_table_checked);
+  EXPECT_EQ(checked, 6 * (5 * 3 * 3) + 3 + mc_table_checked);
 }
 
 // A dark medium gives Monte Carlo too few returning photons to tabulate: a clear error that

@@ -96,6 +96,10 @@ TEST(ViewerApp, MaterialOverridesAreAccepted) {
   const ViewerRun c = run("builtin:sphere --headless --out " + out +
                     " --width 48 --height 27 --sigma-a 0.01,0.02,0.03 --sigma-s 1,1,1");
   EXPECT_EQ(c.code, 0) << c.out;
+  // Quantized diffusion end to end: the fit of its Gaussian sum, the tabulated separable
+  // kernel, the frame.
+  const ViewerRun q = run("builtin:sphere --headless --out " + out + " --width 48 --height 27 --model qd");
+  EXPECT_EQ(q.code, 0) << q.out;
   std::filesystem::remove(out);
 }
 
