@@ -40,6 +40,13 @@ std::optional<Model> parse_model(std::string_view name);
 // A comma-separated list of every model name, for messages.
 std::string model_names();
 
+// Whether one R(r) or T(r) call is costly enough that callers who evaluate it many times
+// tabulate it first (the separable kernel's quadrature, the references' profile tables):
+// pbd (64 beam samples a call), multipole (up to hundreds of dipole pairs), qd (~100
+// Gaussians, 33x the dipole; bench_profiles BM_Model*). The closed forms and the
+// Monte Carlo tables are cheap already.
+inline bool model_is_costly(Model m) { return m == Model::Pbd || m == Model::Multipole || m == Model::Qd; }
+
 struct ModelOptions {
   // Photon beam diffusion: samples along the refracted beam *per strategy* (exponential
   // and equiangular, combined with MIS). 32 reaches 1% everywhere: docs/PBD_CONVERGENCE.md.

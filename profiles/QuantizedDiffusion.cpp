@@ -62,6 +62,8 @@ QuantizedDiffusion::QuantizedDiffusion(const Coefficients& c, const QdSchedule& 
     const double flux = g(v, 0.0) + g(v, d_e);
     const double coefficient = alpha_p * w * (dipole_.c_phi * phi + dipole_.c_e * D * flux);
     terms_.push_back({v, coefficient});
+    peak_.push_back(coefficient / (2.0 * std::numbers::pi * v));
+    inv_two_var_.push_back(1.0 / (2.0 * v));
     total_ += coefficient;
     if (schedule.fixed_terms == 0 && sa * t1 >= kTimeMass) break;
     t0 = t1;
@@ -72,8 +74,7 @@ QuantizedDiffusion::QuantizedDiffusion(const Coefficients& c, const QdSchedule& 
 double QuantizedDiffusion::reflectance(double r) const {
   const double r2 = r * r;
   double sum = 0.0;
-  for (const Term& t : terms_)
-    sum += t.coefficient * std::exp(-r2 / (2.0 * t.variance_mm2)) / (2.0 * std::numbers::pi * t.variance_mm2);
+  for (std::size_t i = 0; i < peak_.size(); ++i) sum += peak_[i] * std::exp(-r2 * inv_two_var_[i]);
   return sum;
 }
 

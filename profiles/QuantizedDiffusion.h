@@ -75,6 +75,8 @@ class QuantizedDiffusion final : public RadialProfile {
   double sigma_tp_;
   double total_ = 0.0;
   std::vector<Term> terms_;
+  // Per term, what reflectance() evaluates: c_i / (2π v_i) and 1 / (2 v_i).
+  std::vector<double> peak_, inv_two_var_;
 };
 
 }  // namespace sss::profiles

@@ -82,7 +82,7 @@ class LogGridProfile final : public RadialProfile {
 };
 
 bool tabulate(Model model, KernelQuadrature q) {
-  if (q == KernelQuadrature::Auto) return model == Model::Pbd || model == Model::Multipole || model == Model::Qd;
+  if (q == KernelQuadrature::Auto) return model_is_costly(model);
   return q == KernelQuadrature::Tabulated;
 }
 

@@ -83,11 +83,9 @@ void main() {
       for (int axis = 0; axis < 2; ++axis) {
         vec2 dir = axis == 0 ? vec2(1.0, 0.0) : vec2(0.0, 1.0);
         ivec2 step = ivec2(dir);
-        float km = texelFetch(irradiance_tex, clamp(p - step, ivec2(0), hi), 0).a;
-        float kp = texelFetch(irradiance_tex, clamp(p + step, ivec2(0), hi), 0).a;
         float ppm = pixels_per_mm(dir, z);
-        float slope = depth_slope(key_depth(km, id) - z, key_material(km) == id, key_depth(kp, id) - z,
-                                  key_material(kp) == id, ppm);
+        float slope = key_depth_slope(texelFetch(irradiance_tex, clamp(p - step, ivec2(0), hi), 0).a,
+                                      texelFetch(irradiance_tex, clamp(p + step, ivec2(0), hi), 0).a, id, z, ppm);
         radius_px = min(radius_px, materials[id].kernel.y * ppm / foreshortening(slope));
       }
       c = radius_px < 1.0 ? kUndersampled : viridis(log2(radius_px) / debug.view.z);

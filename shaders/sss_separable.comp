@@ -51,10 +51,8 @@ void main() {
   // The surface's depth slope along dir from the centre's two neighbours' keys, and the
   // pixels per mm of surface: the camera plane's over the foreshortening (sss.glsl).
   float ppm_plane = pixels_per_mm(dir, z);
-  vec4 key_minus = texelFetch(input_tex, clamp(p - step, lo, hi), 0);
-  vec4 key_plus = texelFetch(input_tex, clamp(p + step, lo, hi), 0);
-  float slope = depth_slope(key_depth(key_minus.a, id) - z, key_material(key_minus.a) == id,
-                            key_depth(key_plus.a, id) - z, key_material(key_plus.a) == id, ppm_plane);
+  float slope = key_depth_slope(texelFetch(input_tex, clamp(p - step, lo, hi), 0).a,
+                                texelFetch(input_tex, clamp(p + step, lo, hi), 0).a, id, z, ppm_plane);
   float ppm = ppm_plane / foreshortening(slope);
   float key_per_px = slope / ppm_plane;  // the tangent plane's depth (key) change per pixel
   float inv_width = 1.0 / materials[id].kernel.y;

@@ -190,22 +190,24 @@ void ViewerTools::reset() {
   export_message_.clear();
 }
 
-const char* ViewerTools::pair_name(Pair p) {
+// The two images of each pair, test first: both names below follow from them.
+static std::pair<const char*, const char*> pair_operands(ViewerTools::Pair p) {
   switch (p) {
-    case Pair::FrameVsReference: return "frame vs reference";
-    case Pair::FrameVsTruth: return "frame vs truth";
-    case Pair::ReferenceVsTruth: return "reference vs truth";
+    case ViewerTools::Pair::FrameVsReference: return {"frame", "reference"};
+    case ViewerTools::Pair::FrameVsTruth: return {"frame", "truth"};
+    case ViewerTools::Pair::ReferenceVsTruth: return {"reference", "truth"};
   }
-  return "?";
+  return {"?", "?"};
 }
 
-const char* ViewerTools::ratio_name(Pair p) {
-  switch (p) {
-    case Pair::FrameVsReference: return "log2(frame/reference)";
-    case Pair::FrameVsTruth: return "log2(frame/truth)";
-    case Pair::ReferenceVsTruth: return "log2(reference/truth)";
-  }
-  return "?";
+std::string ViewerTools::pair_name(Pair p) {
+  const auto [a, b] = pair_operands(p);
+  return std::string(a) + " vs " + b;
+}
+
+std::string ViewerTools::ratio_name(Pair p) {
+  const auto [a, b] = pair_operands(p);
+  return "log2(" + std::string(a) + "/" + b + ")";
 }
 
 std::optional<ViewerTools::Overlay> ViewerTools::overlay() const {
@@ -373,7 +375,7 @@ void ViewerTools::compare_now(renderer::Renderer& r, const LiveState& live) {
     if (a_display->width != b_display->width || a_display->height != b_display->height) {
       error = pair == Pair::FrameVsReference
                   ? "the window was resized since the reference: render it again"
-                  : std::string(pair_name(pair)) + ": the ground truth (" + truth_source_ + ") is " +
+                  : pair_name(pair) + ": the ground truth (" + truth_source_ + ") is " +
                         size_text(b_display->width, b_display->height) + ", the " +
                         (pair == Pair::FrameVsTruth ? "frame" : "reference") + " is " +
                         size_text(a_display->width, a_display->height);
@@ -381,7 +383,7 @@ void ViewerTools::compare_now(renderer::Renderer& r, const LiveState& live) {
       try {
         results_[p] = compare_pair(*a_display, *a_hdr, *b_display, *b_hdr);
       } catch (const std::exception& e) {
-        error = std::string(pair_name(pair)) + ": " + e.what();
+        error = pair_name(pair) + ": " + e.what();
       }
     }
     if (error.empty()) continue;
@@ -685,10 +687,10 @@ void ViewerTools::draw_metrics() {
 }
 
 void ViewerTools::draw_map_controls() {
-  if (ImGui::BeginCombo("pair", pair_name(pair_))) {
+  if (ImGui::BeginCombo("pair", pair_name(pair_).c_str())) {
     for (int p = 0; p < kPairs; ++p) {
       if (!results_[p]) continue;
-      if (ImGui::Selectable(pair_name(Pair(p)), pair_ == Pair(p)) && pair_ != Pair(p)) {
+      if (ImGui::Selectable(pair_name(Pair(p)).c_str(), pair_ == Pair(p)) && pair_ != Pair(p)) {
         pair_ = Pair(p);
         render_map();
       }
@@ -738,7 +740,7 @@ void ViewerTools::draw_map_controls() {
     ImGui::TextWrapped("%s of the linear luminance: blue A darker, white equal, red A brighter, "
                        "saturated beyond +-range (1 stop = 2x); grey: no geometry in one image; "
                        "green: a non-finite value",
-                       ratio_name(pair_));
+                       ratio_name(pair_).c_str());
   }
   ImGui::PopStyleColor();
 }

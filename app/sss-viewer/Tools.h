@@ -113,8 +113,8 @@ class ViewerTools {
   // What the error map compares (A against B; B is the one nearer the truth) and how.
   enum class Pair { FrameVsReference, FrameVsTruth, ReferenceVsTruth };
   static constexpr int kPairs = 3;
-  static const char* pair_name(Pair p);   // "frame vs reference"
-  static const char* ratio_name(Pair p);  // "log2(frame/reference)"
+  static std::string pair_name(Pair p);   // "frame vs reference"
+  static std::string ratio_name(Pair p);  // "log2(frame/reference)"
   enum class ErrorMap { Absolute, LogRatio };
   // Selects the error view (3) with this map of this pair, and draws it.
   void set_error_map(ErrorMap map, Pair pair = Pair::FrameVsReference);

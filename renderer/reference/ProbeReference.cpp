@@ -103,7 +103,7 @@ ProbeEstimator::ProbeEstimator(const scene::Scene& s, const RayScene& rays, cons
     g.profile = reference_profile(sss, o.kernel, o.model_options);
     g.support_mm = g.profile->support_radius();
     g.pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
-    const bool costly = profile_is_costly(g.profile->model());
+    const bool costly = profiles::model_is_costly(g.profile->model());
     const bool transmits = [&] {
       const Rgb t = g.profile->total_transmittance();
       return t[0] > 0.0 || t[1] > 0.0 || t[2] > 0.0;

@@ -65,11 +65,4 @@ class ProfileTable {
   std::vector<double> value_, log_value_;
 };
 
-// The models whose R and T are costly (PBD: 64 beam samples a call; the multipole: up to
-// hundreds of dipole pairs; qd: ~100 Gaussians, 39x the dipole, bench_profiles BM_ModelQd)
-// are read through the table; the others directly.
-inline bool profile_is_costly(profiles::Model m) {
-  return m == profiles::Model::Pbd || m == profiles::Model::Multipole || m == profiles::Model::Qd;
-}
-
 }  // namespace sss::reference

@@ -176,7 +176,7 @@ ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_a
       inner_cells + std::size_t(key_of(std::max(S * inv_a, kKinkGap)) - base) + 1;
   // The two models whose profile is costly (PBD: 64 beam samples; the multipole: up to
   // hundreds of dipole pairs) are read through a log-log interpolant (ProfileTable.h).
-  const bool interpolate = profile_is_costly(profile.model());
+  const bool interpolate = profiles::model_is_costly(profile.model());
 
   const auto build = [&](bool transmit) {
     Table t;

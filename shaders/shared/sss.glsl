@@ -41,6 +41,13 @@ float depth_slope(float dz_minus, bool minus_same, float dz_plus, bool plus_same
   return plus_same ? forward : (minus_same ? backward : 0.0);
 }
 
+// depth_slope from the surface keys of the two neighbours (the separable pass's input and
+// the irradiance target carry them in alpha): z is the centre's depth, id its material.
+float key_depth_slope(float key_minus, float key_plus, int id, float z, float ppm) {
+  return depth_slope(key_depth(key_minus, id) - z, key_material(key_minus) == id, key_depth(key_plus, id) - z,
+                     key_material(key_plus) == id, ppm);
+}
+
 // Foreshortening: mm of surface per mm of the camera plane along a direction of depth
 // slope s, sqrt(1 + s²). A kernel laid out in camera-plane mm reaches that much too far
 // over a surface that turns away from the view (toward a silhouette) and mixes in light

@@ -230,8 +230,6 @@ std::optional<Links> budget_links(const image::Image& truth, double noise, const
   return l;
 }
 
-// a less b's colour (alpha kept): an image less its specular.
-image::Image minus(const image::Image& a, const image::Image& b) { return image::subtract_rgb(a, b); }
 
 void write_report(const fs::path& path, const std::vector<Row>& rows, const nlohmann::json& tolerances,
                   const std::map<std::string, Truth>& truths) {
@@ -528,9 +526,11 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
       if (const auto whole = budget_links(truth.mean, noise, ref.hdr, fit, lit, gpu_hdr, mask)) {
         row.whole = *whole;
         row.has_budget = true;
-        const image::Image d_sc = minus(ref.hdr, ref.specular), g_sc = minus(gpu_hdr, f.specular);
-        if (const auto sc = budget_links(minus(truth.mean, ref.specular), noise, d_sc, minus(fit, refs.fit.specular),
-                                         minus(lit, refs.lit.specular), g_sc, mask))
+        const image::Image d_sc = image::subtract_rgb(ref.hdr, ref.specular);
+        const image::Image g_sc = image::subtract_rgb(gpu_hdr, f.specular);
+        if (const auto sc = budget_links(image::subtract_rgb(truth.mean, ref.specular), noise, d_sc,
+                                         image::subtract_rgb(fit, refs.fit.specular),
+                                         image::subtract_rgb(lit, refs.lit.specular), g_sc, mask))
           row.scattered = *sc;
         double ref_sc = 0.0;
         for (std::size_t i = 0; i < mask.size(); ++i)

@@ -536,7 +536,8 @@ TEST_F(ViewerCompare, LogRatioViewOfTheFrameAgainstTheReference) {
   EXPECT_LE(self->metrics.max_abs_error, 1.5 / 255);  // the GPU's and the CPU's tonemap
   tools.set_error_map(ViewerTools::ErrorMap::LogRatio, ViewerTools::Pair::ReferenceVsTruth);
   EXPECT_EQ(tools.pair(), ViewerTools::Pair::ReferenceVsTruth);
-  EXPECT_STREQ(ViewerTools::ratio_name(tools.pair()), "log2(reference/truth)");
+  EXPECT_EQ(ViewerTools::ratio_name(tools.pair()), "log2(reference/truth)");
+  EXPECT_EQ(ViewerTools::pair_name(tools.pair()), "reference vs truth");
   // reference/truth = reference/frame: the frame-vs-reference ratios negated.
   const auto& rt = tools.result(ViewerTools::Pair::ReferenceVsTruth);
   for (int i = 0; i < 48 * 27; ++i) {
