@@ -59,6 +59,22 @@ double fresnel_moment2_fit(double eta) {
          189.519 * e2 + 54.9327 * e3 - 9.00603 * e4 + 0.63942 * e5;
 }
 
+double fresnel_transmittance(double cos_outside, double eta) {
+  return 1.0 - fresnel_dielectric(cos_outside, eta);
+}
+
+double fresnel_exit_normalization(double eta) {
+  if (!(eta > 0.0)) throw std::invalid_argument("fresnel_exit_normalization: eta must be > 0");
+  // Renderers ask per pixel, almost always for the same few η: the last answer per
+  // thread saves the quadrature (256 Fresnel evaluations).
+  thread_local double last_eta = -1.0, last_c = 1.0;
+  if (eta != last_eta) {
+    last_c = 1.0 - 2.0 * fresnel_moment(1, 1.0 / eta);
+    last_eta = eta;
+  }
+  return last_c;
+}
+
 double fresnel_diffuse_reflectance_fit(double eta) {
   return -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
 }

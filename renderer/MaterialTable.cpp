@@ -2,6 +2,7 @@
 
 #include "renderer/vk/Transfer.h"
 
+#include "profiles/Fresnel.h"
 #include "profiles/Profile.h"
 
 #include <cmath>
@@ -55,6 +56,11 @@ MaterialData build(const std::vector<scene::Material>& materials, int separable_
         g.transmit = {float(t[0]), float(t[1]), float(t[2]),
                       float(m.sss.effective_medium().thickness_mm)};
       }
+      const Rgb eta = m.sss.medium.eta;  // the scale leaves η alone
+      g.fresnel = {float(eta[0]), float(eta[1]), float(eta[2]), 0.0f};
+      g.exit_norm = {float(1.0 / profiles::fresnel_exit_normalization(eta[0])),
+                     float(1.0 / profiles::fresnel_exit_normalization(eta[1])),
+                     float(1.0 / profiles::fresnel_exit_normalization(eta[2])), 0.0f};
       const Rgb total = p.kernel.total_reflectance;  // the profile's total_reflectance()
       g.reflectance = {float(total[0]), float(total[1]), float(total[2]), 1.0f};
       const auto count = p.fit.variances_mm2.size();

@@ -72,6 +72,11 @@ struct RenderOptions {
   // --transmission: light through thin parts of SSS materials, from the shadow maps'
   // thickness (renderer/README.md "Transmission"). Off: reflection only.
   bool transmission = true;
+  // --fresnel: the directional Fresnel factors of the separable BSSRDF on subsurface
+  // light (renderer/README.md "Directional Fresnel"): the light entering is E·(N·L)·F_t(η,
+  // θi), the light leaving M·F_t(η, θo)/(cπ) instead of M/π. Off: every incident watt
+  // enters and leaves as from a Lambertian surface.
+  bool fresnel = true;
   // --sss texture: each object's irradiance texture size and update policy, unless
   // texture_objects names it (by instance name; the first entry that matches wins).
   std::uint32_t texture_size = 1024;

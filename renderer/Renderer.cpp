@@ -138,6 +138,7 @@ void Renderer::write_frame_uniforms() {
                           options_.exposure, lights_.count, sss_mode_index(options_));
   uniforms.options.z = surface_key_stride(camera, bounds_, mm_per_unit_);
   uniforms.options.w = options_.transmission ? 1.0f : 0.0f;
+  uniforms.flags.x = options_.fresnel ? 1.0f : 0.0f;
   rect_ = geometry_rect(camera, bounds_, options_.width, options_.height);
   uniforms.rect = {float(rect_.x0), float(rect_.y0), float(rect_.x1), float(rect_.y1)};
   frame_uniforms_.write(&uniforms, sizeof(uniforms));
@@ -261,7 +262,9 @@ void Renderer::set_options(const RenderOptions& options) {
                      static_cast<std::uint32_t>(targets_.shadow_layers.size()),
                      options.shadow_map_size);
   if (data) materials_.replace(context_, std::move(*data));
-  const bool transmission_changed = options.transmission != options_.transmission;
+  // Both change the texture path's irradiance atlases (entry Fresnel is in E).
+  const bool transmission_changed =
+      options.transmission != options_.transmission || options.fresnel != options_.fresnel;
   options_ = options;
   if (shadow_changed)
     write_lights(make_light_setup(scene_lights_, bounds_, options_.shadow_map_size));

@@ -38,7 +38,7 @@ void main() {
   } else {
     diffuse = E;  // Lambert
   }
-  vec3 L = composite_radiance(id, albedo_id.rgb, diffuse, texelFetch(specular_tex, p, 0).rgb);
+  vec3 L = composite_radiance(id, albedo_id.rgb, diffuse, texelFetch(specular_tex, p, 0));
   imageStore(hdr_img, p, vec4(L, 1.0));
   imageStore(display_img, p, vec4(display_encode(L), 1.0));
 }

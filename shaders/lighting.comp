@@ -19,6 +19,7 @@ layout(set = 0, binding = 5) uniform sampler2D albedo_tex;
 layout(set = 0, binding = 6) uniform sampler2DArrayShadow shadow_tex;
 // rgb E, alpha the surface key (sss.glsl) for the separable SSS pass.
 layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D irradiance_img;
+// rgb specular radiance, alpha N·V (the composite's Fresnel exit factor).
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D specular_img;
 // For the SSS passes: x distance from the camera plane in mm, y material id (-1: none).
 layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D surface_img;
@@ -52,5 +53,6 @@ void main() {
   vec3 E, S;
   shade(s, true, E, S);
   imageStore(irradiance_img, p, vec4(E, surface_key(id, depth_mm)));
-  imageStore(specular_img, p, vec4(S, 1.0));
+  // alpha: N·V, the cosine the composite's Fresnel exit factor needs (composite.glsl).
+  imageStore(specular_img, p, vec4(S, clamp(dot(s.N, s.V), 0.0, 1.0)));
 }

@@ -82,7 +82,7 @@ void main() {
   if (blur.direction.z > 0.5) imageStore(scattered_img, p, vec4(diffuse, 1.0));
   vec4 albedo_id = texelFetch(albedo_tex, p, 0);
   vec3 L = composite_radiance(id, albedo_id.rgb, diffuse,
-                              texelFetch(specular_tex, p, 0).rgb);
+                              texelFetch(specular_tex, p, 0));
   imageStore(hdr_img, p, vec4(L, 1.0));
   imageStore(display_img, p, vec4(display_encode(L), 1.0));
 }

@@ -282,6 +282,7 @@ int main(int argc, char** argv) {
   std::size_t max_points = 8'000'000;
   std::uint64_t seed = 1, spp = 0;
   float exposure = 1.0f;
+  std::string fresnel = "on";
   bool brute = false, diffuse_only = false, no_specular = false, quiet = false, stats = false, exitance = false;
   MaterialOverrideArgs material;
   app.add_option("scene", scene_name, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
@@ -339,6 +340,9 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Worker threads (default 0: all cores)")->check(CLI::Range(0, 1024));
   app.add_option("--seed", seed, "Seed of the point sets or of the walks (default 1)");
   app.add_option("--exposure", exposure, "Exposure of the PNG (default 1)");
+  app.add_option("--fresnel", fresnel,
+                 "diffusion, on | off: directional Fresnel factors on subsurface light, as sss-viewer --fresnel "
+                 "(default on); the random walk refracts at the faces whatever this says");
   app.add_flag("--no-specular", no_specular,
                "diffusion, EXR --out: write the frame less its specular term, the light that scattered (with its "
                "albedo) and the opaque diffuse; compare with sss-viewer --no-specular (the error budget's "
@@ -364,6 +368,9 @@ int main(int argc, char** argv) {
   if (estimator != "octree" && estimator != "probe")
     return usage("--estimator: expected octree or probe, got '" + estimator + "'");
   if (walk && app.count("--estimator") > 0) return usage("--estimator: applies to --method diffusion only");
+  if (fresnel != "on" && fresnel != "off") return usage("--fresnel: expected on or off, got '" + fresnel + "'");
+  if (walk && app.count("--fresnel") > 0)
+    return usage("--fresnel: applies to --method diffusion only (the random walk refracts at the faces)");
   const bool probe = !walk && estimator == "probe";
   if (kernel != "exact" && kernel != "fit") return usage("--kernel: expected exact or fit, got '" + kernel + "'");
   if (shadows != "ray-traced" && shadows != "shadow-map")
@@ -461,6 +468,7 @@ int main(int argc, char** argv) {
       o.max_solid_angle = error_bound;
       o.brute_force = brute;
       o.diffuse_only = diffuse_only;
+      o.fresnel = fresnel == "on";
       o.threads = threads;
       o.seed = seed;
       o.exposure = exposure;

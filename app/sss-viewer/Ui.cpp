@@ -204,6 +204,15 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
   if (mode == 3) changed |= draw_texture_objects(r, o);
   changed |= ImGui::SliderFloat("exposure", &o.exposure, 0.05f, 8.0f, "%.2f",
                                 ImGuiSliderFlags_Logarithmic);
+  changed |= ImGui::Checkbox("directional Fresnel", &o.fresnel);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("--fresnel: light enters SSS materials x F_t(eta, theta_i) and leaves\n"
+                      "in the normalised Fresnel lobe F_t(eta, theta_o)/(c pi); off: all of it\n"
+                      "enters and leaves as from a Lambertian surface");
+  ImGui::SameLine();
+  changed |= ImGui::Checkbox("transmission", &o.transmission);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("--transmission: light through thin parts, thickness from the shadow maps");
   const std::string view_label(renderer::debug_view_name(o.debug_view));
   if (ImGui::BeginCombo("debug view", view_label.c_str())) {
     for (const renderer::DebugView v : renderer::all_debug_views()) {

@@ -105,6 +105,10 @@ int viewer_main(int argc, char** argv) {
   app.add_option("--transmission", a.transmission,
                  "on | off: light through thin parts of SSS materials, thickness from the "
                  "shadow maps (default on)");
+  app.add_option("--fresnel", a.fresnel,
+                 "on | off: directional Fresnel factors on subsurface light, F_t(eta, theta_i) "
+                 "entering and F_t(eta, theta_o)/(c pi) leaving instead of Lambert's 1/pi "
+                 "(default on: closer to the ground truth, README \"Directional Fresnel\")");
   app.add_option("--texture-size", a.texture_size,
                  "--sss texture: each object's irradiance texture size, 256..2048 (default 1024)");
   app.add_option("--texture-update", a.texture_update,
@@ -232,6 +236,9 @@ int viewer_main(int argc, char** argv) {
   if (a.transmission != "on" && a.transmission != "off")
     return usage("--transmission: expected on or off, got '" + a.transmission + "'");
   options.transmission = a.transmission == "on";
+  if (a.fresnel != "on" && a.fresnel != "off")
+    return usage("--fresnel: expected on or off, got '" + a.fresnel + "'");
+  options.fresnel = a.fresnel == "on";
 
   auto loaded = scene::load_scene(a.scene);
   if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what());

@@ -1,5 +1,7 @@
 #include "renderer/reference/PixelShading.h"
 
+#include "profiles/Fresnel.h"
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -59,6 +61,13 @@ VisibleSurface visible_surface(const scene::Scene& s, const RayScene& rays, cons
   const bool pre_post = v.subsurface && m.sss.albedo_mode == scene::AlbedoMode::PrePost;
   const glm::dvec3 albedo(v.albedo);
   v.scatter_factor = (pre_post ? glm::sqrt(albedo) : albedo) * (1.0 - double(m.metallic));
+  if (v.subsurface) {
+    const auto eta = m.sss.medium.eta;  // the scale leaves η alone
+    const double cos_o = std::clamp(double(glm::dot(v.normal, v.to_eye)), 0.0, 1.0);
+    for (int c = 0; c < 3; ++c)
+      v.exit_fresnel[c] =
+          profiles::fresnel_transmittance(cos_o, eta[c]) / profiles::fresnel_exit_normalization(eta[c]);
+  }
   return v;
 }
 

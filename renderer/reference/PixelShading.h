@@ -50,6 +50,11 @@ struct VisibleSurface {
   glm::dvec3 specular{0.0};   // GGX specular towards the eye (0 when not asked for)
   glm::dvec3 irradiance{0.0}; // direct irradiance E (opaque surfaces only)
   glm::dvec3 scatter_factor{0.0};  // what multiplies the scattered light in the composite
+  // Subsurface: the directional Fresnel exit factor F_t(η, n·v) / c per channel
+  // (profiles::fresnel_exit_normalization; shaders/shared/composite.glsl exit_fresnel),
+  // which the diffusion renderers apply with --fresnel on; 1 elsewhere. The ground truth
+  // refracts at the face instead.
+  glm::dvec3 exit_fresnel{1.0};
   // The pixel's radiance for an opaque surface: albedo (1 - metallic) E/π + specular.
   glm::dvec3 opaque_radiance() const;
 };

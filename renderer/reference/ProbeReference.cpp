@@ -103,6 +103,8 @@ ProbeEstimator::ProbeEstimator(const scene::Scene& s, const RayScene& rays, cons
     g.profile = reference_profile(sss, o.kernel, o.model_options);
     g.support_mm = g.profile->support_radius();
     g.pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
+    g.entry_fresnel = o.fresnel && !o.diffuse_only;  // diffuse_only: hdr = M/π
+    g.eta = glm::dvec3(sss.medium.eta[0], sss.medium.eta[1], sss.medium.eta[2]);
     const bool costly = profiles::model_is_costly(g.profile->model());
     const bool transmits = [&] {
       const Rgb t = g.profile->total_transmittance();
@@ -192,7 +194,7 @@ glm::dvec3 ProbeEstimator::sample(const ProbeGroup& g, const glm::dvec3& x_o, co
           if (!(K > 0.0)) continue;
           // The G-buffer's normal: normal-mapped, not flipped (no viewer), as the points'.
           const glm::vec3 n = shading_normal(scene_, p, p.normal);
-          double e = direct_light(scene_, rays_, p, n, nullptr, maps_).irradiance[c];
+          double e = direct_light(scene_, rays_, p, n, nullptr, maps_, g.entry_fresnel ? &g.eta : nullptr).irradiance[c];
           stats.shadow_rays += scene_.lights.size();
           if (g.pre_post) e *= std::sqrt(double(base_colour(scene_, p)[c]));
           total[c] += K * e / denominator;
@@ -279,7 +281,7 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
         p.index = y * o.width + x;
         p.group = g;
         p.base = o.diffuse_only ? glm::dvec3(0.0) : v.specular;
-        p.factor = (o.diffuse_only ? glm::dvec3(1.0) : v.scatter_factor) / kPi;
+        p.factor = (o.diffuse_only ? glm::dvec3(1.0) : v.scatter_factor * (o.fresnel ? v.exit_fresnel : glm::dvec3(1.0))) / kPi;
         // The mesh's interpolated normal at x_o, as the octree gathers with.
         p.x_o = glm::dvec3(v.point.position_mm);
         p.n_o = glm::normalize(glm::dvec3(v.point.normal));

@@ -87,6 +87,9 @@ struct ProbeGroup {
   std::vector<RadialSampler> radial;            // per channel
   double support_mm = 0.0;
   bool pre_post = false;
+  // Directional Fresnel at the probe hits (entry F_t(η, θi)); false: all light enters.
+  bool entry_fresnel = false;
+  glm::dvec3 eta{1.0};
 };
 
 class ProbeEstimator {

@@ -247,12 +247,17 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
   stats.sampling_ms = ms_since(t0);
   reporter.check();
 
-  // Irradiance at every point, then one octree per group.
+  // Irradiance at every point, then one octree per group. Directional Fresnel: the part of
+  // each light that enters (F_t(η, θi)) here, the exit lobe at the pixel; not in
+  // diffuse_only, whose hdr is M/π by definition.
+  const bool fresnel = o.fresnel && !o.diffuse_only;
   t0 = Clock::now();
   std::atomic<std::size_t> lit{0};
   for (Group& g : groups) {
     const scene::SssMaterial& sss = s.materials[g.material].sss;
     const bool pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
+    const glm::dvec3 eta(sss.medium.eta[0], sss.medium.eta[1], sss.medium.eta[2]);
+    const glm::dvec3* entry_eta = fresnel ? &eta : nullptr;
     std::vector<IrradiancePoint> points(g.surface.points.size());
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024),
@@ -265,7 +270,7 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
                             p.position_mm = sp.position_mm;
                             // The G-buffer's normal: normal-mapped, not flipped (no viewer).
                             const glm::vec3 n = shading_normal(s, p, sp.normal);
-                            const DirectLight d = direct_light(s, rays, p, n, nullptr, maps.get());
+                            const DirectLight d = direct_light(s, rays, p, n, nullptr, maps.get(), entry_eta);
                             glm::dvec3 e = d.irradiance;
                             if (pre_post) e *= glm::sqrt(glm::dvec3(base_colour(s, p)));
                             points[i] = {sp.position_mm, sp.normal, glm::vec3(e)};
@@ -325,7 +330,9 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
           // viewer-facing, normal-mapped one), or the far-side rule would misfire.
           const glm::dvec3 diffuse = o.brute_force ? g.octree->gather_brute_force(v.point.position_mm, v.point.normal, *g.kernel)
                                                    : g.octree->gather(v.point.position_mm, v.point.normal, *g.kernel);
-          L = o.diffuse_only ? diffuse / kPi : v.scatter_factor * diffuse / kPi + v.specular;
+          L = o.diffuse_only ? diffuse / kPi
+                             : v.scatter_factor * (fresnel ? v.exit_fresnel : glm::dvec3(1.0)) * diffuse / kPi +
+                                   v.specular;
         } else {
           L = o.diffuse_only ? glm::dvec3(0.0) : v.opaque_radiance();
         }

@@ -68,6 +68,10 @@ struct ReferenceOptions {
   double max_solid_angle = 0.3;  // Jensen–Buhler ε (steradians); see PointOctree.h
   bool brute_force = false;      // sum every point (tests and benchmarks of the octree)
   bool diffuse_only = false;     // hdr = M/π (before albedo), no specular, opaque surfaces 0
+  // Directional Fresnel on subsurface light, as RenderOptions::fresnel (diffusion and
+  // probe estimators; the random walk refracts at the faces whatever this says). Ignored
+  // with diffuse_only.
+  bool fresnel = true;
   int threads = 0;               // 0: every hardware thread
   std::uint64_t seed = 1;        // of the point sets, or of the probes
   Estimator estimator = Estimator::Octree;

@@ -1,5 +1,7 @@
 #include "renderer/reference/Shading.h"
 
+#include "profiles/Fresnel.h"
+
 #include "renderer/image/Image.h"
 
 #include <glm/geometric.hpp>
@@ -119,7 +121,8 @@ glm::vec3 shading_normal(const scene::Scene& s, const SurfacePoint& p, const glm
 }
 
 DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const SurfacePoint& p,
-                         const glm::vec3& n, const SpecularInputs* spec, const ShadowMaps* maps) {
+                         const glm::vec3& n, const SpecularInputs* spec, const ShadowMaps* maps,
+                         const glm::dvec3* entry_eta) {
   DirectLight out;
   const float mm_per_unit = float(s.mm_per_unit);
   const glm::vec3 p_scene = p.position_mm / mm_per_unit;
@@ -159,7 +162,12 @@ DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const Surf
       if (rays.occluded(p.position_mm + side * offset, l, 0.0f, distance - 2.0f * offset)) continue;
     }
     const glm::dvec3 incident = radiance * double(n_dot_l) * visibility;
-    out.irradiance += incident;
+    if (entry_eta) {
+      for (int c = 0; c < 3; ++c)
+        out.irradiance[c] += incident[c] * profiles::fresnel_transmittance(n_dot_l, (*entry_eta)[c]);
+    } else {
+      out.irradiance += incident;
+    }
     if (spec) {
       const glm::vec3& v = spec->to_eye;
       const double n_dot_v = std::max(double(glm::dot(n, v)), 1e-4);

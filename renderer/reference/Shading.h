@@ -56,9 +56,11 @@ struct SpecularInputs {
 // Direct light at p with normal n (unit). `specular` null: irradiance only. `maps` null:
 // ray-traced shadows from every light; else the lights are shadowed as the GPU shadows
 // them (ShadowMaps.h: its filtered shadow maps, no shadow from point lights, only the
-// lights the GPU shades).
+// lights the GPU shades). `entry_eta` non-null: a subsurface point with directional
+// Fresnel, each light's irradiance times F_t(η, n·l) per channel (the part that enters;
+// shaders/shared/shading.glsl does the same), the specular lobe unchanged.
 DirectLight direct_light(const scene::Scene& scene, const RayScene& rays, const SurfacePoint& p,
                          const glm::vec3& n, const SpecularInputs* specular,
-                         const ShadowMaps* maps = nullptr);
+                         const ShadowMaps* maps = nullptr, const glm::dvec3* entry_eta = nullptr);
 
 }  // namespace sss::reference

@@ -56,6 +56,8 @@ struct FrameUniforms {
   vec4 rect;           // x0, y0, x1, y1 (pixels, x1 y1 exclusive): the screen passes
                        // (lighting, SSS, composite) cover this rect; outside it every pixel
                        // is background (CameraSetup.h: geometry_rect)
+  vec4 flags;          // x 1 = directional Fresnel factors on subsurface light
+                       // (RenderOptions::fresnel; shading.glsl, composite.glsl); yzw 0
 };
 
 struct GpuLight {
@@ -83,6 +85,8 @@ struct GpuMaterial {
                      // the reflectance fit's variances, MaterialTable.cpp), w its thickness
                      // in mm; w 0: not a slab (lighting.comp uses the profile through the
                      // shadow-map thickness)
+  vec4 fresnel;      // rgb the medium's index of refraction η (per channel), w 0
+  vec4 exit_norm;    // rgb 1/c, c = 1 - 2 m1(1/η) (profiles::fresnel_exit_normalization), w 0
   vec4 variances[SSS_MAX_GAUSSIANS / 4];  // v_i in mm^2, ascending
   vec4 gauss_weights[SSS_MAX_GAUSSIANS];  // rgb w_i (sum = T)
   vec4 taps[SSS_MAX_TAPS];                // rgb weight (sum 1), w offset in mm
@@ -112,9 +116,9 @@ struct DebugPush {  // debug view pass (debug_view.comp)
 
 #ifdef __cplusplus
 static_assert(sizeof(mat4) == 64);
-static_assert(sizeof(FrameUniforms) == 3 * 64 + 6 * 16);
+static_assert(sizeof(FrameUniforms) == 3 * 64 + 7 * 16);
 static_assert(sizeof(GpuLight) == 2 * 64 + 5 * 16);
-static_assert(sizeof(GpuMaterial) == 16 * (4 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
+static_assert(sizeof(GpuMaterial) == 16 * (6 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
 static_assert(sizeof(DrawPush) == 112);
 inline constexpr uint kMaxTextures = SSS_MAX_TEXTURES;
 inline constexpr uint kMaxLights = SSS_MAX_LIGHTS;

@@ -37,6 +37,13 @@ vec3 transmittance_total(int id, float d_mm) {
   return sum;
 }
 
+// The factor light entering a subsurface material at cosine NdotL keeps: F_t with
+// directional Fresnel on, 1 (all of it) otherwise.
+vec3 entry_fresnel(int id, float NdotL) {
+  if (frame.flags.x < 0.5) return vec3(1.0);
+  return fresnel_transmittance(NdotL, materials[id].fresnel.rgb);
+}
+
 float shadow_visibility(int index, GpuLight light, vec3 p, vec3 n) {
   vec4 c = light.shadow_matrix * vec4(p + n * light.shadow.z, 1.0);
   vec3 s = c.xyz / c.w;
@@ -71,7 +78,8 @@ struct SurfacePoint {
   vec3 albedo;  // base colour (F0 of metals)
 };
 
-// E: irradiance at P (Σ over lights of E_light N·L x shadow), plus for subsurface
+// E: irradiance at P (Σ over lights of E_light N·L x shadow; for subsurface materials
+// with directional Fresnel x F_t(η, N·L), the part that enters), plus for subsurface
 // materials the transmitted E_back / Σ w_i (see above); S: specular radiance, computed
 // only when `specular` is true (the texture path needs E alone).
 void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
@@ -84,7 +92,8 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
   E = vec3(0.0);
   S = vec3(0.0);
   vec3 E_back = vec3(0.0);  // x the total transmittance of the thickness, per light
-  bool transmits = frame.options.w > 0.5 && materials[s.id].reflectance.w > 0.5;
+  bool subsurface = materials[s.id].reflectance.w > 0.5;
+  bool transmits = frame.options.w > 0.5 && subsurface;
   int count = int(frame.options.x);
   for (int i = 0; i < count; ++i) {
     GpuLight light = light_block.lights[i];
@@ -106,13 +115,17 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
     if (NdotL <= 0.0) {
       if (transmits && NdotL < 0.0) {
         float d = shadow_thickness(shadow_depth_tex, i, light, s.P);  // -1: no shadow map
-        if (d > 0.0) E_back += radiance * -NdotL * transmittance_total(s.id, d * frame.scale.x);
+        if (d > 0.0)
+          E_back += radiance * -NdotL * entry_fresnel(s.id, -NdotL) *
+                    transmittance_total(s.id, d * frame.scale.x);
       }
       continue;
     }
     float visibility = light.shadow.y > 0.5 ? shadow_visibility(i, light, s.P, s.N) : 1.0;
     vec3 incident = radiance * NdotL * visibility;
-    E += incident;
+    // Subsurface light counts only what crosses the boundary: R(r) is per unit power that
+    // entered (docs/ARCHITECTURE.md), the specular lobe takes the rest.
+    E += subsurface ? incident * entry_fresnel(s.id, NdotL) : incident;
     if (has_specular) {
       vec3 H = normalize(L + s.V);
       float NdotH = max(dot(s.N, H), 0.0);

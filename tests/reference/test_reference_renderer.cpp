@@ -3,6 +3,7 @@
 // progress, cancellation and bad options.
 #include "renderer/reference/ReferenceRenderer.h"
 
+#include "profiles/Fresnel.h"
 #include "profiles/Presets.h"
 #include "renderer/image/Tonemap.h"
 #include "renderer/scene/BuiltinScenes.h"
@@ -100,6 +101,7 @@ TEST(ReferenceRenderer, ThinSlabLitFromBehindTransmitsTheMultipoleTotal) {
   m.sss = std::get<scene::SssMaterial>(made);
   const scene::Scene s = block_scene(m, 60.0f, 2.0f, {0.0f, 1.0f, 0.0f});
   ReferenceOptions o = small(9, 9);
+  o.fresnel = false;  // π L = exitance (DirectionalFresnelFactorsFollowTheirClosedForm has the factors)
   const ReferenceImage img = render_reference(s, o);
   const profiles::RgbProfile profile(profiles::Model::Multipole, m.sss.effective_medium());
   const Rgb total_t = profile.total_transmittance();
@@ -109,6 +111,56 @@ TEST(ReferenceRenderer, ThinSlabLitFromBehindTransmitsTheMultipoleTotal) {
     std::printf("[ slab T_total %.4f, reference %.4f (%+.2f%%) ]\n", total_t[ch], got,
                 100.0 * (got / total_t[ch] - 1.0));
   }
+}
+
+TEST(ReferenceRenderer, DirectionalFresnelFactorsFollowTheirClosedForm) {
+  // Issue 18 part 1 in the diffusion reference: a skin1 block lit at 70 degrees from its
+  // normal and seen at 70 degrees on the other side. Every irradiance point's E carries
+  // F_t(η, cos 70°) (entry) and every pixel F_t(η, n·v) / c (exit) with --fresnel on, so
+  // the frame with it is the frame without it times F_t(η, cos 70°)^2 / c per channel
+  // (profiles::fresnel_transmittance, fresnel_exit_normalization; 0.92 for η = 1.3), pixel
+  // for pixel: the same points, the same octree. Tolerance 1e-5 relative: the points store
+  // E in float (2^-24) and the octree sums in double; measured below 1e-6. And --diffuse-only
+  // (M/π by definition) ignores the switch.
+  scene::Material m;
+  m.metallic = 0.0f;
+  m.specular = 0.0f;
+  m.roughness = 1.0f;
+  m.sss = scene::preset_sss_material("skin1");
+  const double t = 70.0 * kPi / 180.0;
+  // The light comes from -x, the camera looks from +x: the block is wide enough (320 mm)
+  // that its top face fills the tilted view, the +x side the camera could see is not lit,
+  // and the lit -x side (another entry angle) is > 100 mm from every pixel seen, where
+  // skin1's red profile has fallen by e^-27 (at 22 mm it still moved red by 3e-5).
+  scene::Scene s = block_scene(m, 160.0f, 20.0f, {float(std::sin(t)), -float(std::cos(t)), 0.0f});
+  s.cameras[0].xmag = 20 * kMm;
+  s.cameras[0].world = scene::look_at_world({100 * kMm * float(std::sin(t)), 100 * kMm * float(std::cos(t)), 0.0f},
+                                            glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
+  ReferenceOptions o = small(12, 12);
+  o.spacing_mfp = 4.0;  // a ratio of two frames over the same points: coarse is enough
+  o.fresnel = false;
+  const ReferenceImage off = render_reference(s, o);
+  o.fresnel = true;
+  const ReferenceImage on = render_reference(s, o);
+  const double cos_t = std::cos(t);
+  int checked = 0;
+  for (std::size_t i = 0; i < on.hdr.rgba.size(); i += 4) {
+    if (!(off.hdr.rgba[i + 3] > 0.5f)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double eta = m.sss.medium.eta[std::size_t(c)];
+      const double expected = profiles::fresnel_transmittance(cos_t, eta) * profiles::fresnel_transmittance(cos_t, eta) /
+                              profiles::fresnel_exit_normalization(eta);
+      ASSERT_GT(off.hdr.rgba[i + c], 0.0f);
+      EXPECT_NEAR(double(on.hdr.rgba[i + c]) / off.hdr.rgba[i + c], expected, 1e-5 * expected) << "channel " << c;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100);
+  o.diffuse_only = true;
+  const ReferenceImage m_on = render_reference(s, o);
+  o.fresnel = false;
+  const ReferenceImage m_off = render_reference(s, o);
+  EXPECT_EQ(m_on.hdr.rgba, m_off.hdr.rgba);
 }
 
 TEST(ReferenceRenderer, OctreeAgreesWithBruteForceWithinOnePercentRms) {

@@ -76,6 +76,10 @@ RenderOptions view_options(std::uint32_t w, std::uint32_t h, DebugView view,
                            SssMode sss = SssMode::Screen) {
   RenderOptions o = small_options(w, h, sss, SssKind::Separable);
   o.debug_view = view;
+  // The views show the lighting input E and the scattered R * E; their closed forms below
+  // (E = 1, the frame equal to the scattered view) hold without the directional Fresnel
+  // factors, which multiply E on entry and the frame on exit.
+  o.fresnel = false;
   return o;
 }
 

@@ -44,6 +44,7 @@
 #include "RenderTest.h"
 
 #include "profiles/EdgeResponse.h"
+#include "profiles/Fresnel.h"
 #include "profiles/Profile.h"
 #include "renderer/scene/BuiltinScenes.h"
 
@@ -105,9 +106,14 @@ class EdgeTest : public RenderTest {
   // whose field of view spans the same [-half_width, half_width] mm on the slab.
   // tilt_deg > 0: the orthographic camera turned about the edge's line (z) by that angle
   // from the normal, toward +x: surface x appears at x cos(tilt) on the image.
+  // The profile checks compare pi L with M(x), the exitance, so they render without the
+  // directional Fresnel factors (RenderOptions::fresnel), which the Fresnel test applies
+  // on top; light_tilt_deg > 0 turns the light about z toward -x by that angle, and
+  // `mode` renders another SSS path.
   EdgeRun render_edge(const std::string& preset, SssKind kind, double half_width_mm = kHalfWidthMm,
                       int width = kWidth, double height_mm = 0.0, double material_scale = 1.0,
-                      double tilt_deg = 0.0) {
+                      double tilt_deg = 0.0, bool fresnel = false, double light_tilt_deg = 0.0,
+                      SssMode mode = SssMode::Screen) {
     scene::EdgeOptions eo;
     eo.preset = preset;
     eo.half_width_mm = half_width_mm;
@@ -131,7 +137,16 @@ class EdgeTest : public RenderTest {
       run.scene.cameras[0].world = scene::look_at_world({d * float(std::sin(t)), d * float(std::cos(t)), 0.0f},
                                                         glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
     }
-    const Frame f = render(run.scene, small_options(width, kHeight, SssMode::Screen, kind));
+    if (light_tilt_deg > 0.0) {
+      const double t = light_tilt_deg * kPi / 180.0;
+      scene::Light& l = run.scene.lights[0];
+      const auto mask = l.mask;
+      l = scene::directional_light(l.name, {float(std::sin(t)), -float(std::cos(t)), 0.0f}, l.intensity, l.color);
+      l.mask = mask;
+    }
+    RenderOptions options = small_options(width, kHeight, mode, kind);
+    options.fresnel = fresnel;
+    const Frame f = render(run.scene, options);
     for (int x = 0; x < width; ++x) {
       const float* p = f.hdr.pixel(x, kHeight / 2);
       run.pi_L.push_back({kPi * p[0], kPi * p[1], kPi * p[2]});
@@ -385,6 +400,52 @@ TEST_F(EdgeTest, MaterialScaleScattersAsIfTheObjectWereLarger) {
     }
     std::printf("[ scale 2 %s ] worst |scaled - wide| / T = %.2e\n",
                 std::string(sss_kind_name(kind)).c_str(), worst);
+  }
+}
+
+// Directional Fresnel (issue 18 part 1), in every screen and texture path: with the light
+// and the camera each at 70 degrees from the slab's normal (where the product is 0.92 for
+// η = 1.3 and either factor alone is off by 7% or more), each pixel of the frame with
+// --fresnel on must be the frame without it times F_t(η, cos 70°)^2 / c per channel, c = 1 - 2 m1(1/η): the entry factor multiplies E before the
+// blur, the exit factor the blurred light, and a uniform factor commutes with both. The
+// closed form is profiles::fresnel_transmittance and fresnel_exit_normalization (checked
+// by their own quadrature in test_fresnel). Tolerance, relative: each frame's rgba16f
+// chain (eps above, both frames) plus the exit cosine's rgba16f rounding (half an ulp of
+// cos 70°; dF_t/dμ < 1 there, so at most kHalfUlp). Pixels darker than 1e-3 T are left out:
+// deep in the shadow the blue channel falls into half-float subnormals, where the relative
+// rounding bound does not hold.
+TEST_F(EdgeTest, DirectionalFresnelScalesEveryPathByItsClosedForm) {
+  const double light_deg = 70.0, view_deg = 70.0;
+  struct Path {
+    SssMode mode;
+    SssKind kind;
+    const char* name;
+  };
+  for (const Path& path : {Path{SssMode::Screen, SssKind::Separable, "separable"},
+                           Path{SssMode::Screen, SssKind::Gaussians, "gaussians"},
+                           Path{SssMode::Texture, SssKind::Gaussians, "texture"}}) {
+    const EdgeRun off = render_edge("skin1", path.kind, kHalfWidthMm, kWidth, 0.0, 1.0, view_deg, false, light_deg, path.mode);
+    const EdgeRun on = render_edge("skin1", path.kind, kHalfWidthMm, kWidth, 0.0, 1.0, view_deg, true, light_deg, path.mode);
+    const MaterialProfile& mp = *off.materials.profiles[0];
+    const double eps = path.kind == SssKind::Gaussians ? gaussians_eps(mp.fit) : kSeparableEps;
+    const Rgb T = exact_profile(off.scene).total_reflectance();
+    const auto eta = off.scene.materials[0].sss.medium.eta;
+    double worst = 0.0;
+    int checked = 0;
+    for (int x = 0; x < kWidth; ++x)
+      for (int c = 0; c < 3; ++c) {
+        if (!(off.pi_L[x][c] > 1e-3 * T[c])) continue;
+        const double expected = profiles::fresnel_transmittance(std::cos(light_deg * kPi / 180.0), eta[c]) *
+                                profiles::fresnel_transmittance(std::cos(view_deg * kPi / 180.0), eta[c]) /
+                                profiles::fresnel_exit_normalization(eta[c]);
+        const double ratio = on.pi_L[x][c] / off.pi_L[x][c];
+        EXPECT_NEAR(ratio, expected, (2.0 * eps + kHalfUlp) * expected)
+            << path.name << " x=" << pixel_center_mm(x) << " mm channel " << c;
+        worst = std::max(worst, std::fabs(ratio / expected - 1.0));
+        ++checked;
+      }
+    EXPECT_GT(checked, kWidth) << path.name;  // the lit side and the near shadow, in every channel
+    std::printf("[ fresnel %s ] worst |on/off / closed form - 1| = %.2e over %d values\n", path.name, worst, checked);
   }
 }
 

@@ -47,6 +47,9 @@ double texture_eps(const profiles::GaussianFit& fit) {
 RenderOptions texture_options(std::uint32_t w, std::uint32_t h, std::uint32_t size) {
   RenderOptions o = small_options(w, h, SssMode::Texture);
   o.texture_size = size;
+  // The edge checks compare pi L with the exitance M(x); the directional Fresnel factors
+  // on top of the texture path are EdgeTest.DirectionalFresnelScalesEveryPathByItsClosedForm's.
+  o.fresnel = false;
   return o;
 }
 

@@ -18,12 +18,17 @@
 //   converged to < 1e-6 (checked against the closed-form total below to 1e-4).
 // Measured: separable 0.000%, gaussians -0.24 to -0.40%. A missing 1/Σw_i would be off
 // by Σw_i (-53%), a wrong thickness for a slab by all of it.
+// These closed forms count the exitance M/π, so they render without the directional
+// Fresnel factors (RenderOptions::fresnel); the slab test then checks what the factors do
+// to transmitted light: F_t(η, θ) entering the back face and F_t(η, θo)/c leaving the
+// front.
 #include "RenderTest.h"
 
 #include "renderer/MaterialTable.h"
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/scene/Camera.h"
 
+#include "profiles/Fresnel.h"
 #include "profiles/Profile.h"
 
 #include <gtest/gtest.h>
@@ -104,20 +109,37 @@ TEST_P(SlabTransmission, CentreEqualsTheMultipoleTotalTransmittanceIntegrated) {
   const Rgb integral = integrate_transmittance(rgb, 1e-6, 200.0);
   const Rgb within = integrate_transmittance(rgb, 1e-6, 15.0);
   const Rgb closed = rgb.total_transmittance();
-  const Frame f = render(s, small_options(160, 90, SssMode::Screen, GetParam()));
+  RenderOptions options = small_options(160, 90, SssMode::Screen, GetParam());
+  options.fresnel = false;
+  const Frame f = render(s, options);
   const Rgb L = centre_mean(f.hdr);
   const double E = 3.0, albedo = 1.0;
+  // Separable: float32 all the way, 0.1%. Gaussians: 1% (measured -0.24..-0.40%, one-
+  // sided: rgba16f intermediates, 6 Gaussians x 2 stores in sequence, each off by up to
+  // 2^-11 = 0.05% rounded or 2^-10 truncated, which lavapipe's bias suggests: <= 1.2%).
+  const double tol = GetParam() == SssKind::Separable ? 0.001 : 0.01;
   for (int c = 0; c < 3; ++c) {
     EXPECT_NEAR(integral[c], closed[c], 1e-4 * closed[c]);
     const double expected = E * integral[c] * albedo / kPi;
     std::printf("%s channel %d: GPU %.5f, E ∫T 2πr dr albedo/π %.5f (%.3f%%), beyond 15 mm %.2e\n",
                 std::string(sss_kind_name(GetParam())).c_str(), c, L[c], expected,
                 100.0 * (L[c] / expected - 1.0), 1.0 - within[c] / integral[c]);
-    // Separable: float32 all the way, 0.1%. Gaussians: 1% (measured -0.24..-0.40%, one-
-    // sided: rgba16f intermediates, 6 Gaussians x 2 stores in sequence, each off by up to
-    // 2^-11 = 0.05% rounded or 2^-10 truncated, which lavapipe's bias suggests: <= 1.2%).
-    const double tol = GetParam() == SssKind::Separable ? 0.001 : 0.01;
     EXPECT_NEAR(L[c], expected, tol * expected) << "channel " << c;
+  }
+  // Directional Fresnel: the light crosses the back face at normal incidence (F_t(η, 1))
+  // and leaves the front toward the camera, 17 degrees off the normal at the slab's centre
+  // (F_t(η, n·v)/c): the centre with it is the centre without it times both. Across the
+  // 8 x 8 pixels n·v moves by < 0.01, where dF_t/dμ < 0.05: < 5e-4 of the factor, inside
+  // the tolerance above.
+  options.fresnel = true;
+  const Rgb with_fresnel = centre_mean(render(s, options).hdr);
+  const glm::vec3 eye = glm::vec3(s.cameras[0].world[3]) * float(s.mm_per_unit);
+  const double cos_o = glm::normalize(eye - glm::vec3(0.0f, 0.0f, 1.0f)).z;
+  for (int c = 0; c < 3; ++c) {
+    const double eta = s.materials[0].sss.medium.eta[std::size_t(c)];
+    const double factor = profiles::fresnel_transmittance(1.0, eta) * profiles::fresnel_transmittance(cos_o, eta) /
+                          profiles::fresnel_exit_normalization(eta);
+    EXPECT_NEAR(with_fresnel[c] / L[c], factor, (tol + 5e-4) * factor) << "channel " << c << " cos_o " << cos_o;
   }
   // Without transmission the front is black (it is lit only from behind).
   RenderOptions off = small_options(160, 90, SssMode::Screen, GetParam());
@@ -143,6 +165,7 @@ TEST_F(RenderTest, TextureSpaceSlabCentreEqualsTheMultipoleTotalTransmittance) {
   const Rgb integral = integrate_transmittance(rgb, 1e-6, 200.0);
   RenderOptions o = small_options(160, 90, SssMode::Texture);
   o.texture_size = 512;
+  o.fresnel = false;  // M/π (header)
   const Rgb L = centre_mean(render(s, o).hdr);
   for (int c = 0; c < 3; ++c) {
     const double expected = 3.0 * integral[c] / kPi;
@@ -165,7 +188,9 @@ TEST_F(RenderTest, ThinSemiInfiniteSlabTransmitsTheProfileThroughItsThickness) {
                                        profiles::Model::BetterDipole);
   ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(made));
   s.materials[0].sss = std::get<scene::SssMaterial>(made);
-  const Frame f = render(s, small_options(160, 90, SssMode::Screen, SssKind::Separable));
+  RenderOptions options = small_options(160, 90, SssMode::Screen, SssKind::Separable);
+  options.fresnel = false;  // M/π (header)
+  const Frame f = render(s, options);
   const profiles::GaussianFit& fit = f.materials.profiles[0]->fit;
   const double d = 2.0;
   const Rgb L = centre_mean(f.hdr);
