@@ -282,7 +282,7 @@ int main(int argc, char** argv) {
   std::size_t max_points = 8'000'000;
   std::uint64_t seed = 1, spp = 0;
   float exposure = 1.0f;
-  std::string fresnel = "on";
+  std::string fresnel = "off";
   bool brute = false, diffuse_only = false, no_specular = false, quiet = false, stats = false, exitance = false;
   MaterialOverrideArgs material;
   app.add_option("scene", scene_name, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
@@ -342,7 +342,7 @@ int main(int argc, char** argv) {
   app.add_option("--exposure", exposure, "Exposure of the PNG (default 1)");
   app.add_option("--fresnel", fresnel,
                  "diffusion, on | off: directional Fresnel factors on subsurface light, as sss-viewer --fresnel "
-                 "(default on); the random walk refracts at the faces whatever this says");
+                 "(default off); the random walk refracts at the faces whatever this says");
   app.add_flag("--no-specular", no_specular,
                "diffusion, EXR --out: write the frame less its specular term, the light that scattered (with its "
                "albedo) and the opaque diffuse; compare with sss-viewer --no-specular (the error budget's "

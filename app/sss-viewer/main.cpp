@@ -108,7 +108,8 @@ int viewer_main(int argc, char** argv) {
   app.add_option("--fresnel", a.fresnel,
                  "on | off: directional Fresnel factors on subsurface light, F_t(eta, theta_i) "
                  "entering and F_t(eta, theta_o)/(c pi) leaving instead of Lambert's 1/pi "
-                 "(default on: closer to the ground truth, README \"Directional Fresnel\")");
+                 "(default off: closer to the ground truth away from silhouettes until single scattering lands, "
+                 "README \"Directional Fresnel\")");
   app.add_option("--texture-size", a.texture_size,
                  "--sss texture: each object's irradiance texture size, 256..2048 (default 1024)");
   app.add_option("--texture-update", a.texture_update,

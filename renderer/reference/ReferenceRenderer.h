@@ -70,8 +70,8 @@ struct ReferenceOptions {
   bool diffuse_only = false;     // hdr = M/π (before albedo), no specular, opaque surfaces 0
   // Directional Fresnel on subsurface light, as RenderOptions::fresnel (diffusion and
   // probe estimators; the random walk refracts at the faces whatever this says). Ignored
-  // with diffuse_only.
-  bool fresnel = true;
+  // with diffuse_only. Off by default, as RenderOptions::fresnel.
+  bool fresnel = false;
   int threads = 0;               // 0: every hardware thread
   std::uint64_t seed = 1;        // of the point sets, or of the probes
   Estimator estimator = Estimator::Octree;
