@@ -43,6 +43,9 @@ void validate(const Coefficients& c, const MonteCarloOptions& o) {
     fail("roulette_survival", "must lie in (0, 1)");
   if (o.max_interactions_per_photon == 0) fail("max_interactions_per_photon", "must be > 0");
   if (o.max_scattering_order < 0) fail("max_scattering_order", "must be >= 0 (0: all)");
+  if (!(o.incidence_cos > 0.0 && o.incidence_cos <= 1.0)) fail("incidence_cos", "must lie in (0, 1]");
+  if (o.exit_cosine_bins < 0 || o.exit_cosine_bins > 100000)
+    fail("exit_cosine_bins", "must lie in [0, 100000] (0: no exit-angle tally)");
 }
 
 // Mean and standard error from sums of per-photon contributions x over n photons.
@@ -62,18 +65,20 @@ MonteCarloResult run_monte_carlo(const Coefficients& c, const MonteCarloOptions&
   validate(c, opt);
   const auto start = std::chrono::steady_clock::now();
   const std::size_t nb = opt.bin_edges_mm.empty() ? 0 : opt.bin_edges_mm.size() - 1;
+  const std::size_t nc = static_cast<std::size_t>(opt.exit_cosine_bins);
+  const std::size_t slots = 2 * nb + nc;  // Walker: radial bins per face, then exit cosines
   const std::uint64_t chunks =
       (opt.photons + kMonteCarloChunkPhotons - 1) / kMonteCarloChunkPhotons;
   // Chunk sums are added strictly in chunk order (OrderedChunks.h): the result does not
   // depend on the thread count.
-  ChunkSums total(2 * nb);
+  ChunkSums total(slots);
   detail::run_ordered_chunks<ChunkSums>(
       chunks, opt.threads,
       [&] {
         return [&, walker = std::make_shared<Walker>(c, opt)](std::uint64_t k, ChunkSums& sums) {
           const std::uint64_t count =
               std::min(kMonteCarloChunkPhotons, opt.photons - k * kMonteCarloChunkPhotons);
-          sums = ChunkSums(2 * nb);
+          sums = ChunkSums(slots);
           walker->run_chunk(k, count, sums);
         };
       },
@@ -101,6 +106,14 @@ MonteCarloResult run_monte_carlo(const Coefficients& c, const MonteCarloOptions&
              t.stderr_[b]);
     }
   }
+  MonteCarloTally& by_cos = r.reflectance_by_exit_cosine;
+  by_cos.total = r.reflectance.total;
+  by_cos.total_stderr = r.reflectance.total_stderr;
+  by_cos.value.resize(nc);
+  by_cos.stderr_.resize(nc);
+  for (std::size_t k = 0; k < nc; ++k)
+    finish(total.sum[2 * nb + k], total.sum_sq[2 * nb + k], n, static_cast<double>(nc), by_cos.value[k],
+           by_cos.stderr_[k]);
   finish(total.total[2], total.total_sq[2], n, 1.0, r.absorbed, r.absorbed_stderr);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;

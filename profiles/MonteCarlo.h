@@ -9,7 +9,8 @@
 // Every binned value carries its standard error, computed from per-photon contributions.
 //
 // The walk (MonteCarloWalker.cpp has the details and sources):
-// - photons start at the origin going straight down (+z; the medium is z >= 0) with
+// - photons start at the origin going straight down (+z; the medium is z >= 0), or along
+//   the refracted beam of MonteCarloOptions::incidence_cos, with
 //   weight 1; distances between scattering events are sampled with sigma_s, and the weight
 //   decays continuously as exp(-sigma_a * path length) ("absorption weighting", the
 //   microscopic Beer–Lambert form; Sassaroli & Martelli 2012, JOSA A 29(10):2110, show it
@@ -55,6 +56,13 @@ struct MonteCarloOptions {
   // instead of scattering a (k+1)-th time; k = 1 gives single scattering alone, to check
   // against closed forms.
   int max_scattering_order = 0;
+  // The beam's cosine to the normal outside the medium, in (0, 1]: photons start along its
+  // refracted direction (Snell, in the x-z plane), still per unit power that entered.
+  double incidence_cos = 1.0;
+  // > 0: also tally what leaves through the top face by its cosine to the normal outside
+  // (after refraction), in this many equal bins of [0, 1]: MonteCarloResult::
+  // reflectance_by_exit_cosine (the single-scattering checks bin by exit angle).
+  int exit_cosine_bins = 0;
 };
 
 // Photons per chunk: the unit of work, of RNG streams and of the ordered reduction.
@@ -74,6 +82,10 @@ struct MonteCarloResult {
   std::vector<double> bin_edges_mm;
   MonteCarloTally reflectance;    // exits through the top face (z = 0)
   MonteCarloTally transmittance;  // exits through the bottom face (slabs only)
+  // With exit_cosine_bins = n: value[k] is the flux fraction leaving the top face per unit
+  // of outside exit cosine μo in [k/n, (k+1)/n) (Σ weight / (N / n)), so Σ value / n =
+  // reflectance.total; total and total_stderr as reflectance's.
+  MonteCarloTally reflectance_by_exit_cosine;
   std::uint64_t photons = 0;
   std::uint64_t scattering_events = 0;
   // Weight absorbed in the medium per unit power entered, with its standard error. In
@@ -87,7 +99,7 @@ struct MonteCarloResult {
 
 // Throws std::invalid_argument whose message starts with the offending field
 // ("sigma_a: ...", "photons: ...", "bin_edges_mm: ...", "thickness_mm: ...", "threads: ...",
-// "roulette_weight: ...", ...) for invalid coefficients (Coefficients::validate), photons
+// "roulette_weight: ...", "incidence_cos: ...", "exit_cosine_bins: ...", ...) for invalid coefficients (Coefficients::validate), photons
 // == 0, threads < 0, a thickness that is not > 0 (NaN included), or bin edges that are
 // not finite, >= 0 and strictly ascending. An empty bin_edges_mm is allowed (totals
 // only); a single edge is not (it bounds no bin).

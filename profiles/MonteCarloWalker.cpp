@@ -20,8 +20,8 @@ constexpr double kNegligibleWeight = 1e-250;
 
 Walker::Walker(const Coefficients& c, const MonteCarloOptions& o)
     : c_(c), o_(o), nb_(o.bin_edges_mm.empty() ? 0 : o.bin_edges_mm.size() - 1),
-      photon_(2 * nb_, 0.0) {
-  touched_.reserve(2 * nb_);
+      nc_(static_cast<std::size_t>(o.exit_cosine_bins)), photon_(2 * nb_ + nc_, 0.0) {
+  touched_.reserve(2 * nb_ + nc_);
 }
 
 void Walker::run_chunk(std::uint64_t chunk, std::uint64_t count, ChunkSums& out) {
@@ -47,7 +47,19 @@ void Walker::tally(std::size_t face, double r, double w) {
   const auto& e = o_.bin_edges_mm;
   if (nb_ == 0 || w == 0.0 || r < e.front() || r >= e.back()) return;
   const auto bin = std::upper_bound(e.begin(), e.end(), r) - e.begin() - 1;
-  const std::size_t slot = face * nb_ + static_cast<std::size_t>(bin);
+  add(face * nb_ + static_cast<std::size_t>(bin), w);
+}
+
+void Walker::tally_exit_cosine(double cos_inside, double w) {
+  if (nc_ == 0 || w == 0.0) return;
+  // Snell: sin θo = η sin θi; the escaping part never exceeds the critical angle.
+  const double sin2_o = c_.eta * c_.eta * (1.0 - cos_inside * cos_inside);
+  const double cos_o = std::sqrt(std::max(0.0, 1.0 - sin2_o));
+  const std::size_t k = std::min(nc_ - 1, static_cast<std::size_t>(cos_o * static_cast<double>(nc_)));
+  add(2 * nb_ + k, w);
+}
+
+void Walker::add(std::size_t slot, double w) {
   if (photon_[slot] == 0.0) touched_.push_back(slot);
   photon_[slot] += w;
 }
@@ -58,7 +70,10 @@ void Walker::tally(std::size_t face, double r, double w) {
 void Walker::walk(Xoshiro256ss& rng, double totals[3], ChunkSums& out) {
   const double sa = c_.sigma_a, ss = c_.sigma_s, g = c_.g, d = o_.thickness_mm;
   const double inv_eta = 1.0 / c_.eta;
-  double x = 0, y = 0, z = 0, ux = 0, uy = 0, uz = 1;
+  // The refracted beam: sin θt = sin θi / η in the x-z plane (straight down at normal
+  // incidence).
+  const double sin_t = std::sqrt(std::max(0.0, 1.0 - o_.incidence_cos * o_.incidence_cos)) * inv_eta;
+  double x = 0, y = 0, z = 0, ux = sin_t, uy = 0, uz = std::sqrt(std::max(0.0, 1.0 - sin_t * sin_t));
   double w0 = 1.0, len = 0.0;
   // The path length at which the weight falls below the roulette threshold.
   auto roulette_len = [&] {
@@ -104,6 +119,7 @@ void Walker::walk(Xoshiro256ss& rng, double totals[3], ChunkSums& out) {
     const double escaped = w * (1.0 - fr);
     totals[top ? 0 : 1] += escaped;
     tally(top ? 0 : 1, std::sqrt(x * x + y * y), escaped);
+    if (top) tally_exit_cosine(std::fabs(uz), escaped);
     w0 = w * fr;
     len = 0.0;
     uz = -uz;

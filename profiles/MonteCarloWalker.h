@@ -13,7 +13,7 @@
 namespace sss::profiles::detail {
 
 // Per-chunk sums of per-photon contributions. Bins [0, nb) are reflectance, [nb, 2nb)
-// transmittance. Totals: 0 reflectance, 1 transmittance, 2 absorbed.
+// transmittance, [2nb, 2nb + nc) the top face's exits by outside cosine. Totals: 0 reflectance, 1 transmittance, 2 absorbed.
 struct ChunkSums {
   std::vector<double> sum, sum_sq;
   double total[3] = {0, 0, 0};
@@ -49,6 +49,10 @@ class Walker {
   // Adds the weight w leaving through `face` (0 top, 1 bottom) at radius r to this
   // photon's bin, if r lies within the bin edges.
   void tally(std::size_t face, double r, double w);
+  // Adds the weight w leaving the top face with inside cosine cos_inside to its exit-cosine
+  // bin (MonteCarloOptions::exit_cosine_bins), by the refracted outside cosine.
+  void tally_exit_cosine(double cos_inside, double w);
+  void add(std::size_t slot, double w);
   // One photon: adds what it leaves through the top face, the bottom face and what is
   // absorbed to totals[0], [1] and [2], and its exits to its bins.
   void walk(Xoshiro256ss& rng, double totals[3], ChunkSums& out);
@@ -57,7 +61,7 @@ class Walker {
 
   const Coefficients& c_;
   const MonteCarloOptions& o_;
-  std::size_t nb_;
+  std::size_t nb_, nc_;
   std::vector<double> photon_;
   std::vector<std::size_t> touched_;
 };
