@@ -103,7 +103,7 @@ ProbeEstimator::ProbeEstimator(const scene::Scene& s, const RayScene& rays, cons
     g.profile = reference_profile(sss, o.kernel, o.model_options);
     g.support_mm = g.profile->support_radius();
     g.pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
-    g.entry_fresnel = o.fresnel && !o.diffuse_only;  // diffuse_only: hdr = M/π
+    g.entry_fresnel = o.applies_fresnel();
     g.eta = glm::dvec3(sss.medium.eta[0], sss.medium.eta[1], sss.medium.eta[2]);
     const bool costly = profiles::model_is_costly(g.profile->model());
     const bool transmits = [&] {
@@ -281,7 +281,7 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
         p.index = y * o.width + x;
         p.group = g;
         p.base = o.diffuse_only ? glm::dvec3(0.0) : v.specular;
-        p.factor = (o.diffuse_only ? glm::dvec3(1.0) : v.scatter_factor * (o.fresnel ? v.exit_fresnel : glm::dvec3(1.0))) / kPi;
+        p.factor = (o.diffuse_only ? glm::dvec3(1.0) : v.scatter_factor * (o.applies_fresnel() ? v.exit_fresnel : glm::dvec3(1.0))) / kPi;
         // The mesh's interpolated normal at x_o, as the octree gathers with.
         p.x_o = glm::dvec3(v.point.position_mm);
         p.n_o = glm::normalize(glm::dvec3(v.point.normal));

@@ -248,9 +248,8 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
   reporter.check();
 
   // Irradiance at every point, then one octree per group. Directional Fresnel: the part of
-  // each light that enters (F_t(η, θi)) here, the exit lobe at the pixel; not in
-  // diffuse_only, whose hdr is M/π by definition.
-  const bool fresnel = o.fresnel && !o.diffuse_only;
+  // each light that enters (F_t(η, θi)) here, the exit lobe at the pixel.
+  const bool fresnel = o.applies_fresnel();
   t0 = Clock::now();
   std::atomic<std::size_t> lit{0};
   for (Group& g : groups) {

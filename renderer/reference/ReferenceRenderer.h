@@ -72,6 +72,8 @@ struct ReferenceOptions {
   // probe estimators; the random walk refracts at the faces whatever this says). Ignored
   // with diffuse_only. Off by default, as RenderOptions::fresnel.
   bool fresnel = false;
+  // Whether the factors apply: `fresnel`, unless diffuse_only (hdr = M/π by definition).
+  bool applies_fresnel() const { return fresnel && !diffuse_only; }
   int threads = 0;               // 0: every hardware thread
   std::uint64_t seed = 1;        // of the point sets, or of the probes
   Estimator estimator = Estimator::Octree;
