@@ -43,6 +43,13 @@ void validate(const Coefficients& c, const MonteCarloOptions& o) {
     fail("roulette_survival", "must lie in (0, 1)");
   if (o.max_interactions_per_photon == 0) fail("max_interactions_per_photon", "must be > 0");
   if (o.max_scattering_order < 0) fail("max_scattering_order", "must be >= 0 (0: all)");
+  if (o.min_scattering_order < 0)
+    fail("min_scattering_order", "must be >= 0 (0 or 1: every exit is tallied)");
+  if (o.max_scattering_order > 0 && o.min_scattering_order > o.max_scattering_order)
+    fail("min_scattering_order", "must not exceed max_scattering_order (" +
+                                     std::to_string(o.max_scattering_order) +
+                                     ") when that is > 0, got " +
+                                     std::to_string(o.min_scattering_order) + ": nothing would be tallied");
   if (!(o.incidence_cos > 0.0 && o.incidence_cos <= 1.0)) fail("incidence_cos", "must lie in (0, 1]");
   if (o.exit_cosine_bins < 0 || o.exit_cosine_bins > 100000)
     fail("exit_cosine_bins", "must lie in [0, 100000] (0: no exit-angle tally)");
@@ -115,6 +122,7 @@ MonteCarloResult run_monte_carlo(const Coefficients& c, const MonteCarloOptions&
     finish(total.sum[2 * nb + k], total.sum_sq[2 * nb + k], n, static_cast<double>(nc), by_cos.value[k],
            by_cos.stderr_[k]);
   finish(total.total[2], total.total_sq[2], n, 1.0, r.absorbed, r.absorbed_stderr);
+  finish(total.total[3], total.total_sq[3], n, 1.0, r.low_order_exits, r.low_order_exits_stderr);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

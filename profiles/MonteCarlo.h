@@ -56,6 +56,13 @@ struct MonteCarloOptions {
   // instead of scattering a (k+1)-th time; k = 1 gives single scattering alone, to check
   // against closed forms.
   int max_scattering_order = 0;
+  // 0: every scattering order. k > 0: exits after fewer than k scattering events are not
+  // tallied (neither radial bins, totals nor exit-cosine bins); their weight still leaves
+  // the medium and is counted in MonteCarloResult::low_order_exits. k = 2 leaves out the
+  // once-scattered light, for profiles whose single scattering the renderer adds apart in
+  // closed form (ModelOptions::single_scattering_apart, SingleScattering.h). Must not
+  // exceed max_scattering_order when that is > 0.
+  int min_scattering_order = 0;
   // The beam's cosine to the normal outside the medium, in (0, 1]: photons start along its
   // refracted direction (Snell, in the x-z plane), still per unit power that entered.
   double incidence_cos = 1.0;
@@ -89,20 +96,27 @@ struct MonteCarloResult {
   std::uint64_t photons = 0;
   std::uint64_t scattering_events = 0;
   // Weight absorbed in the medium per unit power entered, with its standard error. In
-  // expectation reflectance.total + transmittance.total + absorbed = 1 when no photon was
-  // truncated and max_scattering_order == 0 (roulette is unbiased, so it adds no bias).
+  // expectation reflectance.total + transmittance.total + low_order_exits + absorbed = 1
+  // when no photon was truncated and max_scattering_order == 0 (roulette is unbiased, so
+  // it adds no bias); low_order_exits is 0 unless min_scattering_order > 1.
   double absorbed = 0.0;
   double absorbed_stderr = 0.0;
+  // Weight that left through either face after fewer than min_scattering_order scattering
+  // events (not tallied anywhere else), with its standard error.
+  double low_order_exits = 0.0;
+  double low_order_exits_stderr = 0.0;
   std::uint64_t truncated_photons = 0;  // stopped by max_interactions_per_photon
   double seconds = 0.0;
 };
 
 // Throws std::invalid_argument whose message starts with the offending field
 // ("sigma_a: ...", "photons: ...", "bin_edges_mm: ...", "thickness_mm: ...", "threads: ...",
-// "roulette_weight: ...", "incidence_cos: ...", "exit_cosine_bins: ...", ...) for invalid coefficients (Coefficients::validate), photons
+// "roulette_weight: ...", "incidence_cos: ...", "exit_cosine_bins: ...",
+// "min_scattering_order: ...", ...) for invalid coefficients (Coefficients::validate), photons
 // == 0, threads < 0, a thickness that is not > 0 (NaN included), or bin edges that are
-// not finite, >= 0 and strictly ascending. An empty bin_edges_mm is allowed (totals
-// only); a single edge is not (it bounds no bin).
+// not finite, >= 0 and strictly ascending, a negative scattering order bound, or
+// min_scattering_order above a max_scattering_order > 0. An empty bin_edges_mm is allowed
+// (totals only); a single edge is not (it bounds no bin).
 MonteCarloResult run_monte_carlo(const Coefficients& c, const MonteCarloOptions& opt);
 
 // Returns count + 2 edges: {0, lo, lo q, lo q², ..., hi} with q = (hi/lo)^(1/count), i.e.

@@ -27,9 +27,9 @@ Walker::Walker(const Coefficients& c, const MonteCarloOptions& o)
 void Walker::run_chunk(std::uint64_t chunk, std::uint64_t count, ChunkSums& out) {
   Xoshiro256ss rng(o_.seed, chunk);
   for (std::uint64_t p = 0; p < count; ++p) {
-    double totals[3] = {0, 0, 0};
+    double totals[kChunkTotals] = {0, 0, 0, 0};
     walk(rng, totals, out);
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < kChunkTotals; ++k) {
       out.total[k] += totals[k];
       out.total_sq[k] += totals[k] * totals[k];
     }
@@ -67,7 +67,7 @@ void Walker::add(std::size_t slot, double w) {
 // One photon. The current weight is w0 * exp(-sigma_a * len): `len` is the path walked
 // since w0 last changed, so the exponential is evaluated only at boundary hits and
 // roulette, not at every scattering event.
-void Walker::walk(Xoshiro256ss& rng, double totals[3], ChunkSums& out) {
+void Walker::walk(Xoshiro256ss& rng, double totals[kChunkTotals], ChunkSums& out) {
   const double sa = c_.sigma_a, ss = c_.sigma_s, g = c_.g, d = o_.thickness_mm;
   const double inv_eta = 1.0 / c_.eta;
   // The refracted beam: sin θt = sin θi / η in the x-z plane (straight down at normal
@@ -80,7 +80,7 @@ void Walker::walk(Xoshiro256ss& rng, double totals[3], ChunkSums& out) {
     return w0 > o_.roulette_weight ? std::log(w0 / o_.roulette_weight) / sa : 0.0;
   };
   double len_roulette = roulette_len();
-  int order = 0;
+  int order = 0;  // scattering events so far
   for (std::uint64_t n = 0;; ++n) {
     if (n == o_.max_interactions_per_photon) {
       ++out.truncated;
@@ -93,7 +93,8 @@ void Walker::walk(Xoshiro256ss& rng, double totals[3], ChunkSums& out) {
     if (s < db) {  // scattering event
       x += s * ux, y += s * uy, z += s * uz;
       len += s;
-      if (o_.max_scattering_order > 0 && ++order > o_.max_scattering_order) return;
+      ++order;
+      if (o_.max_scattering_order > 0 && order > o_.max_scattering_order) return;
       ++out.events;
       if (len > len_roulette) {
         const double w = w0 * std::exp(-sa * len);
@@ -117,9 +118,13 @@ void Walker::walk(Xoshiro256ss& rng, double totals[3], ChunkSums& out) {
     totals[2] += w0 - w;
     const double fr = fresnel_dielectric(std::fabs(uz), inv_eta);
     const double escaped = w * (1.0 - fr);
-    totals[top ? 0 : 1] += escaped;
-    tally(top ? 0 : 1, std::sqrt(x * x + y * y), escaped);
-    if (top) tally_exit_cosine(std::fabs(uz), escaped);
+    if (order >= o_.min_scattering_order) {
+      totals[top ? 0 : 1] += escaped;
+      tally(top ? 0 : 1, std::sqrt(x * x + y * y), escaped);
+      if (top) tally_exit_cosine(std::fabs(uz), escaped);
+    } else {
+      totals[3] += escaped;  // left out (MonteCarloOptions::min_scattering_order)
+    }
     w0 = w * fr;
     len = 0.0;
     uz = -uz;

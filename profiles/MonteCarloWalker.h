@@ -13,11 +13,13 @@
 namespace sss::profiles::detail {
 
 // Per-chunk sums of per-photon contributions. Bins [0, nb) are reflectance, [nb, 2nb)
-// transmittance, [2nb, 2nb + nc) the top face's exits by outside cosine. Totals: 0 reflectance, 1 transmittance, 2 absorbed.
+// transmittance, [2nb, 2nb + nc) the top face's exits by outside cosine. Totals: 0
+// reflectance, 1 transmittance, 2 absorbed, 3 exits below min_scattering_order.
+inline constexpr int kChunkTotals = 4;
 struct ChunkSums {
   std::vector<double> sum, sum_sq;
-  double total[3] = {0, 0, 0};
-  double total_sq[3] = {0, 0, 0};
+  double total[kChunkTotals] = {0, 0, 0, 0};
+  double total_sq[kChunkTotals] = {0, 0, 0, 0};
   std::uint64_t events = 0;
   std::uint64_t truncated = 0;
 
@@ -27,7 +29,7 @@ struct ChunkSums {
       sum[i] += o.sum[i];
       sum_sq[i] += o.sum_sq[i];
     }
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < kChunkTotals; ++k) {
       total[k] += o.total[k];
       total_sq[k] += o.total_sq[k];
     }
@@ -53,9 +55,10 @@ class Walker {
   // bin (MonteCarloOptions::exit_cosine_bins), by the refracted outside cosine.
   void tally_exit_cosine(double cos_inside, double w);
   void add(std::size_t slot, double w);
-  // One photon: adds what it leaves through the top face, the bottom face and what is
-  // absorbed to totals[0], [1] and [2], and its exits to its bins.
-  void walk(Xoshiro256ss& rng, double totals[3], ChunkSums& out);
+  // One photon: adds what it leaves through the top face, the bottom face, what is
+  // absorbed and what leaves below min_scattering_order to totals[0], [1], [2] and [3],
+  // and its (tallied) exits to its bins.
+  void walk(Xoshiro256ss& rng, double totals[kChunkTotals], ChunkSums& out);
   // Turns the unit direction u by a Henyey–Greenstein scattering event.
   static void scatter(Xoshiro256ss& rng, double g, double& ux, double& uy, double& uz);
 
