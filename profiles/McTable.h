@@ -16,6 +16,24 @@
 // R falls steeply. The lookup (McTableProfile) rebuilds a smooth R(r) whose integral over
 // every annulus reproduces the tallied flux.
 //
+// Format version 2 also stores the once-scattered part (issue 18 part 2: the renderers
+// add single scattering S(1) apart, in closed form, so a profile must be able to leave it
+// out). In these units a walk enters straight down; an exit after exactly one scattering
+// event carries α' (the one event's albedo factor) times its η-weight, and, a walk having
+// reflected at the surface once, goes down again and cannot leave before it scatters
+// again. So the once-scattered flux through annulus b at node (η, α') is exactly
+// α' q(η, b), q not depending on α': the table stores q ("once-scattered flux per unit
+// albedo") per η and annulus, and its total q_total(η), tallied in the same walks as
+// everything else (exits with n = 1). `flux` and `total` keep every order, so the
+// multiply-scattered part of the same walks is flux - α' q and total - α' q_total
+// (exactly, up to the rounding of the stored values). Its standard error is not a
+// function of the two errors (the parts are correlated, and the triangle bound
+// se(flux) + α' se(q) is 25-2900x the actual error at α' = 0.01 over r <= 3 mfp and 29x
+// in the disc r < 0.001 mfp even at α' = 0.9999, where the once-scattered light
+// dominates the exits: judged by it, the shipped table's α' = 0.01 nodes would have 0-10
+// annuli reliable for the apart lookup, where the stored error finds 54-58), so it is
+// stored too, from the batch means of the difference itself.
+//
 // Generation (generate_mc_table) uses one set of random walks for every node of the
 // table; McTableGenerator.cpp explains why that is unbiased and how the errors come out.
 #pragma once
@@ -42,12 +60,25 @@ struct McTableData {
   std::vector<double> total, total_se;
   // [eta][albedo][bin], bin in [0, bins()): the flux fraction through annulus bin.
   std::vector<double> flux, flux_se;
+  // Version 2: the once-scattered part per unit albedo (see above). [eta]: q_total and its
+  // standard error; [eta][bin]: q through annulus bin and its standard error.
+  std::vector<double> single_total, single_total_se;
+  std::vector<double> single_flux, single_flux_se;
+  // Version 2: the standard errors of the multiply-scattered parts total - α' q_total
+  // ([eta][albedo]) and flux - α' q ([eta][albedo][bin]).
+  std::vector<double> multiple_total_se, multiple_flux_se;
 
   std::size_t bins() const { return r_edges.empty() ? 0 : r_edges.size() - 1; }
   std::size_t node(std::size_t e, std::size_t a) const { return e * albedo.size() + a; }
   std::size_t slot(std::size_t e, std::size_t a, std::size_t b) const {
     return node(e, a) * bins() + b;
   }
+  std::size_t single_slot(std::size_t e, std::size_t b) const { return e * bins() + b; }
+  // The multiply-scattered parts at node (e, a): flux - α' q through annulus b and
+  // total - α' q_total, clamped at 0 (they are >= 0 up to the rounding of the stored
+  // values).
+  double multiple_flux(std::size_t e, std::size_t a, std::size_t b) const;
+  double multiple_total(std::size_t e, std::size_t a) const;
 };
 
 struct McTableOptions {

@@ -4,6 +4,7 @@
 
 #include "profiles/Medium.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -27,7 +28,9 @@ static_assert(std::endian::native == std::endian::little,
               "the mc-table file is little-endian; add byte swapping for this target");
 
 constexpr char kMagic[8] = {'S', 'S', 'S', 'M', 'C', 'T', 'B', 'L'};
-constexpr std::uint32_t kVersion = 1;
+// 2: adds the once-scattered flux per unit albedo and the multiply-scattered errors
+// (McTable.h). Version 1 files lack them and are refused: regenerate with sss-fit mc-table.
+constexpr std::uint32_t kVersion = 2;
 
 // FNV-1a, 64 bit (Fowler, Noll & Vo; offset basis and prime as published by the authors).
 std::uint64_t fnv1a(std::string_view bytes) {
@@ -127,10 +130,16 @@ std::string serialize_mc_table(const McTableData& t) {
   w.put_doubles(t.r_edges);
   w.put_doubles(t.total);
   w.put_doubles(t.total_se);
+  w.put_doubles(t.single_total);
+  w.put_doubles(t.single_total_se);
+  w.put_doubles(t.multiple_total_se);
   // Annulus fluxes in single precision: a relative rounding of 6e-8, far below the
   // Monte Carlo noise of any entry (the smallest relative standard error is ~1e-4).
   w.put_floats(t.flux);
   w.put_floats(t.flux_se);
+  w.put_floats(t.single_flux);
+  w.put_floats(t.single_flux_se);
+  w.put_floats(t.multiple_flux_se);
   w.put<std::uint64_t>(fnv1a(w.s));
   return std::move(w.s);
 }
@@ -153,7 +162,10 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
   const auto version = r.get<std::uint32_t>("version");
   if (version != kVersion)
     r.fail("version", "format " + std::to_string(version) + " is not supported (this build reads " +
-                          std::to_string(kVersion) + ")");
+                          std::to_string(kVersion) +
+                          (version < kVersion ? ", which adds the once-scattered flux; regenerate "
+                                                "the table with sss-fit mc-table)"
+                                              : ")"));
   McTableData t;
   const std::size_t ne = r.get<std::uint32_t>("n_eta");
   const std::size_t na = r.get<std::uint32_t>("n_albedo");
@@ -182,20 +194,45 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
   if (t.r_edges.front() != 0.0) r.fail("r_edges", "the first edge must be 0");
   check_axis(r, {t.r_edges.begin() + 1, t.r_edges.end()}, "r_edges", 0.0, 1e15,
              true, false);
+  const std::size_t nb = nedges - 1;
   t.total = r.get_array<double>("total", ne * na);
   t.total_se = r.get_array<double>("total_se", ne * na);
-  t.flux = r.get_array<float>("flux", ne * na * (nedges - 1));
-  t.flux_se = r.get_array<float>("flux_se", ne * na * (nedges - 1));
+  t.single_total = r.get_array<double>("single_total", ne);
+  t.single_total_se = r.get_array<double>("single_total_se", ne);
+  t.multiple_total_se = r.get_array<double>("multiple_total_se", ne * na);
+  t.flux = r.get_array<float>("flux", ne * na * nb);
+  t.flux_se = r.get_array<float>("flux_se", ne * na * nb);
+  t.single_flux = r.get_array<float>("single_flux", ne * nb);
+  t.single_flux_se = r.get_array<float>("single_flux_se", ne * nb);
+  t.multiple_flux_se = r.get_array<float>("multiple_flux_se", ne * na * nb);
   for (std::size_t i = 0; i < t.total.size(); ++i)
     if (!(t.total[i] >= 0.0 && t.total[i] <= 1.0) || !(t.total_se[i] >= 0.0))
       r.fail("total", "node " + std::to_string(i) + " is outside [0, 1] or has a negative error");
-  for (std::size_t i = 0; i < t.flux.size(); ++i)
-    if (!(t.flux[i] >= 0.0)) r.fail("flux", "entry " + std::to_string(i) + " is negative");
-  for (std::size_t i = 0; i < t.flux_se.size(); ++i)
-    if (!(t.flux_se[i] >= 0.0)) r.fail("flux_se", "entry " + std::to_string(i) + " is negative");
+  for (std::size_t i = 0; i < t.single_total.size(); ++i)
+    if (!(t.single_total[i] >= 0.0 && t.single_total[i] <= 1.0) || !(t.single_total_se[i] >= 0.0))
+      r.fail("single_total",
+             "eta " + std::to_string(i) + " is outside [0, 1] or has a negative error");
+  auto non_negative = [&](const std::vector<double>& v, const char* field) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!(v[i] >= 0.0)) r.fail(field, "entry " + std::to_string(i) + " is negative");
+  };
+  non_negative(t.multiple_total_se, "multiple_total_se");
+  non_negative(t.flux, "flux");
+  non_negative(t.flux_se, "flux_se");
+  non_negative(t.single_flux, "single_flux");
+  non_negative(t.single_flux_se, "single_flux_se");
+  non_negative(t.multiple_flux_se, "multiple_flux_se");
   if (r.pos() != body.size())
     r.fail("size", std::to_string(body.size() - r.pos()) + " unexpected bytes before the checksum");
   return t;
+}
+
+double McTableData::multiple_flux(std::size_t e, std::size_t a, std::size_t b) const {
+  return std::max(0.0, flux[slot(e, a, b)] - albedo[a] * single_flux[single_slot(e, b)]);
+}
+
+double McTableData::multiple_total(std::size_t e, std::size_t a) const {
+  return std::max(0.0, total[node(e, a)] - albedo[a] * single_total[e]);
 }
 
 const McTableData& shipped_mc_table() {

@@ -21,6 +21,14 @@
 // An exit after n scattering events with η-weight w_η adds w_η α'^n to node (η, α').
 // Both steps are unbiased for every node: they change what is sampled, not its mean.
 //
+// The once-scattered part (format version 2, McTable.h). The entering beam goes straight
+// down, so an exit with n = 1 is the walk's first exit, with w_η = 1 - F(μ, η) (times the
+// roulette's 1/survival if it fired at the first event, which only a table whose largest
+// albedo is below the roulette weight's reach can see): it adds w_η α' to node (η, α'),
+// and w_η alone is tallied per η as q, the once-scattered flux per unit albedo. The
+// reflected rest goes down and leaves only after scattering again (n >= 2). So every
+// node's flux is exactly α' q + (its exits with n >= 2), in the same walks.
+//
 // The walk ends by Russian roulette on its largest weight over every node, max_η w_η ·
 // α'max^n (relative to 1 at entry): below `roulette_weight` it survives with probability
 // `roulette_survival`, its weights divided by it. One decision for all nodes scales them
@@ -97,8 +105,10 @@ void validate(const McTableOptions& o) {
 // The sums of one chunk. Layout [bin][eta][albedo] so that an exit adds to one contiguous
 // block of n_eta * n_albedo values.
 struct Chunk {
-  std::vector<double> flux;   // [bin][eta][albedo]
-  std::vector<double> total;  // [eta][albedo]
+  std::vector<double> flux;         // [bin][eta][albedo]
+  std::vector<double> total;        // [eta][albedo]
+  std::vector<double> single_flux;  // [bin][eta]: exits with n = 1, per unit albedo
+  std::vector<double> single_total; // [eta]
 };
 
 class TableWalker {
@@ -115,6 +125,8 @@ class TableWalker {
   void run(std::uint64_t chunk, Chunk& out) {
     out.flux.assign(nb_ * ne_ * na_, 0.0);
     out.total.assign(ne_ * na_, 0.0);
+    out.single_flux.assign(nb_ * ne_, 0.0);
+    out.single_total.assign(ne_, 0.0);
     Xoshiro256ss rng(o_.seed, chunk);
     for (std::uint64_t p = 0; p < o_.chunk_photons; ++p) walk(rng, out);
   }
@@ -163,11 +175,14 @@ class TableWalker {
       while (a0 > 0 && (dn - 1.0) * ln_albedo_[a0 - 1] > -50.0) --a0;
       for (std::size_t a = a0; a < na_; ++a) power_[a] = std::exp(dn * ln_albedo_[a]);
       double* bin_block = nullptr;
+      double* single_block = nullptr;
       if (r < o_.r_edges.back()) {
-        const auto b = std::upper_bound(o_.r_edges.begin(), o_.r_edges.end(), r) -
-                       o_.r_edges.begin() - 1;
-        bin_block = out.flux.data() + static_cast<std::size_t>(b) * ne_ * na_;
+        const auto b = static_cast<std::size_t>(
+            std::upper_bound(o_.r_edges.begin(), o_.r_edges.end(), r) - o_.r_edges.begin() - 1);
+        bin_block = out.flux.data() + b * ne_ * na_;
+        single_block = out.single_flux.data() + b * ne_;
       }
+      const bool once = n == 1;
       w_max = 0.0;
       for (std::size_t e = 0; e < ne_; ++e) {
         const double w = weight_[e];
@@ -181,6 +196,10 @@ class TableWalker {
         if (bin_block) {
           double* f = bin_block + e * na_;
           for (std::size_t a = a0; a < na_; ++a) f[a] += escaped * power_[a];
+        }
+        if (once) {
+          out.single_total[e] += escaped;
+          if (single_block) single_block[e] += escaped;
         }
       }
       if (w_max < kNegligible) return;  // e.g. a table of η = 1 alone: all has left
@@ -244,11 +263,29 @@ McTableData generate_mc_table(const McTableOptions& opt) {
   // (OrderedChunks.h: the result does not depend on the thread count).
   std::vector<double> flux_sum(nb * ne * na, 0.0), flux_sq(nb * ne * na, 0.0);
   std::vector<double> total_sum(ne * na, 0.0), total_sq(ne * na, 0.0);
+  std::vector<double> single_flux_sum(nb * ne, 0.0), single_flux_sq(nb * ne, 0.0);
+  std::vector<double> single_total_sum(ne, 0.0), single_total_sq(ne, 0.0);
+  // The multiply-scattered part of each chunk, d = S - α' S1 (S a chunk's sum at a node,
+  // S1 its once-scattered sum per unit albedo): sums and squares of d, for its own
+  // batch-means error (the two parts are correlated; see McTable.h).
+  std::vector<double> multiple_flux_sum(nb * ne * na, 0.0), multiple_flux_sq(nb * ne * na, 0.0);
+  std::vector<double> multiple_total_sum(ne * na, 0.0), multiple_total_sq(ne * na, 0.0);
   auto add = [](std::vector<double>& sum, std::vector<double>& sq, const std::vector<double>& v) {
     for (std::size_t i = 0; i < v.size(); ++i) {
       sum[i] += v[i];
       sq[i] += v[i] * v[i];
     }
+  };
+  // v: [block][eta][albedo], once: [block][eta].
+  auto add_multiple = [&](std::vector<double>& sum, std::vector<double>& sq,
+                          const std::vector<double>& v, const std::vector<double>& once) {
+    for (std::size_t i = 0; i < once.size(); ++i)
+      for (std::size_t a = 0; a < na; ++a) {
+        const std::size_t k = i * na + a;
+        const double d = v[k] - opt.albedo[a] * once[i];
+        sum[k] += d;
+        sq[k] += d * d;
+      }
   };
   detail::run_ordered_chunks<Chunk>(
       chunks, opt.threads,
@@ -260,6 +297,10 @@ McTableData generate_mc_table(const McTableOptions& opt) {
       [&](const Chunk& c, std::uint64_t done) {
         add(flux_sum, flux_sq, c.flux);
         add(total_sum, total_sq, c.total);
+        add(single_flux_sum, single_flux_sq, c.single_flux);
+        add(single_total_sum, single_total_sq, c.single_total);
+        add_multiple(multiple_flux_sum, multiple_flux_sq, c.flux, c.single_flux);
+        add_multiple(multiple_total_sum, multiple_total_sq, c.total, c.single_total);
         if (opt.progress) opt.progress(static_cast<double>(done) / chunks);
       });
 
@@ -284,15 +325,31 @@ McTableData generate_mc_table(const McTableOptions& opt) {
   t.total_se.resize(ne * na);
   t.flux.resize(ne * na * nb);
   t.flux_se.resize(ne * na * nb);
+  t.multiple_total_se.resize(ne * na);
+  t.multiple_flux_se.resize(ne * na * nb);
+  double unused;  // the multiply-scattered means are flux - α' q: only their errors are kept
   for (std::size_t e = 0; e < ne; ++e)
     for (std::size_t a = 0; a < na; ++a) {
       const std::size_t node = e * na + a;
       finish(total_sum[node], total_sq[node], t.total[node], t.total_se[node]);
+      finish(multiple_total_sum[node], multiple_total_sq[node], unused, t.multiple_total_se[node]);
       for (std::size_t b = 0; b < nb; ++b) {
         const std::size_t src = (b * ne + e) * na + a;
         finish(flux_sum[src], flux_sq[src], t.flux[t.slot(e, a, b)], t.flux_se[t.slot(e, a, b)]);
+        finish(multiple_flux_sum[src], multiple_flux_sq[src], unused,
+               t.multiple_flux_se[t.slot(e, a, b)]);
       }
     }
+  t.single_total.resize(ne);
+  t.single_total_se.resize(ne);
+  t.single_flux.resize(ne * nb);
+  t.single_flux_se.resize(ne * nb);
+  for (std::size_t e = 0; e < ne; ++e) {
+    finish(single_total_sum[e], single_total_sq[e], t.single_total[e], t.single_total_se[e]);
+    for (std::size_t b = 0; b < nb; ++b)
+      finish(single_flux_sum[b * ne + e], single_flux_sq[b * ne + e],
+             t.single_flux[t.single_slot(e, b)], t.single_flux_se[t.single_slot(e, b)]);
+  }
   return t;
 }
 

@@ -512,17 +512,32 @@ McTableData subset(const McTableData& f, const std::vector<std::size_t>& ei,
   s.total_se.clear();
   s.flux.clear();
   s.flux_se.clear();
+  s.single_total.clear();
+  s.single_total_se.clear();
+  s.single_flux.clear();
+  s.single_flux_se.clear();
+  s.multiple_total_se.clear();
+  s.multiple_flux_se.clear();
   for (std::size_t e : ei) s.eta.push_back(f.eta[e]);
   for (std::size_t a : ai) s.albedo.push_back(f.albedo[a]);
-  for (std::size_t e : ei)
+  for (std::size_t e : ei) {
+    s.single_total.push_back(f.single_total[e]);
+    s.single_total_se.push_back(f.single_total_se[e]);
+    for (std::size_t b = 0; b < f.bins(); ++b) {
+      s.single_flux.push_back(f.single_flux[f.single_slot(e, b)]);
+      s.single_flux_se.push_back(f.single_flux_se[f.single_slot(e, b)]);
+    }
     for (std::size_t a : ai) {
       s.total.push_back(f.total[f.node(e, a)]);
       s.total_se.push_back(f.total_se[f.node(e, a)]);
+      s.multiple_total_se.push_back(f.multiple_total_se[f.node(e, a)]);
       for (std::size_t b = 0; b < f.bins(); ++b) {
         s.flux.push_back(f.flux[f.slot(e, a, b)]);
         s.flux_se.push_back(f.flux_se[f.slot(e, a, b)]);
+        s.multiple_flux_se.push_back(f.multiple_flux_se[f.slot(e, a, b)]);
       }
     }
+  }
   return s;
 }
 

@@ -115,6 +115,17 @@ TEST(McTableFormat, RoundTripIsExact) {
   for (std::size_t i = 0; i < t.flux.size(); ++i) {
     EXPECT_EQ(p.flux[i], static_cast<double>(static_cast<float>(t.flux[i]))) << i;
     EXPECT_EQ(p.flux_se[i], static_cast<double>(static_cast<float>(t.flux_se[i]))) << i;
+    EXPECT_EQ(p.multiple_flux_se[i], static_cast<double>(static_cast<float>(t.multiple_flux_se[i]))) << i;
+  }
+  // Version 2's once-scattered part: totals and the multiply-scattered total errors in
+  // double, the annuli in float.
+  EXPECT_EQ(p.single_total, t.single_total);
+  EXPECT_EQ(p.single_total_se, t.single_total_se);
+  EXPECT_EQ(p.multiple_total_se, t.multiple_total_se);
+  ASSERT_EQ(p.single_flux.size(), t.eta.size() * t.bins());
+  for (std::size_t i = 0; i < t.single_flux.size(); ++i) {
+    EXPECT_EQ(p.single_flux[i], static_cast<double>(static_cast<float>(t.single_flux[i]))) << i;
+    EXPECT_EQ(p.single_flux_se[i], static_cast<double>(static_cast<float>(t.single_flux_se[i]))) << i;
   }
   // A parsed table serializes to the very same bytes, and the trailer is FNV-1a 64 of
   // everything before it (as profiles/data/README.md documents).
@@ -145,23 +156,27 @@ TEST(McTableFormat, ParseRefusesMalformedFilesNamingTheField) {
     expect_parse_error(s, "checksum", "flipped byte at " + std::to_string(at), "does not match");
   }
   // Truncated: first the checksum no longer matches; re-checksummed, the parser finds the
-  // arrays end early (the last array, flux_se, is the one cut).
+  // arrays end early (the last array, multiple_flux_se, is the one cut).
   expect_parse_error(good.substr(0, good.size() - 40), "checksum", "truncated");
   expect_parse_error(good.substr(0, 20), "checksum", "truncated in the header");
-  s = good.substr(0, good.size() - 8 - 4 * 8);  // 8 floats of flux_se missing...
+  s = good.substr(0, good.size() - 8 - 4 * 8);  // 8 floats of multiple_flux_se missing...
   s += std::string(8, '\0');                    // ...and a fresh checksum trailer
-  expect_parse_error(rechecksum(s), "flux_se", "truncated, re-checksummed", "ends early");
+  expect_parse_error(rechecksum(s), "multiple_flux_se", "truncated, re-checksummed", "ends early");
   // Exactly two floats short: a parser that let the arrays run into the trailer would read
-  // the checksum as flux_se and then find -8 bytes "before the checksum".
+  // the checksum as multiple_flux_se and then find -8 bytes "before the checksum".
   s = good.substr(0, good.size() - 8 - 4 * 2) + std::string(8, '\0');
-  expect_parse_error(rechecksum(s), "flux_se", "two floats short, re-checksummed", "ends early");
+  expect_parse_error(rechecksum(s), "multiple_flux_se", "two floats short, re-checksummed", "ends early");
   s = good.substr(0, kHeaderBytes + 4);  // inside the η array
   s += std::string(8, '\0');
   expect_parse_error(rechecksum(s), "eta", "truncated inside eta, re-checksummed", "ends early");
 
   s = good;
-  s[kVersionAt] = 2;
-  expect_parse_error(rechecksum(s), "version", "wrong version", "2 is not supported");
+  s[kVersionAt] = 3;
+  expect_parse_error(rechecksum(s), "version", "wrong version", "3 is not supported");
+  // A version 1 file (no once-scattered part) is refused with what to do about it.
+  s[kVersionAt] = 1;
+  expect_parse_error(rechecksum(s), "version", "version 1", "1 is not supported");
+  expect_parse_error(rechecksum(s), "version", "version 1", "regenerate the table with sss-fit mc-table");
 
   // Counts that promise more data than the file has are refused before anything is
   // allocated for them (n_eta 1024 × n_albedo 4096 × 4095 annuli would be 68 GB of floats).
@@ -213,6 +228,24 @@ TEST(McTableFormat, ParseRefusesMalformedFilesNamingTheField) {
   e = t;
   e.flux[2] = -1e-3;
   expect_parse_error(serialize_mc_table(e), "flux", "negative flux", "negative");
+  e = t;
+  e.single_total[1] = nan;
+  expect_parse_error(serialize_mc_table(e), "single_total", "NaN single_total", "not finite");
+  e = t;
+  e.single_total[0] = 1.5;
+  expect_parse_error(serialize_mc_table(e), "single_total", "single_total above 1", "outside [0, 1]");
+  e = t;
+  e.multiple_total_se[2] = -1e-3;
+  expect_parse_error(serialize_mc_table(e), "multiple_total_se", "negative multiple_total_se", "negative");
+  e = t;
+  e.single_flux[3] = -1e-3;
+  expect_parse_error(serialize_mc_table(e), "single_flux", "negative single_flux", "negative");
+  e = t;
+  e.single_flux_se[3] = nan;
+  expect_parse_error(serialize_mc_table(e), "single_flux_se", "NaN single_flux_se", "not finite");
+  e = t;
+  e.multiple_flux_se[4] = -1e-3;
+  expect_parse_error(serialize_mc_table(e), "multiple_flux_se", "negative multiple_flux_se", "negative");
 
   // Trailing bytes between the arrays and the checksum.
   s = good;
@@ -339,6 +372,58 @@ TEST(McTableGenerator, SameBytesForAnyThreadCountAndOtherBytesForAnotherSeed) {
   const McTableData other = generate_mc_table(o);
   EXPECT_NE(serialize_mc_table(other), one);
   EXPECT_NE(other.total, small_table().total);
+}
+
+// The once-scattered part (format version 2, McTable.h) on the small table:
+//  - it is part of every node's flux: flux - α' q >= 0 per annulus and total - α' q_total
+//    >= 0 (the n = 1 exits are added to the flux as escaped × α'^1, computed as
+//    exp(ln α'), within a few ulps of α': tolerance 1e-12 relative);
+//  - it does not depend on the albedo grid: a run with other albedos (same seed, η and
+//    edges; the walks differ from the chunk's first on, as the roulette, set by the
+//    largest albedo, draws numbers at other events) estimates the same q_total: within
+//    4 combined SE (2 η; a false alarm 2 x 6.3e-5; the runs share their chunks' first
+//    walks, a positive correlation that only narrows the difference);
+//  - the multiply-scattered errors are batch-means standard deviations of the difference
+//    of the two batch series, so Minkowski's inequality bounds them exactly:
+//    |se(F) - α' se(Q)| <= se(F - α' Q) <= se(F) + α' se(Q) (1e-9 relative for rounding);
+//  - at η = 1 a walk leaves at its first exit, so q's annuli add up to at most q_total.
+TEST(McTableGenerator, OnceScatteredPartIsPartOfTheFluxAndIndependentOfTheAlbedos) {
+  const McTableData& t = small_table();
+  const std::size_t ne = t.eta.size(), na = t.albedo.size(), nb = t.bins();
+  ASSERT_EQ(t.single_total.size(), ne);
+  ASSERT_EQ(t.single_flux.size(), ne * nb);
+  ASSERT_EQ(t.multiple_flux_se.size(), ne * na * nb);
+  for (std::size_t e = 0; e < ne; ++e) {
+    EXPECT_GT(t.single_total[e], 0.0);
+    EXPECT_GT(t.single_total_se[e], 0.0);
+    double annuli = 0.0;
+    for (std::size_t b = 0; b < nb; ++b) annuli += t.single_flux[t.single_slot(e, b)];
+    if (t.eta[e] == 1.0) {
+      EXPECT_LE(annuli, t.single_total[e] * (1.0 + 1e-12));
+    }
+    for (std::size_t a = 0; a < na; ++a) {
+      const double al = t.albedo[a];
+      const std::size_t n = t.node(e, a);
+      EXPECT_GE(t.total[n] - al * t.single_total[e], -1e-12 * t.total[n]) << e << " " << a;
+      const double se_f = t.total_se[n], se_q = al * t.single_total_se[e];
+      EXPECT_LE(t.multiple_total_se[n], (se_f + se_q) * (1.0 + 1e-9)) << e << " " << a;
+      EXPECT_GE(t.multiple_total_se[n], std::fabs(se_f - se_q) * (1.0 - 1e-9)) << e << " " << a;
+      for (std::size_t b = 0; b < nb; ++b) {
+        const std::size_t k = t.slot(e, a, b), j = t.single_slot(e, b);
+        EXPECT_GE(t.flux[k] - al * t.single_flux[j], -1e-12 * t.flux[k]) << e << " " << a << " " << b;
+        const double f = t.flux_se[k], q = al * t.single_flux_se[j];
+        EXPECT_LE(t.multiple_flux_se[k], (f + q) * (1.0 + 1e-9)) << e << " " << a << " " << b;
+        EXPECT_GE(t.multiple_flux_se[k], std::fabs(f - q) * (1.0 - 1e-9)) << e << " " << a << " " << b;
+      }
+    }
+  }
+  McTableOptions o = small_options();
+  o.albedo = {0.2, 0.7};
+  const McTableData other = generate_mc_table(o);
+  for (std::size_t e = 0; e < ne; ++e)
+    EXPECT_NEAR(other.single_total[e], t.single_total[e],
+                4.0 * std::hypot(other.single_total_se[e], t.single_total_se[e]))
+        << "eta " << t.eta[e];
 }
 
 // At η = 1 (no internal reflection) a walk leaves once, with all its weight, and the
