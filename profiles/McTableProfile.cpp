@@ -134,12 +134,21 @@ AxisWeights axis_weights(const std::vector<double>& xs, double x, bool linear = 
 // annuli after it as long as they are log-uniform (the lookup computes a bin's index from
 // ln r). Annuli past the first irregular edge (e.g. a last edge rounded to a round number)
 // are left to the tail, like unreliable ones.
-std::size_t check_table(const McTableData& t) {
+// The once-scattered arrays are checked only for the lookup that uses them (apart): a
+// table assembled in memory for the full lookup may leave them empty.
+std::size_t check_table(const McTableData& t, bool apart) {
   const std::size_t nodes = t.eta.size() * t.albedo.size(), bins = t.bins();
+  const std::size_t ne = t.eta.size();
   if (t.eta.empty() || t.albedo.empty() || bins < 4 || t.total.size() != nodes ||
       t.total_se.size() != nodes || t.flux.size() != nodes * bins || t.flux_se.size() != nodes * bins)
     throw std::invalid_argument(
         "mc-table: the table's arrays do not match its axes (eta, albedo, at least 4 radial bins)");
+  if (apart && (t.single_total.size() != ne || t.single_total_se.size() != ne ||
+                t.single_flux.size() != ne * bins || t.single_flux_se.size() != ne * bins ||
+                t.multiple_total_se.size() != nodes || t.multiple_flux_se.size() != nodes * bins))
+    throw std::invalid_argument(
+        "mc-table: single scattering apart needs the table's once-scattered arrays (format "
+        "version 2), sized to its axes");
   const double step = std::log(t.r_edges[2] / t.r_edges[1]);
   if (t.r_edges[0] != 0.0 || !(t.r_edges[1] > 0.0) || !(step > 0.0))
     throw std::invalid_argument("mc-table: r_edges must be 0, then ascending radii");
@@ -172,7 +181,42 @@ std::size_t check_table(const McTableData& t) {
 // single scattering dominates a dark medium, R = α' R1 + O(α'²) with R1 the single-
 // scattering profile per unit albedo, so the relative error of the scaling is O(α'_0),
 // about 1%, and it vanishes at α'_0 (the extension is continuous there).
+//
+// Single scattering apart (McTableProfile.h). Every node's flux becomes its multiply-
+// scattered part flux - α' q (McTable.h: exact for the same walks), clamped at 0, with
+// the table's own standard error of that difference for the reliability test; the total
+// likewise total - α' q_total. Light that scattered n >= 2 times carries α'^n, so the
+// part is α'² M2 + O(α'³): ln(flux_ms/α'²) is what is interpolated (the ln α'² of a dark
+// medium removed as ln α' was), the total as total_ms/α'² in value (Part::value_power),
+// and below the first node the first slice is scaled by (α'/α'_0)², again with a relative
+// error O(α'_0).
 namespace {
+
+// What is interpolated: every order, or the multiply-scattered part alone.
+struct Part {
+  const McTableData& t;
+  bool apart;
+  int power() const { return apart ? 2 : 1; }  // flux ∝ α'^power as α' -> 0
+  // What is interpolated in value (the total, and in the normalisation the annuli left
+  // unenforced) is divided by α'^value_power at the nodes and multiplied by it after:
+  // 0 with every order (the total is ~α' as α' -> 0, which a cubic in u follows), 2 for the
+  // multiply-scattered part, which is ~α'² M2 there: a cubic in u through its values bent
+  // below zero between the first nodes of a coarse grid, while total/α'² = M2 + O(α') is
+  // smooth, and near α' = 1 the factor α'² changes nothing.
+  int value_power() const { return apart ? 2 : 0; }
+  // At flat node index n = node(e, a).
+  double total(std::size_t n) const {
+    return apart ? t.multiple_total(n / t.albedo.size(), n % t.albedo.size()) : t.total[n];
+  }
+  double total_se(std::size_t n) const { return apart ? t.multiple_total_se[n] : t.total_se[n]; }
+  double flux(std::size_t n, std::size_t b) const {
+    return apart ? t.multiple_flux(n / t.albedo.size(), n % t.albedo.size(), b)
+                 : t.flux[n * t.bins() + b];
+  }
+  double flux_se(std::size_t n, std::size_t b) const {
+    return apart ? t.multiple_flux_se[n * t.bins() + b] : t.flux_se[n * t.bins() + b];
+  }
+};
 
 struct Contribution {
   std::size_t node;
@@ -184,14 +228,16 @@ struct Stencil {
   std::size_t count = 0;
 };
 // Where one medium sits in the table: the α' looked up (clamped into the table), the
-// factor for α' below the first node, and the cubic and bilinear stencils.
+// factor for α' below the first node ((α'/α'_0)^power), and the cubic and bilinear
+// stencils.
 struct Lookup {
   double alpha = 0.0, scale = 1.0;
   Stencil cubic, linear;
   double total = 0.0, total_se = 0.0;
 };
 
-Lookup lookup(const Coefficients& c, const McTableData& table) {
+Lookup lookup(const Coefficients& c, const Part& part) {
+  const McTableData& table = part.t;
   if (auto e = c.validate()) throw std::invalid_argument(e->what());
   const double eta = c.eta;
   Lookup l;
@@ -210,7 +256,7 @@ Lookup lookup(const Coefficients& c, const McTableData& table) {
   // table's last edge (1024 mfp) is the exponential tail.
   l.alpha = std::min(l.alpha, 1.0 - 1e-12);
   if (l.alpha < table.albedo.front()) {
-    l.scale = l.alpha / table.albedo.front();
+    l.scale = std::pow(l.alpha / table.albedo.front(), part.power());
     l.alpha = table.albedo.front();
   }
   // The axes as interpolated: η directly, α' as u = √(1 - α') (ascending: α' reversed).
@@ -235,29 +281,36 @@ Lookup lookup(const Coefficients& c, const McTableData& table) {
   l.linear = stencil(axis_weights(table.eta, eta_q, true), axis_weights(us, u_q, true));
   for (std::size_t k = 0; k < l.cubic.count; ++k) {
     const Contribution& n = l.cubic.node[k];
-    l.total += n.weight * table.total[n.node];
+    const double per = std::pow(n.alpha, -part.value_power());
+    l.total += n.weight * part.total(n.node) * per;
     // The nodes share their random walks (McTable.h), so their errors are correlated:
     // Σ|w| se bounds the interpolated error whatever the correlation.
-    l.total_se += std::fabs(n.weight) * table.total_se[n.node];
+    l.total_se += std::fabs(n.weight) * part.total_se(n.node) * per;
   }
-  l.total = std::max(0.0, l.total * l.scale);
-  l.total_se *= l.scale;
+  const double back = std::pow(l.alpha, part.value_power());
+  l.total = std::max(0.0, l.total * back * l.scale);
+  l.total_se *= back * l.scale;
   return l;
 }
 
 }  // namespace
 
-McTableTotal mc_table_total(const Coefficients& c, const McTableData& table) {
-  check_table(table);
-  const Lookup l = lookup(c, table);
+McTableTotal mc_table_total(const Coefficients& c, const McTableData& table,
+                            bool single_scattering_apart) {
+  check_table(table, single_scattering_apart);
+  const Lookup l = lookup(c, Part{table, single_scattering_apart});
   return {l.total, l.total_se};
 }
 
-McTableProfile::McTableProfile(const Coefficients& c) : McTableProfile(c, shipped_mc_table()) {}
+McTableProfile::McTableProfile(const Coefficients& c, bool single_scattering_apart)
+    : McTableProfile(c, shipped_mc_table(), single_scattering_apart) {}
 
-McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) {
-  const std::size_t bins_used = check_table(table);
-  const Lookup l = lookup(c, table);
+McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table,
+                               bool single_scattering_apart)
+    : single_scattering_apart_(single_scattering_apart) {
+  const std::size_t bins_used = check_table(table, single_scattering_apart);
+  const Part part{table, single_scattering_apart};
+  const Lookup l = lookup(c, part);
   sigma_tp_ = c.sigma_t_reduced();
   const double eta = c.eta, alpha = l.alpha, scale = l.scale;
   const Stencil& cubic = l.cubic;
@@ -276,20 +329,21 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
     return;
   }
 
-  // Per annulus: ln(flux / α') with the cubic stencil, or, where one of its nodes is
+  // Per annulus: ln(flux / α'^p) with the cubic stencil, or, where one of its nodes is
   // unreliable, with the bilinear one (the two bracketing nodes per axis; at a node both
-  // are that node); unreliable at those too: not enforced. Dividing by the node's α'
-  // removes the ln α' singularity of a dark medium (flux ∝ α' as α' → 0, a log that
-  // bends steeply across the first nodes); near α' = 1 it changes nothing.
+  // are that node); unreliable at those too: not enforced. Dividing by the node's α'^p
+  // (p = 1, or 2 for the multiply-scattered part) removes the ln α' singularity of a dark
+  // medium (flux ∝ α'^p as α' → 0, a log that bends steeply across the first nodes); near
+  // α' = 1 it changes nothing.
+  const double power = part.power();
   auto interpolate = [&](const Stencil& st, std::size_t b, double& out) {
     double lnf = 0.0;
     for (std::size_t k = 0; k < st.count; ++k) {
-      const std::size_t slot = st.node[k].node * table.bins() + b;
-      const double f = table.flux[slot];
-      if (!(f > 0.0 && table.flux_se[slot] <= kMaxRelativeError * f)) return false;
-      lnf += st.node[k].weight * std::log(f / st.node[k].alpha);
+      const double f = part.flux(st.node[k].node, b);
+      if (!(f > 0.0 && part.flux_se(st.node[k].node, b) <= kMaxRelativeError * f)) return false;
+      lnf += st.node[k].weight * std::log(f / std::pow(st.node[k].alpha, power));
     }
-    out = alpha * scale * std::exp(lnf);
+    out = std::pow(alpha, power) * scale * std::exp(lnf);
     return true;
   };
   const std::size_t bins = table.bins();
@@ -327,15 +381,19 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
   // tried: value interpolation of the far annuli, whose fluxes differ by orders of
   // magnitude across the stencil, is itself wrong there.)
   {
+    // (With every order value_power is 0 and both powers are exactly 1.)
+    const double scale_v = scale * std::pow(alpha, part.value_power());
     double sum = 0.0;
     for (std::size_t k = 0; k < cubic.count; ++k) {
-      const std::size_t base = cubic.node[k].node * bins;
+      const std::size_t n = cubic.node[k].node;
+      const double w = cubic.node[k].weight * std::pow(cubic.node[k].alpha, -part.value_power());
       double node_sum = 0.0;
       for (std::size_t b = 0; b < bins; ++b) {
-        node_sum += table.flux[base + b];
-        if (!enforced_[b]) sum += scale * cubic.node[k].weight * table.flux[base + b];
+        const double f = part.flux(n, b);
+        node_sum += f;
+        if (!enforced_[b]) sum += scale_v * w * f;
       }
-      sum += scale * cubic.node[k].weight * (table.total[cubic.node[k].node] - node_sum);
+      sum += scale_v * w * (part.total(n) - node_sum);
     }
     double enforced_sum = 0.0;
     for (std::size_t b = 0; b < bins; ++b) enforced_sum += target_flux_[b];
@@ -353,10 +411,24 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
   // intervals of width Δ in x. Node k sits at the centre c_k = x_1 + (k - ½)Δ of bin k;
   // node 0, at x_1 - Δ/2, belongs to the disc [0, r_1). φ = ln q is a uniform Catmull-Rom
   // spline through the nodes 0..K (K: the last enforced annulus), and outside them:
-  //  - below c_0, φ is linear with slope s: q ∝ r^s, R ∝ r^{s-2}. Near the source a pencil
-  //    beam's single scattering gives R ~ 1/r (s = 1) and multiple scattering a finite R
-  //    (s = 2); s is the slope between the first two enforced annuli, clamped to [1, 2]
-  //    (outside that range it can only be noise). The disc's flux sets node 0's value.
+  //  - below c_0, with every order: φ is linear with slope s: q ∝ r^s, R ∝ r^{s-2}. Near
+  //    the source a pencil beam's single scattering gives R ~ 1/r (s = 1) and multiple
+  //    scattering an R that grows only like ln(1/r) (s -> 2); s is the slope between the
+  //    first two enforced annuli, clamped to [1, 2] (outside that range it can only be
+  //    noise). The disc's flux sets node 0's value.
+  //  - below c_0, single scattering apart: no 1/r term is left. Twice-scattered light
+  //    makes R grow like ln(1/r) at the source: the first event on the beam at depth z1,
+  //    the second at x2, two 1/d² propagators whose product integrated over x2 is ~1/|z1 -
+  //    r| (a convolution of two 1/d² kernels in 3D), and ∫ dz1/|z1 - r| ~ ln(1/r); higher
+  //    orders are finite there (PBD's ms term has the same ln r, PhotonBeamDiffusion.h).
+  //    A power law would overshoot that by orders of magnitude over the 6 decades from
+  //    the first node to min_radius, so R = R_0 (1 + (2 - s)(x_0 - x)) below x_0 = c_0:
+  //    R ∝ ln(r_c/r) with r_c = r_0 e^{1/(2-s)}, whose slope d ln q/dx is s at c_0 (C1
+  //    with the spline), s a clamped estimate as above but fitted over the first decade
+  //    of enforced annuli (see inner_fit; s = 2: R constant). Its integral
+  //    below c_0 is q_0 (1/2 + (2 - s)/4). Annuli before the first enforced one follow
+  //    the same law from that annulus down (so the law below c_0 is its continuation,
+  //    with R ∝ 1 + (2 - s)(c_first - x)).
   //  - above c_K, R(r) = R(r_K) exp(-κ (r - r_K)), an exponential tail in r continuous
   //    with node K (and C1 with the spline, whose tangent at c_K is the tail's). κ is the
   //    asymptotic transport decay rate κ0 (transport_decay_rate: the slowest mode of
@@ -364,7 +436,8 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
   //    enforced nodes if that is steeper (the power-law factor in front of e^{-κ0 r}
   //    steepens the profile at finite r).
   // An unreliable annulus between enforced ones gets the value linear in x between its
-  // enforced neighbours; one before the first enforced annulus the slope s.
+  // enforced neighbours; one before the first enforced annulus the law below c_0 (power
+  // or log), continued from the first enforced annulus.
   // The node values are adjusted by the fixed point φ_k += ω ln(F_k / I_k), I_k being the
   // spline's integral over bin k (6-point Gauss-Legendre per half bin: the integrand
   // exp(cubic) is smooth on a half bin; the tail's half bin in closed form), until every
@@ -395,12 +468,43 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
     centre[k] = x1 + (static_cast<double>(k) - 0.5) * dx;
     if (enforced_[k]) phi[k] = std::log(target_flux_[k] / dx);
   }
-  double s = 1.5, kappa = 0.0;
+  // s0: the slope of φ at c_0, which the law below c_0 continues (= s, or for the log
+  // law anchored at c_first (see fill), 2 - k0 with k0 = (2 - s)/(1 + (2 - s)(c_first - c_0))).
+  double s = 1.5, s0 = 1.5, kappa = 0.0;
   const double kappa0 = transport_decay_rate(alpha);
   const double rK = std::exp(centre[K]);
+  // Apart: the least-squares slope of φ over the enforced annuli within a decade of the
+  // first one (16 on the shipped grid). The first two alone are the noisiest annuli of
+  // the multiply-scattered part (relative errors 10-40% near the source, where the once-
+  // scattered light dominates the walks' exits): at η = 1.4 their slope sat at the clamp
+  // 2 for 5 of 6 albedos from 0.01 to 0.9999. Over the decade it is 1.53-2 on the shipped
+  // table (at the clamp for 10% of 3131 media swept over η and α'), as ln(r_c/r) gives
+  // there (2 - 1/ln(r_c/r), 1.6-1.8 for r_c ~ 0.03-1 mfp at r ~ 0.005 mfp).
+  auto inner_fit = [&] {
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t k = first; k <= K && centre[k] <= centre[first] + std::log(10.0); ++k) {
+      if (!enforced_[k]) continue;
+      const double x = centre[k] - centre[first];
+      n += 1, sx += x, sy += phi[k], sxx += x * x, sxy += x * phi[k];
+    }
+    const double det = n * sxx - sx * sx;
+    return det > 0.0 ? (n * sxy - sx * sy) / det
+                     : (phi[second] - phi[first]) / (centre[second] - centre[first]);
+  };
   auto fill = [&](bool rates) {
     if (rates)
-      s = std::clamp((phi[second] - phi[first]) / (centre[second] - centre[first]), 1.0, 2.0);
+      s = std::clamp(single_scattering_apart_
+                         ? inner_fit()
+                         : (phi[second] - phi[first]) / (centre[second] - centre[first]),
+                     1.0, 2.0);
+    // Before the first enforced annulus, the law that holds below c_0 (above), anchored
+    // at the first enforced node: the power law φ = φ_f - s (c_f - x), or the log law
+    // φ = φ_f - 2 (c_f - x) + ln(1 + (2 - s)(c_f - x)).
+    const double k_log = 2.0 - s;
+    const std::size_t anchor = enforced_[0] ? 0 : first;
+    s0 = single_scattering_apart_
+             ? 2.0 - k_log / (1.0 + k_log * (centre[anchor] - centre[0]))
+             : s;
     std::size_t prev = bins;  // none yet
     for (std::size_t k = 0; k <= K; ++k) {
       if (enforced_[k]) {
@@ -408,7 +512,9 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
         continue;
       }
       if (prev == bins) {
-        phi[k] = phi[first] - s * (centre[first] - centre[k]);
+        const double d = centre[first] - centre[k];
+        phi[k] = single_scattering_apart_ ? phi[first] - 2.0 * d + std::log1p(k_log * d)
+                                          : phi[first] - s * d;
       } else {
         std::size_t next = k + 1;
         while (!enforced_[next]) ++next;  // K is enforced
@@ -426,7 +532,7 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
   std::vector<double> seg(4 * K);
   auto build_segments = [&] {
     auto tangent = [&](std::size_t k) {  // dφ/dt, t in units of Δ
-      if (k == 0) return s * dx;
+      if (k == 0) return s0 * dx;
       if (k == K) return (2.0 - kappa * rK) * dx;
       return 0.5 * (phi[k + 1] - phi[k - 1]);
     };
@@ -459,8 +565,14 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
     return std::exp(phi[K]) / (rK * rK) *
            (one_minus_E * (rK / kappa + 1.0 / (kappa * kappa)) - d_tail * E / kappa);
   };
+  // ∫ q dx below c_0: q_0/s0 for the power law, q_0 (1/2 + (2 - s0)/4) for the log law
+  // (∫_0^∞ e^{-2t} (1 + k t) dt = 1/2 + k/4).
+  auto inner_integral = [&] {
+    return single_scattering_apart_ ? std::exp(phi[0]) * (0.5 + 0.25 * (2.0 - s0))
+                                    : std::exp(phi[0]) / s0;
+  };
   auto bin_integral = [&](std::size_t k) {
-    if (k == 0) return std::exp(phi[0]) / s + seg_integral(0, 0.0);
+    if (k == 0) return inner_integral() + seg_integral(0, 0.0);
     return seg_integral(k - 1, 0.5) + (k < K ? seg_integral(k, 0.0) : tail_integral());
   };
   constexpr int kRateIterations = 4;
@@ -495,7 +607,14 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table) 
   u_lo_ = centre[0] - ls;
   inv_du_ = 1.0 / dx;
   lo_a_ = c2 + phi[0] - 2.0 * centre[0];
-  lo_b_ = s - 2.0;
+  if (single_scattering_apart_) {
+    lo_b_ = 0.0;
+    lo_log_ = 2.0 - s0;
+  } else {
+    lo_b_ = s0 - 2.0;
+    lo_log_ = 0.0;
+  }
+  inner_slope_ = s0;
   coef_.resize(4 * K);
   for (std::size_t k = 0; k < K; ++k) {
     coef_[4 * k] = seg[4 * k] + c2 - 2.0 * centre[k];
@@ -541,7 +660,7 @@ double McTableProfile::reflectance(double r) const {
   if (!(r >= r_min_mm_)) r = r_min_mm_;  // also a NaN r: no undefined index below
   if (r >= r_tail_) return tail_a_ * std::exp(-tail_k_ * (r - r_tail_));
   const double u = std::log(r);
-  if (u < u_lo_) return std::exp(lo_a_ + lo_b_ * (u - u_lo_));
+  if (u < u_lo_) return std::exp(lo_a_ + lo_b_ * (u - u_lo_)) * (1.0 + lo_log_ * (u_lo_ - u));
   const double v = (u - u_lo_) * inv_du_;
   const std::size_t last = coef_.size() / 4 - 1;
   const std::size_t j = std::min(static_cast<std::size_t>(v), last);

@@ -14,9 +14,23 @@
 //     three nodes. A medium that does not scatter (α' = 0) has R ≡ 0.
 //  3. Reconstruction in r: a smooth q(x) = 2π r² R(r) as a function of x = ln r whose
 //     integral over every reliable annulus reproduces that annulus' interpolated flux
-//     ("histopolation"), with a power law inside the first edge and an exponential tail at
-//     the asymptotic transport decay rate past the last reliable annulus. McTableProfile.cpp
-//     says how, and why each choice.
+//     ("histopolation"), with a power law inside the first edge (R ~ 1/r from single
+//     scattering at the source) and an exponential tail at the asymptotic transport decay
+//     rate past the last reliable annulus. McTableProfile.cpp says how, and why each
+//     choice.
+//
+// Single scattering apart (ModelOptions::single_scattering_apart; issue 18 part 2): the
+// profile of the light that scattered twice or more, the renderer adding S(1) in closed
+// form. Every node's flux and total become their multiply-scattered parts flux - α' q and
+// total - α' q_total (McTable.h: exact for the same walks), with their own standard
+// errors; ln(flux/α'²) and total/α'² (in value) are interpolated and the first slice is
+// scaled by (α'/α'_0)² below the first node (the part is O(α'²)); inside the first
+// reliable annulus R grows like ln(1/r) instead of 1/r (no single scattering left).
+// Everything else is as above. For g ≠ 0 what is left out is the once-scattered light of
+// the similarity medium (isotropic, α'), not that of the real phase function, which the
+// renderer's S(1) adds: the multiply-scattered totals still agree with the analog walk's
+// real-g exits after two or more events within 0.33% on skin1 R and B, ketchup R and
+// marble G (tests/profiles/test_single_scattering_apart.cpp).
 //
 // Evaluation is a log, a table index computed from it, a cubic and an exp: no search.
 #pragma once
@@ -45,20 +59,24 @@ double transport_decay_rate(double albedo);
 struct McTableTotal {
   double total = 0.0, stderr_ = 0.0;
 };
-McTableTotal mc_table_total(const Coefficients& c, const McTableData& table);
+McTableTotal mc_table_total(const Coefficients& c, const McTableData& table,
+                            bool single_scattering_apart = false);
 
 class McTableProfile final : public RadialProfile {
  public:
-  // With the shipped table (shipped_mc_table()).
-  explicit McTableProfile(const Coefficients& c);
+  // With the shipped table (shipped_mc_table()). single_scattering_apart: leave the
+  // once-scattered light out (see above).
+  explicit McTableProfile(const Coefficients& c, bool single_scattering_apart = false);
   // Throws std::invalid_argument naming the field: "eta: mc-table covers eta in [A, B],
   // got X", or a coefficient error of Coefficients::validate. `table` must outlive the profile only during the
   // constructor (nothing refers to it afterwards).
-  McTableProfile(const Coefficients& c, const McTableData& table);
+  McTableProfile(const Coefficients& c, const McTableData& table,
+                 bool single_scattering_apart = false);
 
   double reflectance(double r_mm) const override;
-  // The interpolated tabulated total (all exits, also beyond the table's last edge), not
-  // the integral of the reconstruction (which agrees with it within the table's noise).
+  // The interpolated tabulated total (all exits, also beyond the table's last edge; with
+  // single scattering apart, total - α' q_total), not the integral of the reconstruction
+  // (which agrees with it within the table's noise).
   double total_reflectance() const override { return total_; }
   // Where r R(r) has fallen below 1e-8 of its peak.
   double support_radius() const override { return support_mfp_ / sigma_tp_; }
@@ -66,8 +84,13 @@ class McTableProfile final : public RadialProfile {
   double inner_radius() const override { return 1.0 / sigma_tp_; }
 
   // R is evaluated at max(r, min_radius()): the profile grows like 1/r towards the origin
-  // (single scattering of a pencil beam), an integrable singularity. 1e-9 mean free paths.
+  // (single scattering of a pencil beam; like ln(1/r) with single scattering apart), an
+  // integrable singularity. 1e-9 mean free paths.
   double min_radius() const { return kMinRadiusMfp / sigma_tp_; }
+  bool single_scattering_apart() const { return single_scattering_apart_; }
+  // The slope d ln(r² R)/d ln r with which R continues inside the first node: the power
+  // law's exponent + 2, or with single scattering apart the log law's slope at the node.
+  double inner_slope() const { return inner_slope_; }
   // The interpolated standard error of total_reflectance().
   double total_stderr() const { return total_se_; }
 
@@ -98,19 +121,23 @@ class McTableProfile final : public RadialProfile {
   double kappa_ = 0.0, tail_r_ = 0.0;
   double flux_scale_ = 1.0;
   bool zero_ = false;  // α' = 0: R ≡ 0
+  bool single_scattering_apart_ = false;
+  double inner_slope_ = 0.0;
   int iterations_ = 0;
   double residual_ = 0.0;
   std::vector<double> target_flux_;
   std::vector<char> enforced_;
 
   // Evaluation in mm, everything folded in: ψ(u) = ln R_mm at u = ln r_mm.
-  // Below u_lo_:   ψ = lo_a_ + lo_b_ (u - u_lo_)           (power law inside the first node)
+  // Below u_lo_:   ψ = lo_a_ + lo_b_ (u - u_lo_) + ln(1 + lo_log_ (u_lo_ - u))
+  //                (power law inside the first node, or with single scattering apart
+  //                lo_b_ = 0 and R ∝ ln(r_c/r))
   // u >= u_lo_:    piece j = floor((u - u_lo_) * inv_du_), t = (u - u_lo_) * inv_du_ - j,
   //                ψ = c0 + t (c1 + t (c2 + t c3)) from coef_[4 j ..]
   // r >= r_tail_:  R = tail_a_ exp(-tail_k_ (r - r_tail_))  (the exponential tail)
   double r_min_mm_ = 0.0;
   double u_lo_ = 0.0, inv_du_ = 0.0;
-  double lo_a_ = 0.0, lo_b_ = 0.0;
+  double lo_a_ = 0.0, lo_b_ = 0.0, lo_log_ = 0.0;
   double r_tail_ = 0.0, tail_a_ = 0.0, tail_k_ = 0.0;
   std::vector<double> coef_;
 };

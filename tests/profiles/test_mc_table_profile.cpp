@@ -271,6 +271,72 @@ TEST(McTableProfile, FiniteAtTheOriginAndEverywhere) {
   }
 }
 
+// Single scattering apart (McTableProfile.h): the same lookup of the multiply-scattered
+// part flux - α' q, total - α' q_total. At a node it is the node's own part: total, its
+// stored error, and every enforced annulus (as LookupAtANodeIsTheNode, 1e-13).
+TEST(McTableProfile, ApartLookupAtANodeIsTheNodesMultipleScattering) {
+  const McTableData& t = small_table();
+  for (std::size_t e = 0; e < t.eta.size(); ++e)
+    for (std::size_t a = 0; a < t.albedo.size(); ++a) {
+      const McTableProfile p(optical(t.albedo[a], t.eta[e]), t, true);
+      const std::size_t node = t.node(e, a);
+      const double ms = t.multiple_total(e, a);
+      EXPECT_NEAR(p.total_reflectance(), ms, 1e-13 * ms) << e << " " << a;
+      EXPECT_NEAR(p.total_stderr(), t.multiple_total_se[node], 1e-13 * t.multiple_total_se[node]);
+      EXPECT_NEAR(ms, t.total[node] - t.albedo[a] * t.single_total[e], 1e-15);
+      int enforced = 0;
+      for (std::size_t b = 0; b < t.bins(); ++b) {
+        if (!p.enforced()[b]) continue;
+        ++enforced;
+        const double f = t.multiple_flux(e, a, b);
+        EXPECT_NEAR(p.target_flux()[b], f, 1e-13 * f) << e << " " << a << " bin " << b;
+      }
+      EXPECT_GE(enforced, 10) << e << " " << a;
+    }
+}
+
+// The apart reconstruction reproduces its enforced fluxes (as
+// ReconstructionReproducesTheAnnulusFluxes, 1e-6) and integrates to its total at the nodes
+// within one standard error (as IntegralOfTheProfileIsTheTotalAtNodes); the disc's share
+// below min_radius is smaller still than with single scattering (q ∝ r² ln(1/r)).
+TEST(McTableProfile, ApartReconstructionReproducesTheFluxesAndTheTotal) {
+  const McTableData& t = small_table();
+  const std::pair<double, double> media[] = {
+      {t.albedo[4], t.eta[1]}, {t.albedo[7], t.eta[0]}, {0.3, 1.1}, {0.9, 1.37}, {0.97, 1.0}, {0.004, 1.2}};
+  for (const auto& [a, eta] : media) {
+    const McTableProfile p(optical(a, eta), t, true);
+    EXPECT_LT(p.residual(), 1e-12) << a << " " << eta;
+    for (std::size_t b = 0; b < t.bins(); ++b) {
+      if (!p.enforced()[b]) continue;
+      const double f = p.target_flux()[b];
+      EXPECT_NEAR(bin_flux(p, t, b), f, 1e-6 * f) << "albedo " << a << " eta " << eta << " bin " << b;
+    }
+  }
+  for (std::size_t e = 0; e < t.eta.size(); ++e)
+    for (std::size_t a = 0; a < t.albedo.size(); ++a) {
+      const McTableProfile p(optical(t.albedo[a], t.eta[e]), t, true);
+      EXPECT_NEAR(integral(p, t), p.total_reflectance(), p.total_stderr())
+          << "albedo " << t.albedo[a] << " eta " << t.eta[e];
+    }
+}
+
+// The apart total rises with α' along the fine sweep of BrighterMediumReflectsMore, the
+// extension below the first node (∝ α'²) included, and stays below the full total.
+TEST(McTableProfile, ApartBrighterMediumReflectsMore) {
+  const McTableData& t = small_table();
+  for (double eta : {1.0, 1.15, 1.4}) {
+    double last_total = 0.0;
+    for (int i = 0; i <= 400; ++i) {
+      const double u = std::sqrt(1.0 - 0.001) + (std::sqrt(1.0 - 0.99) - std::sqrt(1.0 - 0.001)) * i / 400.0;
+      const double a = 1.0 - u * u;
+      const McTableProfile p(optical(a, eta), t, true);
+      EXPECT_GT(p.total_reflectance(), last_total) << "albedo " << a << " eta " << eta;
+      EXPECT_LT(p.total_reflectance(), McTableProfile(optical(a, eta), t).total_reflectance());
+      last_total = p.total_reflectance();
+    }
+  }
+}
+
 // Not asserted: the constructor's and one R(r)'s cost (the lead's bench measures them
 // properly in a Release build).
 TEST(McTableProfile, Timing) {
