@@ -25,8 +25,9 @@ double phase_hg(double cos_deflection, double g) {
 }  // namespace
 
 PhotonBeamDiffusion::PhotonBeamDiffusion(const Coefficients& c, int samples,
-                                         BeamSampling sampling)
-    : c_(c), samples_(samples), sampling_(sampling) {
+                                         BeamSampling sampling, bool single_scattering_apart)
+    : c_(c), samples_(samples), sampling_(sampling),
+      single_scattering_apart_(single_scattering_apart) {
   if (auto e = c.validate()) throw std::invalid_argument("PhotonBeamDiffusion: " + e->what());
   if (samples < 1)
     throw std::invalid_argument("PhotonBeamDiffusion: samples must be >= 1, got " +

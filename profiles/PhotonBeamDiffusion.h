@@ -21,14 +21,19 @@ class PhotonBeamDiffusion final : public RadialProfile {
  public:
   // `samples`: depth samples per strategy (MIS uses `samples` of each). Throws
   // std::invalid_argument for invalid coefficients or samples < 1.
+  // single_scattering_apart (ModelOptions::single_scattering_apart): R(r) and its total
+  // are the multiple-scattering term alone; the renderer adds single scattering apart.
   PhotonBeamDiffusion(const Coefficients& c, int samples,
-                      BeamSampling sampling = BeamSampling::Mis);
+                      BeamSampling sampling = BeamSampling::Mis,
+                      bool single_scattering_apart = false);
   double reflectance(double r_mm) const override {
-    return multiple_scattering(r_mm) + single_scattering(r_mm);
+    return single_scattering_apart_ ? multiple_scattering(r_mm)
+                                    : multiple_scattering(r_mm) + single_scattering(r_mm);
   }
   double multiple_scattering(double r_mm) const;
   double single_scattering(double r_mm) const;
-  // Numerical: ∫2πr R dr over [0, support_radius] (computed once in the constructor).
+  // Numerical: ∫2πr R dr over [0, support_radius] (computed once in the constructor), of
+  // whatever reflectance() returns (without the single-scattering term when it is apart).
   double total_reflectance() const override { return total_; }
   double support_radius() const override;
   double inner_radius() const override;
@@ -45,6 +50,7 @@ class PhotonBeamDiffusion final : public RadialProfile {
   // at r = 0 (1/r from single scattering, log r from multiple scattering).
   double min_radius() const { return r_min_; }
   int samples() const { return samples_; }
+  bool single_scattering_apart() const { return single_scattering_apart_; }
   BeamSampling sampling() const { return sampling_; }
 
  private:
@@ -52,6 +58,7 @@ class PhotonBeamDiffusion final : public RadialProfile {
   DipoleTerms terms_;
   int samples_;
   BeamSampling sampling_;
+  bool single_scattering_apart_ = false;
   double total_ = 0.0;
   // Derived constants (see the .cpp for their sources).
   double sigma_t_, sigma_tp_, albedo_, alpha_p_, tan_crit_, theta_crit_, r_min_;

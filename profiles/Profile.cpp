@@ -59,6 +59,9 @@ std::unique_ptr<RadialProfile> make_monte_carlo(const Coefficients& c, double th
   const double mfp = c.mfp_reduced();
   const double outer = 20.0 / c.sigma_tr_classical() + 10.0 * mfp;
   mc.bin_edges_mm = log_bin_edges(0.01 * mfp, outer, 96);
+  // Single scattering apart: exits after one scattering event are not tallied (the
+  // renderer adds them in closed form, SingleScattering.h).
+  if (opt.single_scattering_apart) mc.min_scattering_order = 2;
   const MonteCarloResult result = run_monte_carlo(c, mc);
   try {
     return std::make_unique<TabulatedProfile>(TabulatedProfile::from_monte_carlo(result));
@@ -79,7 +82,9 @@ std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
   switch (model) {
     case Model::Dipole: return std::make_unique<ClassicalDipole>(c);
     case Model::BetterDipole: return std::make_unique<BetterDipole>(c);
-    case Model::Pbd: return std::make_unique<PhotonBeamDiffusion>(c, opt.pbd_samples);
+    case Model::Pbd:
+      return std::make_unique<PhotonBeamDiffusion>(c, opt.pbd_samples, BeamSampling::Mis,
+                                                   opt.single_scattering_apart);
     case Model::Burley: return std::make_unique<Burley>(c);
     case Model::Multipole:
       if (!(thickness_mm < std::numeric_limits<double>::infinity()))
@@ -101,7 +106,7 @@ std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
     // glTF "thickness"), and a user who switches such a material to mc-table in the
     // viewer's menu expects its reflectance profile, as with the other semi-infinite
     // models, not an error. The multipole is the model for a slab's own profile.
-    case Model::McTable: return std::make_unique<McTableProfile>(c);
+    case Model::McTable: return std::make_unique<McTableProfile>(c, opt.single_scattering_apart);
     // Quantized diffusion (d'Eon & Irving 2011): semi-infinite, as the dipoles.
     case Model::Qd: return std::make_unique<QuantizedDiffusion>(c);
   }

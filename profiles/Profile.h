@@ -58,6 +58,13 @@ struct ModelOptions {
   std::uint64_t mc_photons = 1u << 20;
   std::uint64_t mc_seed = 1;
   int mc_threads = 0;  // 0: all hardware threads
+  // Leave out the light that leaves after exactly one scattering event: the renderers add
+  // single scattering S(1) apart, in closed form with the real g and the exit direction
+  // (profiles/SingleScattering.h), so a profile that contains it must not count it again
+  // (issue 18 part 2). mc-table subtracts the table's stored once-scattered flux, mc drops
+  // first-order exits, pbd drops its single-scattering term; the diffusion models (dipole,
+  // better-dipole, multipole, burley, qd) contain none and are unchanged.
+  bool single_scattering_apart = false;
 };
 
 class RadialProfile {

@@ -68,6 +68,9 @@ ValidationReport validate_against_monte_carlo(const Medium& medium,
     mc.threads = opt.threads;
     mc.thickness_mm = medium.thickness_mm;
     mc.bin_edges_mm = log_bin_edges(opt.r_lo_mfp * mfp, opt.r_hi_mfp * mfp, opt.bins);
+    // Models without single scattering are compared with the walk's exits after two or
+    // more scattering events, as model mc itself leaves them out.
+    if (opt.model_options.single_scattering_apart) mc.min_scattering_order = 2;
     if (opt.progress)
       mc.progress = [&, c](double f) { opt.progress((c + f) / 3.0); };
     report.monte_carlo[c] = run_monte_carlo(k, mc);

@@ -22,6 +22,8 @@ struct ValidationOptions {
   double r_hi_mfp = 8.0;
   int bins = 24;           // log-spaced annuli over the range
   std::vector<Model> models;  // empty: every analytic model that applies to the medium
+  // With single_scattering_apart the Monte Carlo reference leaves the once-scattered
+  // exits out too (MonteCarloOptions::min_scattering_order = 2).
   ModelOptions model_options;
   std::function<void(double)> progress;  // fraction of the Monte Carlo done
   std::array<bool, 3> channels{true, true, true};  // which channels to run (tests use one)
