@@ -44,7 +44,7 @@ void validate(const Coefficients& c, const MonteCarloOptions& o) {
   if (o.max_interactions_per_photon == 0) fail("max_interactions_per_photon", "must be > 0");
   if (o.max_scattering_order < 0) fail("max_scattering_order", "must be >= 0 (0: all)");
   if (o.min_scattering_order < 0)
-    fail("min_scattering_order", "must be >= 0 (0 or 1: every exit is tallied)");
+    fail("min_scattering_order", "must be >= 0 (0: every exit is tallied)");
   if (o.max_scattering_order > 0 && o.min_scattering_order > o.max_scattering_order)
     fail("min_scattering_order", "must not exceed max_scattering_order (" +
                                      std::to_string(o.max_scattering_order) +
