@@ -98,7 +98,7 @@ struct MonteCarloResult {
   // Weight absorbed in the medium per unit power entered, with its standard error. In
   // expectation reflectance.total + transmittance.total + low_order_exits + absorbed = 1
   // when no photon was truncated and max_scattering_order == 0 (roulette is unbiased, so
-  // it adds no bias); low_order_exits is 0 unless min_scattering_order > 1.
+  // it adds no bias); low_order_exits is 0 when min_scattering_order is 0.
   double absorbed = 0.0;
   double absorbed_stderr = 0.0;
   // Weight that left through either face after fewer than min_scattering_order scattering
