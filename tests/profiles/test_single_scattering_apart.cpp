@@ -396,29 +396,36 @@ TEST(SingleScatteringApart, EveryModelTakesTheOption) {
 
 // PBD apart against the analog walk's exits after two or more events (validate_against_
 // monte_carlo with the option: its reference leaves the once-scattered exits out too), on
-// the media and with the photons of test_models_vs_mc.cpp. Bounds: at high albedo PBD's
-// known accuracy, the bounds that file holds the full PBD to (total 8%, RMS 10%, max 16%;
-// measured apart: skin1 R +6.2/6.6/9.9%, marble G +2.8/5.0/12.3%). At lower albedo the
-// multiple-scattering term alone is further off than full PBD (measured apart: skin1 B
-// +16.3/15.5/22.2%, ketchup R +13.2/12.6/17.4%, against +9.1/12.2/19% and +8.8/10.4/14%
-// with single scattering in): PBD's single-scattering term is within 1.3-2.2% of the
-// walk's once-scattered exits (printed), so the excess is the ms term's (its α'² Grosjean
-// source counts part of the first scattering again), and it weighs more against the
-// smaller multiply-scattered total (once-scattered share 38-44% there). Bounds there are the measured
-// values with the margins test_models_vs_mc.cpp uses (~1.3x): 21%, 20%, 29%. mc-table apart
-// must stay within its own accuracy (total 1%, RMS 5%, as test_mc_table_accuracy.cpp).
+// the media and with the photons of test_models_vs_mc.cpp. Bounds, derived from the full
+// PBD's known accuracy there (test_models_vs_mc.cpp: total 8% at high albedo, 12% at lower
+// albedo) and from its single-scattering term's: apart = full - ss, so
+//   |PBD_ms - MC_ms| <= |PBD_full - MC_full| + |PBD_ss - MC_ss|
+//                    <= b_full MC_full + b_ss MC_ss + 4 SE,
+// with b_ss = 3% (PBD's once-scattered total is a 32-sample quadrature along the beam, 1%
+// by docs/PBD_CONVERGENCE.md, plus the walk's 4 SE; measured 1.3-2.2%, and checked here
+// on its own). Relative to MC_ms that is larger than b_full where the once-scattered share
+// is large (38-44% at α' 0.68-0.75): measured apart skin1 B +16.3% against the derived
+// 23.8%, ketchup R +13.2% against 21.1%. The radial RMS and max keep the full PBD's bounds
+// at high albedo (measured apart: skin1 R +6.2/6.6/9.9%, marble G +2.8/5.0/12.3% against
+// 10%, 16%); at lower albedo they are printed, not bounded: where R_ss dominates the ms
+// part is small and a relative per-annulus error of the full profile does not carry over.
+// The finding behind it: PBD's ms term alone overestimates the walk more than the full
+// PBD does (its α'² Grosjean source counts part of the first scattering again), so with
+// single scattering on, pbd's excess shows. mc-table apart must stay within its own
+// accuracy (total 1%, RMS 5%, as test_mc_table_accuracy.cpp).
 struct ApartCase {
   const char* preset;
   int channel;
   std::uint64_t photons;
-  double total, rms, max;  // PBD's bounds
+  double full_total;  // the full PBD's total bound there (test_models_vs_mc.cpp)
+  bool high_albedo;   // the radial RMS and max bounds apply
 };
 
 TEST(SingleScatteringApart, PbdAgreesWithTheAnalogWalkWithinItsKnownAccuracy) {
-  const ApartCase cases[] = {{"skin1", 0, 300000, 0.08, 0.10, 0.16},
-                             {"marble", 1, 40000, 0.08, 0.10, 0.16},
-                             {"skin1", 2, 300000, 0.21, 0.20, 0.29},
-                             {"ketchup", 0, 300000, 0.21, 0.20, 0.29}};
+  const ApartCase cases[] = {{"skin1", 0, 300000, 0.08, true},
+                             {"marble", 1, 40000, 0.08, true},
+                             {"skin1", 2, 300000, 0.12, false},
+                             {"ketchup", 0, 300000, 0.12, false}};
   for (const ApartCase& k : cases) {
     const Medium m = preset_medium(*find_preset(k.preset));
     ValidationOptions o;
@@ -435,16 +442,22 @@ TEST(SingleScatteringApart, PbdAgreesWithTheAnalogWalkWithinItsKnownAccuracy) {
     const ChannelComparison& pbd = rep.models[0].channels[k.channel];
     const ChannelComparison& tab = rep.models[1].channels[k.channel];
     SCOPED_TRACE(std::string(k.preset) + "[" + kChannelNames[k.channel] + "]");
-    EXPECT_LT(std::fabs(pbd.total_rel_error), k.total);
+    const double ms = mc.reflectance.total, ss = mc.low_order_exits;
+    const double bound = (k.full_total * (ms + ss) + 0.03 * ss + 4.0 * mc.reflectance.total_stderr) / ms;
+    EXPECT_LT(std::fabs(pbd.total_rel_error), bound);
     EXPECT_GT(pbd.total_rel_error, 0.0) << "PBD's ms term overestimates";
-    EXPECT_LT(pbd.rms_rel_error, k.rms);
-    EXPECT_LT(pbd.max_rel_error, k.max);
+    if (k.high_albedo) {
+      EXPECT_LT(pbd.rms_rel_error, 0.10);
+      EXPECT_LT(pbd.max_rel_error, 0.16);
+    }
     EXPECT_LT(std::fabs(tab.total_rel_error), 0.01);
     EXPECT_LT(tab.rms_rel_error, 0.05);
     // PBD's own single-scattering total (its full total less its apart one) against the
     // walk's once-scattered exits: printed, to show where PBD's excess lies.
     const double pbd_ss = make_profile(Model::Pbd, m.channel(k.channel), kInf, {})->total_reflectance() -
                           pbd.total;
+    EXPECT_NEAR(pbd_ss, mc.low_order_exits, 0.03 * mc.low_order_exits + 4.0 * mc.low_order_exits_stderr)
+        << "PBD's single-scattering term";
     std::printf("%s[%c] alpha' %.3f, once-scattered share %.1f%% (pbd's single scattering %.5f, "
                 "walk's %.5f +- %.5f): pbd apart total %+.1f%%, RMS %.1f%%, "
                 "max %.1f%%; mc-table apart total %+.2f%%, RMS %.1f%% (MC median annulus SE %.1f%%)\n",
