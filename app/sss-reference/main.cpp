@@ -283,6 +283,7 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1, spp = 0;
   float exposure = 1.0f;
   std::string fresnel = "off";
+  std::string single_scattering = "on";
   bool brute = false, diffuse_only = false, no_specular = false, quiet = false, stats = false, exitance = false;
   MaterialOverrideArgs material;
   app.add_option("scene", scene_name, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
@@ -343,8 +344,13 @@ int main(int argc, char** argv) {
   app.add_option("--fresnel", fresnel,
                  "diffusion, on | off: directional Fresnel factors on subsurface light, as sss-viewer --fresnel "
                  "(default off); the random walk refracts at the faces whatever this says");
+  app.add_option("--single-scattering", single_scattering,
+                 "diffusion, on | off: S(1) marched along the refracted eye ray (Jensen et al. 2001, the real g), "
+                 "unblurred, with profiles that leave their own once-scattered light out, as sss-viewer "
+                 "--single-scattering (default on); the random walk has it by construction");
   app.add_flag("--no-specular", no_specular,
-               "diffusion, EXR --out: write the frame less its specular term, the light that scattered (with its "
+               "diffusion, EXR --out: write the frame less its specular term (and S(1) with --single-scattering on, "
+               "the unblurred part), the light that scattered (with its "
                "albedo) and the opaque diffuse; compare with sss-viewer --no-specular (the error budget's "
                "scattered light)");
   app.add_flag("--quiet", quiet, "No progress bar");
@@ -369,6 +375,10 @@ int main(int argc, char** argv) {
     return usage("--estimator: expected octree or probe, got '" + estimator + "'");
   if (walk && app.count("--estimator") > 0) return usage("--estimator: applies to --method diffusion only");
   if (fresnel != "on" && fresnel != "off") return usage("--fresnel: expected on or off, got '" + fresnel + "'");
+  if (single_scattering != "on" && single_scattering != "off")
+    return usage("--single-scattering: expected on or off, got '" + single_scattering + "'");
+  if (walk && app.count("--single-scattering") > 0)
+    return usage("--single-scattering: applies to --method diffusion only (the random walk scatters once by construction)");
   if (walk && app.count("--fresnel") > 0)
     return usage("--fresnel: applies to --method diffusion only (the random walk refracts at the faces)");
   const bool probe = !walk && estimator == "probe";
@@ -469,6 +479,7 @@ int main(int argc, char** argv) {
       o.brute_force = brute;
       o.diffuse_only = diffuse_only;
       o.fresnel = fresnel == "on";
+      o.single_scattering = single_scattering == "on";
       o.threads = threads;
       o.seed = seed;
       o.exposure = exposure;

@@ -47,7 +47,8 @@ struct VisibleSurface {
   glm::vec3 normal{0.0f};     // shading normal, facing the eye
   glm::vec3 albedo{0.0f};     // base colour
   bool subsurface = false;    // the material scatters (sss.enabled)
-  glm::dvec3 specular{0.0};   // GGX specular towards the eye (0 when not asked for)
+  glm::dvec3 specular{0.0};   // GGX specular towards the eye (0 when not asked for); the
+                              // diffusion references add S(1) to it (SingleScatter.h)
   glm::dvec3 irradiance{0.0}; // direct irradiance E (opaque surfaces only)
   glm::dvec3 scatter_factor{0.0};  // what multiplies the scattered light in the composite
   // Subsurface: the directional Fresnel exit factor F_t(η, n·v) / c per channel

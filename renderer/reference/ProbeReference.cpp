@@ -1,6 +1,7 @@
 #include "renderer/reference/ProbeReference.h"
 
 #include "renderer/reference/GroundTruth.h"
+#include "renderer/reference/SingleScatter.h"
 #include "renderer/reference/PixelShading.h"
 #include "renderer/reference/SamplePasses.h"
 #include "renderer/reference/Shading.h"
@@ -100,7 +101,7 @@ ProbeEstimator::ProbeEstimator(const scene::Scene& s, const RayScene& rays, cons
     if (!sss.enabled || !used[m]) continue;
     ProbeGroup g;
     g.material = m;
-    g.profile = reference_profile(sss, o.kernel, o.model_options);
+    g.profile = reference_profile(sss, o.kernel, o.profile_options());
     g.support_mm = g.profile->support_radius();
     g.pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
     g.entry_fresnel = o.applies_fresnel();
@@ -265,8 +266,8 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
         const CameraRays::Ray ray = camera.pixel(x, y);
         const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
         if (!hit) continue;
-        const VisibleSurface v =
-            visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only, maps.get());
+        VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only, maps.get());
+        if (o.applies_single_scattering()) add_single_scattering(s, rays, v, maps.get());
         float* px = out.hdr.pixel(int(x), int(y));
         px[3] = 1.0f;
         out.variance.pixel(int(x), int(y))[3] = 1.0f;

@@ -6,6 +6,7 @@
 #include "renderer/reference/SamplePasses.h"
 #include "renderer/reference/RayScene.h"
 #include "renderer/reference/Shading.h"
+#include "renderer/reference/SingleScatter.h"
 #include "renderer/reference/SurfaceSampling.h"
 
 #include "profiles/GaussianSumProfile.h"
@@ -156,7 +157,7 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
     Group& g = groups[k];
     const scene::SssMaterial& sss = s.materials[g.material].sss;
     const profiles::Medium medium = sss.effective_medium();
-    g.profile = reference_profile(sss, o.kernel, o.model_options);
+    g.profile = reference_profile(sss, o.kernel, o.profile_options());
     g.spacing_mm = o.spacing_mfp * smallest_mfp(medium);
     g.planned_points = g.area_mm2 / (g.spacing_mm * g.spacing_mm);
     reporter.report("profiles", double(k + 1) / double(groups.size()));
@@ -174,7 +175,9 @@ std::unique_ptr<profiles::RgbProfile> reference_profile(const scene::SssMaterial
                                                         const profiles::ModelOptions& model_options) {
   const profiles::Medium medium = sss.effective_medium();
   if (kernel == KernelSource::Exact) return std::make_unique<profiles::RgbProfile>(sss.model, medium, model_options);
-  const profiles::RgbProfile exact(sss.model, medium);
+  profiles::ModelOptions fit_options;  // the GPU's: defaults but for the S(1) switch
+  fit_options.single_scattering_apart = model_options.single_scattering_apart;
+  const profiles::RgbProfile exact(sss.model, medium, fit_options);
   return std::make_unique<profiles::RgbProfile>(
       profiles::make_kernel_profile(profiles::fit_kernel(exact, sss.gaussians, medium.is_slab()), sss.model));
 }
@@ -319,8 +322,8 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
         const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
         float* px = out.hdr.pixel(int(x), int(y));
         if (!hit) continue;
-        const VisibleSurface v =
-            visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only, maps.get());
+        VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only, maps.get());
+        if (o.applies_single_scattering()) add_single_scattering(s, rays, v, maps.get());
         const int gi = group_of[v.point.material];
         glm::dvec3 L;
         if (gi >= 0) {

@@ -74,6 +74,21 @@ struct ReferenceOptions {
   bool fresnel = false;
   // Whether the factors apply: `fresnel`, unless diffuse_only (hdr = M/π by definition).
   bool applies_fresnel() const { return fresnel && !diffuse_only; }
+  // Single scattering S(1) as RenderOptions::single_scattering: the marched S(1)
+  // (SingleScatter.h) at each subsurface pixel, unblurred (in `specular`), and profiles
+  // without their own once-scattered light (profiles::ModelOptions::
+  // single_scattering_apart). Diffusion and probe estimators; the random walk has it by
+  // construction. Ignored with diffuse_only (hdr = M/π of the whole profile). On by
+  // default, as RenderOptions::single_scattering.
+  bool single_scattering = true;
+  bool applies_single_scattering() const { return single_scattering && !diffuse_only; }
+  // model_options with single_scattering_apart set as applies_single_scattering() says:
+  // what the estimators build their profiles with.
+  profiles::ModelOptions profile_options() const {
+    profiles::ModelOptions m = model_options;
+    m.single_scattering_apart = applies_single_scattering();
+    return m;
+  }
   int threads = 0;               // 0: every hardware thread
   std::uint64_t seed = 1;        // of the point sets, or of the probes
   Estimator estimator = Estimator::Octree;
@@ -89,7 +104,8 @@ struct ReferenceOptions {
 
 // The profile the reference sums for an SSS material: its model's exact R(r), or with
 // KernelSource::Fit the Gaussian fit the GPU uploads (the model's default ModelOptions
-// for the fit, as renderer/MaterialTable builds it; `model_options` for the exact one).
+// for the fit, as renderer/MaterialTable builds it, but for single_scattering_apart, which
+// it takes from `model_options`; `model_options` for the exact one).
 // Throws std::invalid_argument when the profile cannot be built.
 std::unique_ptr<profiles::RgbProfile> reference_profile(const scene::SssMaterial& sss, KernelSource kernel,
                                                         const profiles::ModelOptions& model_options);

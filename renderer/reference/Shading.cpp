@@ -120,47 +120,55 @@ glm::vec3 shading_normal(const scene::Scene& s, const SurfacePoint& p, const glm
   return n;
 }
 
+std::optional<LightArrival> light_arrival(const scene::Scene& s, std::size_t index, const glm::vec3& p_mm,
+                                         const ShadowMaps* maps) {
+  const scene::Light& light = s.lights[index];
+  if (maps && !maps->shaded(index)) return std::nullopt;
+  const float mm_per_unit = float(s.mm_per_unit);
+  if (!light.reaches(p_mm / mm_per_unit)) return std::nullopt;
+  LightArrival a;
+  a.radiance = glm::dvec3(light.color) * double(light.intensity);
+  if (light.type == scene::LightType::Directional) {
+    a.l = -light.direction();
+    return a;
+  }
+  const glm::vec3 d = light.position() * mm_per_unit - p_mm;  // mm
+  a.distance_mm = glm::length(d);
+  if (!(a.distance_mm > 0.0f)) return std::nullopt;
+  a.l = d / a.distance_mm;
+  const double d_units = double(a.distance_mm) / double(mm_per_unit);
+  a.radiance /= std::max(d_units * d_units, 1e-8);
+  if (light.type == scene::LightType::Spot) {
+    const double lo = std::cos(light.outer_cone), hi = std::cos(light.inner_cone);
+    const double c = glm::dot(-a.l, light.direction());
+    const double t = std::clamp((c - lo) / std::max(hi - lo, 1e-9), 0.0, 1.0);
+    a.radiance *= t * t * (3.0 - 2.0 * t);  // GLSL smoothstep
+  }
+  return a;
+}
+
+double light_visibility(const RayScene& rays, std::size_t index, const SurfacePoint& p, const glm::vec3& n,
+                        const LightArrival& a, const ShadowMaps* maps) {
+  if (maps) return maps->visibility(index, p.position_mm, n);
+  // Shadow rays leave from just off the surface, on the side the light is on.
+  const float offset = 1e-4f * std::max(1.0f, glm::length(p.position_mm)) + 1e-4f;
+  const glm::vec3 side = glm::dot(p.geometric_normal, a.l) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
+  return rays.occluded(p.position_mm + side * offset, a.l, 0.0f, a.distance_mm - 2.0f * offset) ? 0.0 : 1.0;
+}
+
 DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const SurfacePoint& p,
                          const glm::vec3& n, const SpecularInputs* spec, const ShadowMaps* maps,
                          const glm::dvec3* entry_eta) {
   DirectLight out;
-  const float mm_per_unit = float(s.mm_per_unit);
-  const glm::vec3 p_scene = p.position_mm / mm_per_unit;
-  // Shadow rays leave from just off the surface, on the side the light is on.
-  const float offset = 1e-4f * std::max(1.0f, glm::length(p.position_mm)) + 1e-4f;
   for (std::size_t index = 0; index < s.lights.size(); ++index) {
-    const scene::Light& light = s.lights[index];
-    if (maps && !maps->shaded(index)) continue;
-    if (!light.reaches(p_scene)) continue;
-    glm::vec3 l;
-    glm::dvec3 radiance = glm::dvec3(light.color) * double(light.intensity);
-    float distance = std::numeric_limits<float>::infinity();
-    if (light.type == scene::LightType::Directional) {
-      l = -light.direction();
-    } else {
-      const glm::vec3 d = light.position() * mm_per_unit - p.position_mm;  // mm
-      distance = glm::length(d);
-      if (!(distance > 0.0f)) continue;
-      l = d / distance;
-      const double d_units = double(distance) / double(mm_per_unit);
-      radiance /= std::max(d_units * d_units, 1e-8);
-      if (light.type == scene::LightType::Spot) {
-        const double lo = std::cos(light.outer_cone), hi = std::cos(light.inner_cone);
-        const double c = glm::dot(-l, light.direction());
-        const double t = std::clamp((c - lo) / std::max(hi - lo, 1e-9), 0.0, 1.0);
-        radiance *= t * t * (3.0 - 2.0 * t);  // GLSL smoothstep
-      }
-    }
+    const std::optional<LightArrival> a = light_arrival(s, index, p.position_mm, maps);
+    if (!a) continue;
+    const glm::vec3 l = a->l;
     const float n_dot_l = glm::dot(n, l);
     if (n_dot_l <= 0.0f) continue;
-    double visibility = 1.0;
-    if (maps) {
-      visibility = maps->visibility(index, p.position_mm, n);
-      if (!(visibility > 0.0)) continue;
-    } else {
-      const glm::vec3 side = glm::dot(p.geometric_normal, l) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
-      if (rays.occluded(p.position_mm + side * offset, l, 0.0f, distance - 2.0f * offset)) continue;
-    }
+    const double visibility = light_visibility(rays, index, p, n, *a, maps);
+    if (!(visibility > 0.0)) continue;
+    const glm::dvec3 radiance = a->radiance;
     const glm::dvec3 incident = radiance * double(n_dot_l) * visibility;
     if (entry_eta) {
       for (int c = 0; c < 3; ++c)

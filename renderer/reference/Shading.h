@@ -19,6 +19,8 @@
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <limits>
+#include <optional>
 
 namespace sss::reference {
 
@@ -52,6 +54,22 @@ struct SpecularInputs {
   glm::vec3 f0{0.04f};
   float roughness = 1.0f;
 };
+
+// Light `index` (into Scene::lights) arriving at p_mm, before any visibility: the unit
+// direction l towards it, its irradiance at normal incidence (distance falloff and spot
+// cone applied) and its distance (infinite for directional lights). Empty where its
+// half-space mask leaves p dark, or (maps non-null) where the GPU does not shade it.
+struct LightArrival {
+  glm::vec3 l{0.0f, 0.0f, 1.0f};
+  glm::dvec3 radiance{0.0};
+  float distance_mm = std::numeric_limits<float>::infinity();
+};
+std::optional<LightArrival> light_arrival(const scene::Scene& scene, std::size_t index, const glm::vec3& p_mm,
+                                         const ShadowMaps* maps);
+// Its visibility at p (shading normal n): a shadow ray from just off the surface, or the
+// GPU's filtered shadow map when `maps` is set.
+double light_visibility(const RayScene& rays, std::size_t index, const SurfacePoint& p, const glm::vec3& n,
+                        const LightArrival& arrival, const ShadowMaps* maps);
 
 // Direct light at p with normal n (unit). `specular` null: irradiance only. `maps` null:
 // ray-traced shadows from every light; else the lights are shadowed as the GPU shadows

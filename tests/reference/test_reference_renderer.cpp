@@ -5,6 +5,8 @@
 
 #include "profiles/Fresnel.h"
 #include "profiles/Presets.h"
+#include "profiles/SingleScattering.h"
+#include "renderer/reference/SingleScatter.h"
 #include "renderer/image/Tonemap.h"
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/scene/Shapes.h"
@@ -102,6 +104,8 @@ TEST(ReferenceRenderer, ThinSlabLitFromBehindTransmitsTheMultipoleTotal) {
   const scene::Scene s = block_scene(m, 60.0f, 2.0f, {0.0f, 1.0f, 0.0f});
   ReferenceOptions o = small(9, 9);
   o.fresnel = false;  // π L = exitance (DirectionalFresnelFactorsFollowTheirClosedForm has the factors)
+  o.single_scattering = false;  // T_total is diffusion alone: the marched S(1) would add the light that crosses
+                                // the slab scattered once
   const ReferenceImage img = render_reference(s, o);
   const profiles::RgbProfile profile(profiles::Model::Multipole, m.sss.effective_medium());
   const Rgb total_t = profile.total_transmittance();
@@ -141,6 +145,7 @@ TEST(ReferenceRenderer, DirectionalFresnelFactorsFollowTheirClosedForm) {
                                             glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
   ReferenceOptions o = small(12, 12);
   o.spacing_mfp = 4.0;  // a ratio of two frames over the same points: coarse is enough
+  o.single_scattering = false;  // S(1) is not scaled by the switch (it has its own F_t)
   o.fresnel = false;
   const ReferenceImage off = render_reference(s, o);
   o.fresnel = true;
@@ -168,6 +173,75 @@ TEST(ReferenceRenderer, DirectionalFresnelFactorsFollowTheirClosedForm) {
   o.fresnel = false;
   const ReferenceImage m_off = render_reference(s, o);
   EXPECT_EQ(m_on.hdr.rgba, m_off.hdr.rgba);
+}
+
+TEST(ReferenceRenderer, MarchedSingleScatteringOfAFlatMediumIsThePlanarClosedForm) {
+  // Issue 18 part 2 in the diffusion reference: on a flat, thick block the marched S(1)
+  // (SingleScatter.h: the refracted eye ray marched, each depth lit by the refracted beam
+  // through the real surface, Jensen's s_i' and the HG phase function of the real g) is
+  // the planar closed form E μi f1 x albedo (profiles::single_scattering_brdf, itself
+  // checked against the analog walk's once-scattered exits). The medium has a different
+  // α, g and σt per channel (g 0.8 forward, 0.5, 0 isotropic) so the shared march's
+  // weighting against σt_min and the phase function's argument are both exercised; the
+  // light comes from -x at 60°, the eye from +x (forward scattering) at 40° and, second
+  // case, from above. The material has no GGX lobe (specular 0), so the reference's
+  // specular image holds S(1) alone.
+  // Tolerance: the depth integral is a 32-point midpoint rule in u = 1 - e^(-σt_min s);
+  // for a plane its integrand is (1 - u)^κ, κ = σt (1 + μo'/μi') / σt_min - 1, whose
+  // midpoint sum M has the exact relative error |M (κ + 1) - 1|, computed below for each
+  // channel; plus 1e-5 for float positions and the stored float (2^-24) values.
+  profiles::Medium medium;
+  medium.sigma_a = {0.01, 0.05, 0.2};
+  medium.sigma_s = {2.0, 3.0, 4.0};
+  medium.g = {0.8, 0.5, 0.0};
+  medium.eta = {1.4, 1.4, 1.4};
+  auto made = scene::make_sss_material(scene::CoefficientSource{medium}, profiles::Model::BetterDipole);
+  ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(made));
+  scene::Material m;
+  m.metallic = 0.0f;
+  m.specular = 0.0f;
+  m.roughness = 1.0f;
+  m.base_color = glm::vec4(0.9f, 0.7f, 0.5f, 1.0f);
+  m.sss = std::get<scene::SssMaterial>(made);
+  const double light = 60.0 * kPi / 180.0;
+  for (const double view_deg : {40.0, 0.0}) {
+    const double view = view_deg * kPi / 180.0;
+    scene::Scene s = block_scene(m, 160.0f, 40.0f, {float(std::sin(light)), -float(std::cos(light)), 0.0f});
+    s.cameras[0].xmag = 5 * kMm;
+    s.cameras[0].world = scene::look_at_world({100 * kMm * float(std::sin(view)), 100 * kMm * float(std::cos(view)), 0.0f},
+                                              glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
+    ReferenceOptions o = small(8, 8);
+    o.spacing_mfp = 4.0;  // the points do not enter the specular image
+    o.single_scattering = true;
+    const ReferenceImage img = render_reference(s, o);
+    const double mu_i = std::cos(light), mu_o = std::cos(view);
+    int checked = 0;
+    double worst = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const profiles::Coefficients k = medium.channel(c);
+      // The eye's horizontal travel points +x (away from the light's source), the beam's
+      // +x too: Δφ = 0 when the eye is tilted, any (0) straight above.
+      const double expected = mu_i * profiles::single_scattering_brdf(k, mu_i, std::max(mu_o, 1e-9), 1.0) *
+                              double(m.base_color[c]);
+      const double st = k.sigma_a + k.sigma_s;
+      double st_min = 1e300;  // the march samples the smallest σt of the channels sharing η
+      for (int j = 0; j < 3; ++j) st_min = std::min(st_min, medium.sigma_a[j] + medium.sigma_s[j]);
+      const double ratio = profiles::refracted_cosine(mu_o, k.eta) / profiles::refracted_cosine(mu_i, k.eta);
+      const double kappa = st * (1.0 + ratio) / st_min - 1.0;
+      double midpoint = 0.0;
+      for (int j = 0; j < kSingleScatterSamples; ++j)
+        midpoint += std::pow(1.0 - (j + 0.5) / kSingleScatterSamples, kappa) / kSingleScatterSamples;
+      const double tol = std::fabs(midpoint * (kappa + 1.0) - 1.0) + 1e-5;
+      for (std::size_t i = 0; i < img.specular.rgba.size(); i += 4) {
+        const double got = img.specular.rgba[i + std::size_t(c)];
+        EXPECT_NEAR(got, expected, tol * expected) << "view " << view_deg << " channel " << c;
+        worst = std::max(worst, std::fabs(got / expected - 1.0));
+        ++checked;
+      }
+    }
+    EXPECT_EQ(checked, 3 * 64);
+    std::printf("[ marched S(1), view %.0f deg: worst |reference / closed form - 1| = %.2e ]\n", view_deg, worst);
+  }
 }
 
 TEST(ReferenceRenderer, OctreeAgreesWithBruteForceWithinOnePercentRms) {
