@@ -17,6 +17,8 @@ vk::DescriptorSetLayoutBuilder bindings() {
       .add(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
   for (uint32_t i = 3; i <= 10; ++i) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
   b.add(11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
+  b.add(12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);  // normals
+  b.add(13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);  // shadow maps, comparison
   return b;
 }
 }  // namespace
@@ -46,6 +48,8 @@ void DebugViewPass::write_descriptors() {
       .combined_image(9, t.shadow, nearest)
       .combined_image(10, t.uv_stretch, nearest)
       .storage_image(11, t.display)
+      .combined_image(12, t.normal, nearest)
+      .combined_image(13, t.shadow, r_.samplers.shadow.get())
       .update(r_.context);
 }
 

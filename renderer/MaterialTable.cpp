@@ -14,14 +14,16 @@
 
 namespace sss::renderer {
 
-MaterialData build_material_data(const scene::Scene& scene, int separable_taps) {
-  return build_material_data(scene.materials, separable_taps);
+MaterialData build_material_data(const scene::Scene& scene, int separable_taps,
+                                 bool single_scattering) {
+  return build_material_data(scene.materials, separable_taps, single_scattering);
 }
 
 namespace {
 
 MaterialData build(const std::vector<scene::Material>& materials, int separable_taps,
-                   const MaterialData* previous, const std::vector<bool>* reuse) {
+                   bool single_scattering, const MaterialData* previous,
+                   const std::vector<bool>* reuse) {
   if (materials.size() > shader::kMaxMaterials)
     throw std::invalid_argument("the scene has " + std::to_string(materials.size()) +
                                 " materials; the renderer supports " +
@@ -32,10 +34,14 @@ MaterialData build(const std::vector<scene::Material>& materials, int separable_
                                 std::to_string(shader::kMaxTaps));
   const bool can_reuse = previous != nullptr && reuse != nullptr &&
                          previous->separable_taps == separable_taps &&
+                         previous->single_scattering == single_scattering &&
                          previous->profiles.size() == materials.size() &&
                          reuse->size() == materials.size();
   MaterialData data;
   data.separable_taps = separable_taps;
+  data.single_scattering = single_scattering;
+  profiles::ModelOptions model_options;
+  model_options.single_scattering_apart = single_scattering;
   for (std::size_t index = 0; index < materials.size(); ++index) {
     const scene::Material& m = materials[index];
     shader::GpuMaterial g;
@@ -47,7 +53,7 @@ MaterialData build(const std::vector<scene::Material>& materials, int separable_
       if (can_reuse && (*reuse)[index] && previous->profiles[index]) {
         p = *previous->profiles[index];
       } else {
-        const profiles::RgbProfile rgb(m.sss.model, m.sss.effective_medium());
+        const profiles::RgbProfile rgb(m.sss.model, m.sss.effective_medium(), model_options);
         profiles::KernelFit k = profiles::fit_kernel(rgb, m.sss.gaussians, m.sss.effective_medium().is_slab());
         p = {std::move(k.fit), profiles::make_separable_kernel(rgb, separable_taps), std::move(k.transmittance)};
       }
@@ -61,6 +67,14 @@ MaterialData build(const std::vector<scene::Material>& materials, int separable_
       g.exit_norm = {float(1.0 / profiles::fresnel_exit_normalization(eta[0])),
                      float(1.0 / profiles::fresnel_exit_normalization(eta[1])),
                      float(1.0 / profiles::fresnel_exit_normalization(eta[2])), 0.0f};
+      // S(1)'s coefficients: the real (not reduced) albedo and g; the scale changes
+      // neither.
+      const profiles::Medium& medium = m.sss.medium;
+      for (int c = 0; c < 3; ++c) {
+        const double st = medium.sigma_a[c] + medium.sigma_s[c];
+        (&g.single.x)[c] = float(st > 0.0 ? medium.sigma_s[c] / st : 0.0);
+        (&g.phase.x)[c] = float(medium.g[c]);
+      }
       const Rgb total = p.kernel.total_reflectance;  // the profile's total_reflectance()
       g.reflectance = {float(total[0]), float(total[1]), float(total[2]), 1.0f};
       const auto count = p.fit.variances_mm2.size();
@@ -90,19 +104,19 @@ MaterialData build(const std::vector<scene::Material>& materials, int separable_
 }  // namespace
 
 MaterialData build_material_data(const std::vector<scene::Material>& materials,
-                                 int separable_taps) {
-  return build(materials, separable_taps, nullptr, nullptr);
+                                 int separable_taps, bool single_scattering) {
+  return build(materials, separable_taps, single_scattering, nullptr, nullptr);
 }
 
 MaterialData build_material_data(const std::vector<scene::Material>& materials,
                                  int separable_taps, const MaterialData& previous,
-                                 const std::vector<bool>& reuse) {
-  return build(materials, separable_taps, &previous, &reuse);
+                                 const std::vector<bool>& reuse, bool single_scattering) {
+  return build(materials, separable_taps, single_scattering, &previous, &reuse);
 }
 
 MaterialTable::MaterialTable(const vk::Context& context, const scene::Scene& scene,
-                             int separable_taps)
-    : data_(build_material_data(scene, separable_taps)),
+                             int separable_taps, bool single_scattering)
+    : data_(build_material_data(scene, separable_taps, single_scattering)),
       buffer_(context, {data_.gpu.size() * sizeof(shader::GpuMaterial),
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                         vk::MemoryUsage::DeviceLocal, "materials"}) {

@@ -40,21 +40,27 @@ struct MaterialData {
   std::vector<std::optional<MaterialProfile>> profiles;  // one per material
   int max_gaussians = 0;  // over SSS materials
   int separable_taps = 0;  // the kernels' tap count
+  // The profiles leave out their once-scattered light (RenderOptions::single_scattering:
+  // the lighting pass adds S(1) per pixel; profiles::ModelOptions::single_scattering_apart).
+  bool single_scattering = false;
 };
-MaterialData build_material_data(const scene::Scene& scene, int separable_taps);
+MaterialData build_material_data(const scene::Scene& scene, int separable_taps,
+                                 bool single_scattering = false);
 MaterialData build_material_data(const std::vector<scene::Material>& materials,
-                                 int separable_taps);
+                                 int separable_taps, bool single_scattering = false);
 // The same, but material i keeps previous.profiles[i] (fit and kernel) instead of being
 // refitted where reuse[i] holds: the caller vouches that its model, medium, scale and
 // Gaussian count are unchanged. Ignored (everything refitted) unless `previous` was built
-// with these taps for as many materials. Equal, bit for bit, to a full rebuild.
+// with these taps and single-scattering setting for as many materials. Equal, bit for
+// bit, to a full rebuild.
 MaterialData build_material_data(const std::vector<scene::Material>& materials,
                                  int separable_taps, const MaterialData& previous,
-                                 const std::vector<bool>& reuse);
+                                 const std::vector<bool>& reuse, bool single_scattering = false);
 
 class MaterialTable {
  public:
-  MaterialTable(const vk::Context& context, const scene::Scene& scene, int separable_taps);
+  MaterialTable(const vk::Context& context, const scene::Scene& scene, int separable_taps,
+                bool single_scattering = false);
 
   // Uploads `data` (from build_material_data, as many materials as now) into the same
   // buffer, so descriptor sets that reference it stay valid. The buffer must not be in

@@ -84,7 +84,8 @@ namespace {
 constexpr DebugView kDebugViews[] = {DebugView::None,         DebugView::Irradiance,
                                      DebugView::Specular,     DebugView::Scattered,
                                      DebugView::KernelRadius, DebugView::ProfileId,
-                                     DebugView::Thickness,    DebugView::UvStretch};
+                                     DebugView::Thickness,    DebugView::UvStretch,
+                                     DebugView::SingleScattering};
 }  // namespace
 
 std::string_view debug_view_name(DebugView view) {
@@ -97,6 +98,7 @@ std::string_view debug_view_name(DebugView view) {
     case DebugView::ProfileId: return "profile-id";
     case DebugView::Thickness: return "thickness";
     case DebugView::UvStretch: return "uv-stretch";
+    case DebugView::SingleScattering: return "single-scattering";
   }
   return "none";
 }

@@ -105,7 +105,7 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
       bounds_(scene.bounds()),
       mm_per_unit_(scene.mm_per_unit),
       lights_(make_light_setup(scene_lights_, bounds_, options.shadow_map_size)),
-      materials_(context, scene, options.separable_taps),
+      materials_(context, scene, options.separable_taps, options.single_scattering),
       scene_(context, scene),
       targets_(context, options.width, options.height, shadow_layers_for(lights_),
                options.shadow_map_size),
@@ -139,6 +139,7 @@ void Renderer::write_frame_uniforms() {
   uniforms.options.z = surface_key_stride(camera, bounds_, mm_per_unit_);
   uniforms.options.w = options_.transmission ? 1.0f : 0.0f;
   uniforms.flags.x = options_.fresnel ? 1.0f : 0.0f;
+  uniforms.flags.y = options_.single_scattering ? 1.0f : 0.0f;
   rect_ = geometry_rect(camera, bounds_, options_.width, options_.height);
   uniforms.rect = {float(rect_.x0), float(rect_.y0), float(rect_.x1), float(rect_.y1)};
   frame_uniforms_.write(&uniforms, sizeof(uniforms));
@@ -232,7 +233,8 @@ void Renderer::set_lights(const std::vector<scene::Light>& lights) {
 }
 
 void Renderer::set_materials(const std::vector<scene::Material>& materials) {
-  set_materials(materials, build_material_data(materials, options_.separable_taps));
+  set_materials(materials, build_material_data(materials, options_.separable_taps,
+                                               options_.single_scattering));
 }
 
 void Renderer::set_materials(const std::vector<scene::Material>& materials, MaterialData data) {
@@ -240,6 +242,11 @@ void Renderer::set_materials(const std::vector<scene::Material>& materials, Mate
     throw std::invalid_argument("set_materials: kernels built for " +
                                 std::to_string(data.separable_taps) + " taps, the renderer uses " +
                                 std::to_string(options_.separable_taps));
+  if (data.single_scattering != options_.single_scattering)
+    throw std::invalid_argument(std::string("set_materials: profiles built ") +
+                                (data.single_scattering ? "without" : "with") +
+                                " their single scattering, the renderer adds S(1) " +
+                                (options_.single_scattering ? "apart" : "not at all"));
   if (data.profiles.size() != materials.size())
     throw std::invalid_argument("set_materials: material data for " +
                                 std::to_string(data.profiles.size()) + " materials, got " +
@@ -253,8 +260,10 @@ void Renderer::set_materials(const std::vector<scene::Material>& materials, Mate
 void Renderer::set_options(const RenderOptions& options) {
   check_options(context_, options);
   std::optional<MaterialData> data;
-  if (options.separable_taps != options_.separable_taps)
-    data = build_material_data(scene_.materials(), options.separable_taps);  // checks taps
+  if (options.separable_taps != options_.separable_taps ||
+      options.single_scattering != options_.single_scattering)
+    data = build_material_data(scene_.materials(), options.separable_taps,
+                               options.single_scattering);  // checks taps
   const bool size_changed = options.width != options_.width || options.height != options_.height;
   const bool shadow_changed = options.shadow_map_size != options_.shadow_map_size;
   if (size_changed || shadow_changed)

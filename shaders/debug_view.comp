@@ -21,11 +21,14 @@ layout(set = 0, binding = 8) uniform sampler2D accumulated_tex;  // gaussians: R
 layout(set = 0, binding = 9) uniform sampler2DArray shadow_depth_tex;  // no comparison
 layout(set = 0, binding = 10) uniform sampler2D uv_stretch_tex;  // mm per u, v; has UVs
 layout(set = 0, binding = 11, rgba8) uniform writeonly image2D display_img;
+layout(set = 0, binding = 12) uniform sampler2D normal_tex;             // single scattering
+layout(set = 0, binding = 13) uniform sampler2DArrayShadow shadow_tex;  // single scattering
 layout(push_constant) uniform Push { DebugPush debug; };
 
 #include "shared/composite.glsl"
 #include "shared/sss.glsl"
 #include "shared/thickness.glsl"
+#include "shared/shading.glsl"
 
 // A fit of matplotlib's viridis (Matt Zucker, CC0): t in [0, 1] -> display colour.
 vec3 viridis(float t) {
@@ -99,6 +102,18 @@ void main() {
                   ? shadow_thickness(shadow_depth_tex, 0, light_block.lights[0], w.xyz / w.w)
                   : -1.0;
     if (t >= 0.0) c = viridis(t * frame.scale.x / debug.view.y);
+  } else if (view == 8) {  // single scattering S(1), whatever the switch says
+    if (scatters) {
+      float depth = texelFetch(depth_tex, p, 0).r;
+      vec4 w = frame.inv_view_proj * vec4(pixel_ndc(vec2(p) + 0.5, frame.viewport), depth, 1.0);
+      SurfacePoint s;
+      s.id = id;
+      s.P = w.xyz / w.w;
+      s.N = normalize(texelFetch(normal_tex, p, 0).xyz);
+      s.V = frame.camera.w > 0.5 ? -frame.forward.xyz : normalize(frame.camera.xyz - s.P);
+      s.albedo = texelFetch(albedo_tex, p, 0).rgb;
+      c = display_encode(single_scattering_radiance(s));
+    }
   } else if (view == 7) {  // uv stretch
     vec4 s = texelFetch(uv_stretch_tex, p, 0);
     if (s.z > 0.5) c = vec3(clamp(s.xy / debug.view.w, 0.0, 1.0), 0.0);

@@ -23,10 +23,13 @@ void FitWorker::compute_default(FitRequest& request, FitResult& result) {
     for (std::size_t i = 0; i < n; ++i) reuse[i] = i >= request.specs.size() || !request.specs[i];
   result.data = request.previous ? renderer::build_material_data(request.materials,
                                                                  request.separable_taps,
-                                                                 *request.previous, reuse)
+                                                                 *request.previous, reuse,
+                                                                 request.single_scattering)
                                  : renderer::build_material_data(request.materials,
-                                                                 request.separable_taps);
-  const bool reused = request.previous && request.previous->separable_taps == request.separable_taps;
+                                                                 request.separable_taps,
+                                                                 request.single_scattering);
+  const bool reused = request.previous && request.previous->separable_taps == request.separable_taps &&
+                      request.previous->single_scattering == request.single_scattering;
   result.plots.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     if (request.materials[i].sss.enabled && result.data.profiles[i] && !(reused && reuse[i]))

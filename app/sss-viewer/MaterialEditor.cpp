@@ -237,6 +237,7 @@ void MaterialEditor::submit(Clock::time_point edited) {
   request.materials = applied_;
   request.specs = pending_;
   request.separable_taps = taps_;
+  request.single_scattering = single_scattering_;
   request.edited = edited;
   request.previous = applied_data_;
   running_max_frame_ms_ = 0.0;
@@ -254,8 +255,11 @@ bool MaterialEditor::update(renderer::Renderer& r) {
         e.error = result->error;
     return false;
   }
-  if (result->data.separable_taps != r.options().separable_taps) {
-    taps_ = r.options().separable_taps;  // the taps changed meanwhile: fit again
+  if (result->data.separable_taps != r.options().separable_taps ||
+      result->data.single_scattering != r.options().single_scattering) {
+    // The taps or the single-scattering switch changed meanwhile: fit again.
+    taps_ = r.options().separable_taps;
+    single_scattering_ = r.options().single_scattering;
     submit(result->request.edited);
     return false;
   }

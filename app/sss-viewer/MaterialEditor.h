@@ -107,6 +107,9 @@ class MaterialEditor {
   std::vector<std::optional<SssSpec>> pending_;  // per material: edited, not applied yet
   std::vector<MaterialEdit> edits_;
   int taps_;
+  // The renderer's, as last seen (update()); a renderer started with another setting than
+  // the default costs one refit on the first edit.
+  bool single_scattering_ = renderer::RenderOptions{}.single_scattering;
   RefitLatency latency_;
   Clock::time_point edited_{};  // of the result awaiting its first present
   bool awaiting_present_ = false;

@@ -209,6 +209,10 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
     ImGui::SetTooltip("--fresnel: light enters SSS materials x F_t(eta, theta_i) and leaves\n"
                       "in the normalised Fresnel lobe F_t(eta, theta_o)/(c pi); off: all of it\n"
                       "enters and leaves as from a Lambertian surface");
+  changed |= ImGui::Checkbox("single scattering", &o.single_scattering);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("--single-scattering: once-scattered light per pixel (closed form, the\n"
+                      "material's real g, not blurred); the profiles leave theirs out");
   ImGui::SameLine();
   changed |= ImGui::Checkbox("transmission", &o.transmission);
   if (ImGui::IsItemHovered())

@@ -30,6 +30,7 @@ struct ViewerArgs {
   std::string debug_view = "none";  // --debug-view: renderer::parse_debug_view names
   std::string transmission = "on";  // --transmission on | off
   std::string fresnel = "off";      // --fresnel on | off
+  std::string single_scattering = "on";  // --single-scattering on | off
   int texture_size = 1024;              // --texture-size (--sss texture)
   std::string texture_update = "on-change";  // --texture-update every-frame | on-change
   std::vector<std::string> texture_objects;  // --texture-object NAME=SIZE[:POLICY], repeatable

@@ -54,7 +54,8 @@ std::string debug_view_help() {
          "(the screen kernel undersamples the profile); profile-id: one colour per material; "
          "thickness: mm through the object along light 0, viridis 0 .. the scene's bounding "
          "diameter; uv-stretch: red = mm per unit u, green = mm per unit v, 0 .. pi x the "
-         "bounding diameter, grey without UVs";
+         "bounding diameter, grey without UVs; single-scattering: S(1) alone (tonemapped), "
+         "whether --single-scattering is on or off";
 }
 
 void write_atlases(const renderer::Renderer& r, const std::string& prefix,
@@ -108,8 +109,12 @@ int viewer_main(int argc, char** argv) {
   app.add_option("--fresnel", a.fresnel,
                  "on | off: directional Fresnel factors on subsurface light, F_t(eta, theta_i) "
                  "entering and F_t(eta, theta_o)/(c pi) leaving instead of Lambert's 1/pi "
-                 "(default off: closer to the ground truth away from silhouettes until single scattering lands, "
+                 "(default off: closer to the ground truth away from silhouettes, with single scattering or without, "
                  "README \"Directional Fresnel\")");
+  app.add_option("--single-scattering", a.single_scattering,
+                 "on | off: once-scattered light S(1) per pixel (planar closed form, the "
+                 "material's real g, shadowed, not blurred) with profiles that leave their own "
+                 "out (default on: closer to the ground truth; README \"Single scattering\")");
   app.add_option("--texture-size", a.texture_size,
                  "--sss texture: each object's irradiance texture size, 256..2048 (default 1024)");
   app.add_option("--texture-update", a.texture_update,
@@ -240,6 +245,9 @@ int viewer_main(int argc, char** argv) {
   if (a.fresnel != "on" && a.fresnel != "off")
     return usage("--fresnel: expected on or off, got '" + a.fresnel + "'");
   options.fresnel = a.fresnel == "on";
+  if (a.single_scattering != "on" && a.single_scattering != "off")
+    return usage("--single-scattering: expected on or off, got '" + a.single_scattering + "'");
+  options.single_scattering = a.single_scattering == "on";
 
   auto loaded = scene::load_scene(a.scene);
   if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what());

@@ -57,7 +57,9 @@ struct FrameUniforms {
                        // (lighting, SSS, composite) cover this rect; outside it every pixel
                        // is background (CameraSetup.h: geometry_rect)
   vec4 flags;          // x 1 = directional Fresnel factors on subsurface light
-                       // (RenderOptions::fresnel; shading.glsl, composite.glsl); yzw 0
+                       // (RenderOptions::fresnel; shading.glsl, composite.glsl); y 1 =
+                       // single scattering S(1) per pixel (RenderOptions::
+                       // single_scattering; shading.glsl); zw 0
 };
 
 struct GpuLight {
@@ -87,6 +89,8 @@ struct GpuMaterial {
                      // shadow-map thickness)
   vec4 fresnel;      // rgb the medium's index of refraction η (per channel), w 0
   vec4 exit_norm;    // rgb 1/c, c = 1 - 2 m1(1/η) (profiles::fresnel_exit_normalization), w 0
+  vec4 single;       // rgb the single-scattering albedo σs/σt of the real coefficients, w 0
+  vec4 phase;        // rgb the Henyey–Greenstein g (S(1), shading.glsl), w 0
   vec4 variances[SSS_MAX_GAUSSIANS / 4];  // v_i in mm^2, ascending
   vec4 gauss_weights[SSS_MAX_GAUSSIANS];  // rgb w_i (sum = T)
   vec4 taps[SSS_MAX_TAPS];                // rgb weight (sum 1), w offset in mm
@@ -118,7 +122,7 @@ struct DebugPush {  // debug view pass (debug_view.comp)
 static_assert(sizeof(mat4) == 64);
 static_assert(sizeof(FrameUniforms) == 3 * 64 + 7 * 16);
 static_assert(sizeof(GpuLight) == 2 * 64 + 5 * 16);
-static_assert(sizeof(GpuMaterial) == 16 * (6 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
+static_assert(sizeof(GpuMaterial) == 16 * (8 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
 static_assert(sizeof(DrawPush) == 112);
 inline constexpr uint kMaxTextures = SSS_MAX_TEXTURES;
 inline constexpr uint kMaxLights = SSS_MAX_LIGHTS;

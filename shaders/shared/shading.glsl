@@ -44,6 +44,37 @@ vec3 entry_fresnel(int id, float NdotL) {
   return fresnel_transmittance(NdotL, materials[id].fresnel.rgb);
 }
 
+// Henyey–Greenstein phase function, normalised over the sphere (profiles::henyey_greenstein).
+float henyey_greenstein(float g, float cos_theta) {
+  float d = 1.0 + g * g - 2.0 * g * cos_theta;
+  return (1.0 - g * g) / (4.0 * kPi * d * sqrt(d));
+}
+
+// Single scattering S(1) (issue 18 part 2): the planar closed form of Hanrahan & Krueger
+// 1993 that Jensen et al. 2001 §2.3 use, per channel, for a collimated light along L and
+// the eye along V at a surface of normal N:
+//   f1 = F_t(η, μi) F_t(η, μo) α p(g, cos θ) / (η² (μi' + μo')),
+// μi', μo' the refracted (inside) cosines, θ the angle between the refracted beam's
+// travel direction and the inside direction that refracts out along V. L⁽¹⁾ = E μi f1 is
+// the once-scattered radiance. C++: profiles::single_scattering_brdf (profiles/
+// SingleScattering.h, which says exactly what is integrated; the same equations, checked
+// against the analog walk). The F_t factors belong to S(1) itself, whatever --fresnel says.
+vec3 single_scattering_brdf(int id, vec3 N, vec3 L, vec3 V) {
+  vec3 eta = materials[id].fresnel.rgb;
+  vec3 alpha = materials[id].single.rgb;
+  vec3 g = materials[id].phase.rgb;
+  float mu_i = clamp(dot(N, L), 1e-4, 1.0);
+  float mu_o = clamp(dot(N, V), 1e-4, 1.0);
+  vec3 f = vec3(0.0);
+  for (int c = 0; c < 3; ++c) {
+    vec3 t_in = refract(-L, N, 1.0 / eta[c]);    // the beam, travelling in
+    vec3 t_out = -refract(-V, N, 1.0 / eta[c]);  // travelling out, leaves along V
+    float mi = max(-dot(t_in, N), 1e-4), mo = max(dot(t_out, N), 1e-4);
+    f[c] = alpha[c] * henyey_greenstein(g[c], dot(t_in, t_out)) / (eta[c] * eta[c] * (mi + mo));
+  }
+  return f * fresnel_transmittance(mu_i, eta) * fresnel_transmittance(mu_o, eta);
+}
+
 float shadow_visibility(int index, GpuLight light, vec3 p, vec3 n) {
   vec4 c = light.shadow_matrix * vec4(p + n * light.shadow.z, 1.0);
   vec3 s = c.xyz / c.w;
@@ -70,6 +101,26 @@ float shadow_visibility(int index, GpuLight light, vec3 p, vec3 n) {
   return sum / 9.0;
 }
 
+// Light i at P: the unit direction L towards it and its irradiance at normal incidence
+// (spot cone and distance falloff applied); false where its half-space mask leaves P dark.
+bool light_at(GpuLight light, vec3 P, out vec3 L, out vec3 radiance) {
+  L = vec3(0.0, 0.0, 1.0);
+  radiance = light.color.rgb;
+  if (light.shadow.x > 0.5 && dot(light.mask.xyz, P) + light.mask.w >= 0.0) return false;
+  int type = int(light.color.w);
+  if (type == SSS_LIGHT_DIRECTIONAL) {
+    L = -light.direction.xyz;
+  } else {
+    vec3 d = light.position.xyz - P;
+    float d2 = max(dot(d, d), 1e-8);
+    L = d * inversesqrt(d2);
+    radiance /= d2;
+    if (type == SSS_LIGHT_SPOT)
+      radiance *= smoothstep(light.direction.w, light.position.w, dot(-L, light.direction.xyz));
+  }
+  return true;
+}
+
 struct SurfacePoint {
   int id;       // material
   vec3 P;       // world position
@@ -81,7 +132,10 @@ struct SurfacePoint {
 // E: irradiance at P (Σ over lights of E_light N·L x shadow; for subsurface materials
 // with directional Fresnel x F_t(η, N·L), the part that enters), plus for subsurface
 // materials the transmitted E_back / Σ w_i (see above); S: specular radiance, computed
-// only when `specular` is true (the texture path needs E alone).
+// only when `specular` is true (the texture path needs E alone), with single scattering
+// S(1) added for subsurface materials when it is on (frame.flags.y): Σ E_light N·L x
+// shadow x f1 x albedo (1 - metallic), not blurred (the profiles leave it out then,
+// profiles::ModelOptions::single_scattering_apart).
 void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
   vec4 surface = materials[s.id].surface;  // not the whole GpuMaterial: lavapipe loads it all
   float NdotV = max(dot(s.N, s.V), 1e-4);
@@ -94,23 +148,13 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
   vec3 E_back = vec3(0.0);  // x the total transmittance of the thickness, per light
   bool subsurface = materials[s.id].reflectance.w > 0.5;
   bool transmits = frame.options.w > 0.5 && subsurface;
+  bool single = specular && subsurface && frame.flags.y > 0.5;
+  vec3 single_tint = s.albedo * (1.0 - surface.y);
   int count = int(frame.options.x);
   for (int i = 0; i < count; ++i) {
     GpuLight light = light_block.lights[i];
-    int type = int(light.color.w);
-    if (light.shadow.x > 0.5 && dot(light.mask.xyz, s.P) + light.mask.w >= 0.0) continue;
-    vec3 L;
-    vec3 radiance = light.color.rgb;  // irradiance at normal incidence
-    if (type == SSS_LIGHT_DIRECTIONAL) {
-      L = -light.direction.xyz;
-    } else {
-      vec3 d = light.position.xyz - s.P;
-      float d2 = max(dot(d, d), 1e-8);
-      L = d * inversesqrt(d2);
-      radiance /= d2;
-      if (type == SSS_LIGHT_SPOT)
-        radiance *= smoothstep(light.direction.w, light.position.w, dot(-L, light.direction.xyz));
-    }
+    vec3 L, radiance;
+    if (!light_at(light, s.P, L, radiance)) continue;
     float NdotL = dot(s.N, L);
     if (NdotL <= 0.0) {
       if (transmits && NdotL < 0.0) {
@@ -126,6 +170,7 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
     // Subsurface light counts only what crosses the boundary: R(r) is per unit power that
     // entered (docs/ARCHITECTURE.md), the specular lobe takes the rest.
     E += subsurface ? incident * entry_fresnel(s.id, NdotL) : incident;
+    if (single) S += incident * single_tint * single_scattering_brdf(s.id, s.N, L, s.V);
     if (has_specular) {
       vec3 H = normalize(L + s.V);
       float NdotH = max(dot(s.N, H), 0.0);
@@ -141,6 +186,23 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
   if (transmits) E += E_back / max(materials[s.id].reflectance.rgb, vec3(1e-6));
   // Pre/post albedo: sqrt(albedo) enters before scattering, the other half after it.
   if (materials[s.id].kernel.z > 0.5) E *= sqrt(s.albedo);
+}
+
+// S(1) alone at a subsurface point, as shade() adds it to S with single scattering on (the
+// debug view "single scattering" shows it whatever the switch says).
+vec3 single_scattering_radiance(SurfacePoint s) {
+  vec3 sum = vec3(0.0);
+  int count = int(frame.options.x);
+  for (int i = 0; i < count; ++i) {
+    GpuLight light = light_block.lights[i];
+    vec3 L, radiance;
+    if (!light_at(light, s.P, L, radiance)) continue;
+    float NdotL = dot(s.N, L);
+    if (NdotL <= 0.0) continue;
+    float visibility = light.shadow.y > 0.5 ? shadow_visibility(i, light, s.P, s.N) : 1.0;
+    sum += radiance * NdotL * visibility * single_scattering_brdf(s.id, s.N, L, s.V);
+  }
+  return sum * s.albedo * (1.0 - materials[s.id].surface.y);
 }
 
 #endif

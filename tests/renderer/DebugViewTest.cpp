@@ -13,6 +13,7 @@
 // to 0.5 / 255 x 916 = 1.8 mm. The bounds used are 1.5 mm, 3 % and 2.5 mm.
 #include "RenderTest.h"
 
+#include "profiles/SingleScattering.h"
 #include "renderer/DebugViewPass.h"
 #include "renderer/scene/BuiltinScenes.h"
 
@@ -78,8 +79,10 @@ RenderOptions view_options(std::uint32_t w, std::uint32_t h, DebugView view,
   o.debug_view = view;
   // The views show the lighting input E and the scattered R * E; their closed forms below
   // (E = 1, the frame equal to the scattered view) hold without the directional Fresnel
-  // factors, which multiply E on entry and the frame on exit.
+  // factors, which multiply E on entry and the frame on exit, and without single
+  // scattering, which adds S(1) to the specular target (SingleScatteringViewIsS1Alone has it).
   o.fresnel = false;
+  o.single_scattering = false;
   return o;
 }
 
@@ -103,7 +106,7 @@ TEST(DebugViewNames, ParseEveryNameBackAndRejectOthers) {
     names.insert(debug_view_name(v));
     EXPECT_EQ(parse_debug_view(debug_view_name(v)), v);
   }
-  EXPECT_EQ(names.size(), 8u);
+  EXPECT_EQ(names.size(), 9u);
   EXPECT_EQ(all_debug_views().front(), DebugView::None);
   EXPECT_FALSE(parse_debug_view("Irradiance"));
   EXPECT_FALSE(parse_debug_view(""));
@@ -162,6 +165,28 @@ TEST_F(DebugViewTest, SpecularIsTheTonemappedSpecularTerm) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(f.display.pixel(8, 8)[c], expected, 1.5f * kCode);
   const Frame none = render(lit_slab(), o);  // specular 0: black
   EXPECT_EQ(none.display.pixel(8, 8)[0], 0.0f);
+}
+
+// Single scattering: S(1) alone, the planar closed form E μi f1 (profiles::
+// single_scattering_brdf) for the slab lit and seen straight down (μi = μo = 1, the light
+// turned straight back: cos θ = -1), whether the switch is on or off; the frame's specular
+// target holds it only with the switch on. Tolerance: the display code's rounding, 1.5 codes
+// as the specular view's.
+TEST_F(DebugViewTest, SingleScatteringViewIsS1Alone) {
+  const scene::Scene s = lit_slab();
+  for (const bool on : {false, true}) {
+    RenderOptions o = view_options(16, 16, DebugView::SingleScattering);
+    o.single_scattering = on;
+    o.exposure = 4.0f;
+    const Frame f = render(s, o);
+    const profiles::Medium medium = s.materials[0].sss.effective_medium();
+    for (int c = 0; c < 3; ++c) {
+      const double s1 = profiles::single_scattering_brdf(medium.channel(c), 1.0, 1.0, 1.0);
+      const float expected = encode(4.0f * float(s1));
+      EXPECT_NEAR(f.display.pixel(8, 8)[c], expected, 1.5f * kCode) << "channel " << c << (on ? " on" : " off");
+      EXPECT_NEAR(f.specular.pixel(8, 8)[c], on ? s1 : 0.0, on ? 2e-3 * s1 : 1e-7) << "channel " << c;
+    }
+  }
 }
 
 // Scattered: (R * E) / pi before albedo. The slab is white with no specular, so the

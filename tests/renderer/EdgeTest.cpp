@@ -45,6 +45,7 @@
 
 #include "profiles/EdgeResponse.h"
 #include "profiles/Fresnel.h"
+#include "profiles/SingleScattering.h"
 #include "profiles/Profile.h"
 #include "renderer/scene/BuiltinScenes.h"
 
@@ -95,6 +96,7 @@ double sampling_error(const profiles::GaussianFit& fit, int c, double xc, double
 
 struct EdgeRun {
   std::vector<Rgb> pi_L;  // the middle row
+  std::vector<Rgb> specular;  // the middle row of the specular target (GGX, S(1) when on)
   scene::Scene scene;
   MaterialData materials;
 };
@@ -113,7 +115,7 @@ class EdgeTest : public RenderTest {
   EdgeRun render_edge(const std::string& preset, SssKind kind, double half_width_mm = kHalfWidthMm,
                       int width = kWidth, double height_mm = 0.0, double material_scale = 1.0,
                       double tilt_deg = 0.0, bool fresnel = false, double light_tilt_deg = 0.0,
-                      SssMode mode = SssMode::Screen) {
+                      SssMode mode = SssMode::Screen, bool single_scattering = false) {
     scene::EdgeOptions eo;
     eo.preset = preset;
     eo.half_width_mm = half_width_mm;
@@ -146,10 +148,13 @@ class EdgeTest : public RenderTest {
     }
     RenderOptions options = small_options(width, kHeight, mode, kind);
     options.fresnel = fresnel;
+    options.single_scattering = single_scattering;
     const Frame f = render(run.scene, options);
     for (int x = 0; x < width; ++x) {
       const float* p = f.hdr.pixel(x, kHeight / 2);
       run.pi_L.push_back({kPi * p[0], kPi * p[1], kPi * p[2]});
+      const float* sp = f.specular.pixel(x, kHeight / 2);
+      run.specular.push_back({sp[0], sp[1], sp[2]});
     }
     run.materials = f.materials;
     return run;
@@ -446,6 +451,52 @@ TEST_F(EdgeTest, DirectionalFresnelScalesEveryPathByItsClosedForm) {
       }
     EXPECT_GT(checked, kWidth) << path.name;  // the lit side and the near shadow, in every channel
     std::printf("[ fresnel %s ] worst |on/off / closed form - 1| = %.2e over %d values\n", path.name, worst, checked);
+  }
+}
+
+// Issue 18 part 2 on the GPU: with --single-scattering on, every lit pixel of the flat
+// edge scene gains S(1) = E μi f1 x albedo (1 - metallic) in its specular target, the
+// planar closed form (profiles::single_scattering_brdf, checked against the analog walk)
+// evaluated per pixel for the light at 50° and the eye at 40° on the far side (forward
+// scattering, Δφ = 0), in every SSS path; the dark half gets none (the light's mask). The
+// specular target is rgba16f: on - off holds S(1) to within the conversion of both values
+// to half floats, which Vulkan lets an implementation round to nearest or toward zero
+// (lavapipe truncates: measured 8.1e-4 here), so one ulp, 2 kHalfUlp x (on + off); plus
+// 1e-4 relative for the shader's float arithmetic (refract, the Fresnel terms: a few float
+// ulps each, ~1e-6, well inside).
+TEST_F(EdgeTest, SingleScatteringAddsThePlanarClosedFormPerPixel) {
+  const double light_deg = 50.0, view_deg = 40.0;
+  for (const SssMode mode : {SssMode::Screen, SssMode::Texture}) {
+    const EdgeRun off = render_edge("skin1", SssKind::Separable, kHalfWidthMm, kWidth, 0.0, 1.0, view_deg, false, light_deg, mode);
+    const EdgeRun on = render_edge("skin1", SssKind::Separable, kHalfWidthMm, kWidth, 0.0, 1.0, view_deg, false, light_deg, mode, true);
+    const scene::Material& m = on.scene.materials[0];
+    const profiles::Medium medium = m.sss.effective_medium();
+    const double mu_i = std::cos(light_deg * kPi / 180.0), mu_o = std::cos(view_deg * kPi / 180.0);
+    const double tint = 1.0 - double(m.metallic);
+    double worst = 0.0;
+    int lit = 0, dark = 0;
+    for (int x = 0; x < kWidth; ++x) {
+      const double surface_x = pixel_center_mm(x) / std::cos(view_deg * kPi / 180.0);
+      for (int c = 0; c < 3; ++c) {
+        const double got = on.specular[x][c] - off.specular[x][c];
+        const double bound = 2.0 * kHalfUlp * (on.specular[x][c] + off.specular[x][c]);
+        if (surface_x > 0.5) {  // the dark half (the light's mask), away from the edge pixel
+          EXPECT_NEAR(got, 0.0, bound + 1e-7) << "x=" << surface_x << " mm channel " << c;
+          ++dark;
+          continue;
+        }
+        if (surface_x > -0.5) continue;
+        const double expected = mu_i * profiles::single_scattering_brdf(medium.channel(c), mu_i, mu_o, 1.0) *
+                                double(m.base_color[c]) * tint;
+        EXPECT_NEAR(got, expected, bound + 1e-4 * expected) << "x=" << surface_x << " mm channel " << c;
+        worst = std::max(worst, std::fabs(got / expected - 1.0));
+        ++lit;
+      }
+    }
+    EXPECT_GT(lit, kWidth);
+    EXPECT_GT(dark, kWidth);
+    std::printf("[ single scattering %s ] worst |S(1) / closed form - 1| = %.2e over %d values\n",
+                mode == SssMode::Screen ? "screen" : "texture", worst, lit);
   }
 }
 

@@ -48,8 +48,10 @@ RenderOptions texture_options(std::uint32_t w, std::uint32_t h, std::uint32_t si
   RenderOptions o = small_options(w, h, SssMode::Texture);
   o.texture_size = size;
   // The edge checks compare pi L with the exitance M(x); the directional Fresnel factors
-  // on top of the texture path are EdgeTest.DirectionalFresnelScalesEveryPathByItsClosedForm's.
+  // on top of the texture path are EdgeTest.DirectionalFresnelScalesEveryPathByItsClosedForm's,
+  // and single scattering (unblurred, in the specular target) EdgeTest's too.
   o.fresnel = false;
+  o.single_scattering = false;
   return o;
 }
 

@@ -202,10 +202,12 @@ TEST_F(ViewerUiTest, RefitLatencyOldSyncPathAgainstTheWorker) {
       if (mat.sss.enabled) mat.sss.model = m;
     // Old path: fit + exact kernel + upload, all on the render thread.
     const auto t0 = std::chrono::steady_clock::now();
-    MaterialData exact = build_material_data(next, o.separable_taps);
+    MaterialData exact = build_material_data(next, o.separable_taps, o.single_scattering);
+    profiles::ModelOptions model_options;
+    model_options.single_scattering_apart = o.single_scattering;
     for (std::size_t i = 0; i < next.size(); ++i)
       if (next[i].sss.enabled) {
-        const profiles::RgbProfile rgb(m, next[i].sss.effective_medium());
+        const profiles::RgbProfile rgb(m, next[i].sss.effective_medium(), model_options);
         exact.profiles[i]->kernel = profiles::make_separable_kernel(
             rgb, o.separable_taps, 0.0, profiles::KernelQuadrature::Exact);
       }
