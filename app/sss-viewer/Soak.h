@@ -45,8 +45,13 @@ struct SoakSample {
 
 struct SoakVerdict {
   int warmup_frames = 0;
-  // The peak RSS of the last material cycle minus the peak of the first cycle after
-  // warm-up (the criterion), and the plain end-minus-warm-up difference (reported).
+  // The criterion: the peak RSS of each material cycle after warm-up (a last, partial
+  // cycle counts as one), the smallest rise from one cycle's peak to the next, times the
+  // number of rises. A leak rises in every cycle, so it shows in full (a steady 1 MB over
+  // the run gives 1 MB); a one-time step (an allocator arena or a layer's cache growing
+  // once, measured +3.1 MB in one CI run) rises in one cycle only and shows as the
+  // smallest rise elsewhere. With two cycles (one rise) it is last peak minus first.
+  // Also the plain end-minus-warm-up difference (reported).
   long rss_growth_kb = 0;
   long rss_end_minus_warmup_kb = 0;
   long heap_growth_kb = 0;     // live malloc bytes, end minus end of warm-up
