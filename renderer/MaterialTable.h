@@ -5,6 +5,7 @@
 // mm (the material's scale is folded into the medium, Material::effective_medium).
 #pragma once
 
+#include "renderer/RenderOptions.h"
 #include "renderer/scene/Scene.h"
 #include "renderer/vk/Buffer.h"
 #include "shaders/shared/frame.h"
@@ -45,9 +46,9 @@ struct MaterialData {
   bool single_scattering = false;
 };
 MaterialData build_material_data(const scene::Scene& scene, int separable_taps,
-                                 bool single_scattering = false);
+                                 bool single_scattering = RenderOptions{}.single_scattering);
 MaterialData build_material_data(const std::vector<scene::Material>& materials,
-                                 int separable_taps, bool single_scattering = false);
+                                 int separable_taps, bool single_scattering = RenderOptions{}.single_scattering);
 // The same, but material i keeps previous.profiles[i] (fit and kernel) instead of being
 // refitted where reuse[i] holds: the caller vouches that its model, medium, scale and
 // Gaussian count are unchanged. Ignored (everything refitted) unless `previous` was built
@@ -55,12 +56,12 @@ MaterialData build_material_data(const std::vector<scene::Material>& materials,
 // bit, to a full rebuild.
 MaterialData build_material_data(const std::vector<scene::Material>& materials,
                                  int separable_taps, const MaterialData& previous,
-                                 const std::vector<bool>& reuse, bool single_scattering = false);
+                                 const std::vector<bool>& reuse, bool single_scattering = RenderOptions{}.single_scattering);
 
 class MaterialTable {
  public:
   MaterialTable(const vk::Context& context, const scene::Scene& scene, int separable_taps,
-                bool single_scattering = false);
+                bool single_scattering = RenderOptions{}.single_scattering);
 
   // Uploads `data` (from build_material_data, as many materials as now) into the same
   // buffer, so descriptor sets that reference it stay valid. The buffer must not be in

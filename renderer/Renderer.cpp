@@ -271,9 +271,10 @@ void Renderer::set_options(const RenderOptions& options) {
                      static_cast<std::uint32_t>(targets_.shadow_layers.size()),
                      options.shadow_map_size);
   if (data) materials_.replace(context_, std::move(*data));
-  // Both change the texture path's irradiance atlases (entry Fresnel is in E).
-  const bool transmission_changed =
-      options.transmission != options_.transmission || options.fresnel != options_.fresnel;
+  // These change the texture path's irradiance atlases (entry Fresnel is in E), and a
+  // refit its blurred ones (the Gaussians, and E's transmitted part divided by the total).
+  const bool transmission_changed = options.transmission != options_.transmission ||
+                                    options.fresnel != options_.fresnel || data.has_value();
   options_ = options;
   if (shadow_changed)
     write_lights(make_light_setup(scene_lights_, bounds_, options_.shadow_map_size));

@@ -59,10 +59,11 @@ const std::vector<profiles::Model>& MaterialEditor::models() {
 }
 
 MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
-                               FitWorker::Compute compute)
+                               FitWorker::Compute compute, bool single_scattering)
     : applied_(scene.materials),
       pending_(scene.materials.size()),
       taps_(separable_taps),
+      single_scattering_(single_scattering),
       worker_(std::move(compute)) {
   for (std::size_t i = 0; i < applied_.size(); ++i) {
     const scene::SssMaterial& s = applied_[i].sss;
@@ -257,9 +258,12 @@ bool MaterialEditor::update(renderer::Renderer& r) {
   }
   if (result->data.separable_taps != r.options().separable_taps ||
       result->data.single_scattering != r.options().single_scattering) {
-    // The taps or the single-scattering switch changed meanwhile: fit again.
+    // The taps or the single-scattering switch changed meanwhile: fit the same edits again
+    // (their specs go back to pending, unless a newer edit of the material is there).
     taps_ = r.options().separable_taps;
     single_scattering_ = r.options().single_scattering;
+    for (std::size_t i = 0; i < pending_.size() && i < result->request.specs.size(); ++i)
+      if (!pending_[i]) pending_[i] = result->request.specs[i];
     submit(result->request.edited);
     return false;
   }

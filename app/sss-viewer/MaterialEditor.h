@@ -56,8 +56,11 @@ struct RefitLatency {
 
 class MaterialEditor {
  public:
+  // separable_taps and single_scattering: the renderer's (RenderOptions), which the fits
+  // must match; a change of either on the renderer is followed at the next update().
   MaterialEditor(const scene::Scene& scene, int separable_taps,
-                 FitWorker::Compute compute = FitWorker::compute_default);
+                 FitWorker::Compute compute = FitWorker::compute_default,
+                 bool single_scattering = renderer::RenderOptions{}.single_scattering);
 
   // The models offered: all of profiles::kAllModels except mc (2^20 photons per channel
   // take seconds per edit); mc-table, a lookup in the shipped Monte Carlo table, is offered.
@@ -107,9 +110,7 @@ class MaterialEditor {
   std::vector<std::optional<SssSpec>> pending_;  // per material: edited, not applied yet
   std::vector<MaterialEdit> edits_;
   int taps_;
-  // The renderer's, as last seen (update()); a renderer started with another setting than
-  // the default costs one refit on the first edit.
-  bool single_scattering_ = renderer::RenderOptions{}.single_scattering;
+  bool single_scattering_;  // the renderer's, as last seen (update())
   RefitLatency latency_;
   Clock::time_point edited_{};  // of the result awaiting its first present
   bool awaiting_present_ = false;

@@ -235,7 +235,7 @@ int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::Ren
   vk::Context context(headless_context_options(a));
   renderer::Renderer r(context, scene, options);
   print_warnings(r);
-  MaterialEditor editor(scene, options.separable_taps);
+  MaterialEditor editor(scene, options.separable_taps, FitWorker::compute_default, options.single_scattering);
   if (editor.edits().empty())
     return usage_error("sss-viewer", "--soak: the scene " + a.scene +
                                          " has no SSS material to change");

@@ -133,8 +133,8 @@ void draw_profile_plot(const ProfilePlot& p, bool with_error) {
 
 }  // namespace
 
-ViewerUi::ViewerUi(const scene::Scene& scene, int separable_taps)
-    : editor_(scene, separable_taps), lights_(scene.lights) {
+ViewerUi::ViewerUi(const scene::Scene& scene, int separable_taps, bool single_scattering)
+    : editor_(scene, separable_taps, FitWorker::compute_default, single_scattering), lights_(scene.lights) {
   if (!lights_.empty()) select_light(0);
 }
 

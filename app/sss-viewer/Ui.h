@@ -24,7 +24,8 @@ bool valid_script_edit(const std::string& edit);
 
 class ViewerUi {
  public:
-  explicit ViewerUi(const scene::Scene& scene, int separable_taps = 17);
+  explicit ViewerUi(const scene::Scene& scene, int separable_taps = 17,
+                    bool single_scattering = renderer::RenderOptions{}.single_scattering);
 
   // Builds the panels for this ImGui frame (between ImGui::NewFrame and ImGui::Render)
   // and applies what changed, including a finished refit. frame_ms: the wall-clock time

@@ -219,7 +219,7 @@ std::unique_ptr<Session> make_session(const vk::Context& ctx, scene::Scene scene
   s->source = std::move(source);
   s->renderer = std::make_unique<renderer::Renderer>(ctx, s->scene, options);
   s->camera = std::make_unique<OrbitCamera>(s->renderer->camera(), s->scene.bounds());
-  s->ui = std::make_unique<ViewerUi>(s->scene, options.separable_taps);
+  s->ui = std::make_unique<ViewerUi>(s->scene, options.separable_taps, options.single_scattering);
   s->inputs = scene_input_files(s->source);
   s->ui->set_protected_files(s->inputs);
   return s;

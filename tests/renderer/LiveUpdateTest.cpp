@@ -165,6 +165,26 @@ TEST_F(LiveUpdateTest, SetMaterialsRejectsAnotherCountOrOtherTextures) {
   expect_fresh(live, scene, o, "after the rejected materials");
 }
 
+// The single-scattering switch refits every material (profiles with or without their
+// once-scattered light): toggling it live gives the frame a fresh renderer makes, in the
+// screen and the texture path (whose atlases hold blurred light of the old profile, so
+// they must be made again even with the on-change policy).
+TEST_F(LiveUpdateTest, SingleScatteringSwitchRefitsAndRebuildsTheAtlases) {
+  const scene::Scene scene = scene::sphere_scene();
+  for (const SssMode mode : {SssMode::Screen, SssMode::Texture}) {
+    RenderOptions o = small_options(kW, kH, mode, SssKind::Gaussians);
+    Renderer live(ctx(), scene, o);
+    live.render_frame();
+    for (const bool single : {!o.single_scattering, o.single_scattering}) {
+      o.single_scattering = single;
+      live.set_options(o);
+      live.render_frame();
+      EXPECT_EQ(live.materials().single_scattering, single);
+      expect_fresh(live, scene, o, std::string(sss_mode_name(mode)) + (single ? " S(1) on" : " S(1) off"));
+    }
+  }
+}
+
 TEST_F(LiveUpdateTest, SetOptionsSwitchesSssModesAndKinds) {
   const scene::Scene scene = scene::sphere_scene();
   RenderOptions o = small_options(kW, kH, SssMode::Screen, SssKind::Separable);

@@ -116,6 +116,23 @@ void finish_refit(MaterialEditor& ed, Renderer& r) {
 
 class ViewerUiTest : public RenderTest {};
 
+// A fit made for the other single-scattering setting than the renderer's (the renderer
+// was started, or switched, the other way) is refused by set_materials; the editor fits the
+// same edit again instead of dropping it: after the refits the edit is on screen.
+TEST_F(ViewerUiTest, AnEditFittedForTheOtherSingleScatteringSettingIsFittedAgainNotLost) {
+  const scene::Scene scene = default_scene();
+  RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  o.single_scattering = !RenderOptions{}.single_scattering;
+  Renderer r(ctx(), scene, o);
+  MaterialEditor ed(scene, o.separable_taps);  // believes the default setting
+  ASSERT_FALSE(ed.edits().empty());
+  ASSERT_TRUE(ed.select_preset(0, preset("marble")));
+  // At most two rounds: the mismatched fit, then the same edit fitted again.
+  for (int i = 0; i < 2 && ed.applied()[0].sss.medium.sigma_a[0] != 0.0021f; ++i) finish_refit(ed, r);
+  EXPECT_EQ(r.materials().single_scattering, o.single_scattering);
+  EXPECT_FLOAT_EQ(float(ed.applied()[0].sss.medium.sigma_a[0]), 0.0021f) << "marble's, not skin1's";
+}
+
 TEST_F(ViewerUiTest, PresetChangeRefitsAsyncAndInvalidInputLeavesTheFrame) {
   const scene::Scene scene = default_scene();
   const RenderOptions o = small_options(kW, kH, SssMode::Screen);
