@@ -45,7 +45,8 @@ struct FitRequest {
   // the request, naming the field, in FitResult::error with error_material = i).
   std::vector<std::optional<SssSpec>> specs;
   int separable_taps = 17;
-  bool single_scattering = false;  // RenderOptions::single_scattering: profiles without S(1)
+  // RenderOptions::single_scattering: profiles without their once-scattered light.
+  bool single_scattering = renderer::RenderOptions{}.single_scattering;
   Clock::time_point edited{};  // when the user made the edit (latency measurement)
   // The data the renderer draws `materials` with: the materials without a spec keep
   // their fits from it (and get no new plot) instead of being refitted. Null: all.
