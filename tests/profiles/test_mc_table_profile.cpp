@@ -154,16 +154,13 @@ TEST(McTableProfile, LookupAtANodeIsTheNode) {
     }
 }
 
-// Histopolation: the reconstructed R integrates over every enforced annulus to the flux it
-// was fitted to, at a node and between nodes. The fixed point stops at |ln(F/I)| < 1e-12,
-// its 6-point Gauss-Legendre per half bin is exact to ~1e-13 on exp(cubic), and the test's
-// quadrature adds ~1e-13 (annuli) or 1e-7 (the disc, see bin_flux): asserted 1e-6.
-TEST(McTableProfile, ReconstructionReproducesTheAnnulusFluxes) {
-  const McTableData& t = small_table();
+// Both lookups' fluxes (apart: the multiply-scattered part) over the media below: the
+// reconstruction integrates over every enforced annulus to its target flux (1e-6).
+void expect_reproduces_the_annulus_fluxes(const McTableData& t, bool apart) {
   const std::pair<double, double> media[] = {
       {t.albedo[4], t.eta[1]}, {t.albedo[7], t.eta[0]}, {0.3, 1.1}, {0.9, 1.37}, {0.97, 1.0}, {0.004, 1.2}};
   for (const auto& [a, eta] : media) {
-    const McTableProfile p(optical(a, eta), t);
+    const McTableProfile p(optical(a, eta), t, apart);
     EXPECT_LT(p.residual(), 1e-12) << a << " " << eta;
     for (std::size_t b = 0; b < t.bins(); ++b) {
       if (!p.enforced()[b]) continue;
@@ -171,6 +168,24 @@ TEST(McTableProfile, ReconstructionReproducesTheAnnulusFluxes) {
       EXPECT_NEAR(bin_flux(p, t, b), f, 1e-6 * f) << "albedo " << a << " eta " << eta << " bin " << b;
     }
   }
+}
+
+// ∫ 2π r R = total_reflectance() at every node, within one standard error.
+void expect_integral_is_the_total_at_nodes(const McTableData& t, bool apart) {
+  for (std::size_t e = 0; e < t.eta.size(); ++e)
+    for (std::size_t a = 0; a < t.albedo.size(); ++a) {
+      const McTableProfile p(optical(t.albedo[a], t.eta[e]), t, apart);
+      EXPECT_NEAR(integral(p, t), p.total_reflectance(), p.total_stderr())
+          << "albedo " << t.albedo[a] << " eta " << t.eta[e];
+    }
+}
+
+// Histopolation: the reconstructed R integrates over every enforced annulus to the flux it
+// was fitted to, at a node and between nodes. The fixed point stops at |ln(F/I)| < 1e-12,
+// its 6-point Gauss-Legendre per half bin is exact to ~1e-13 on exp(cubic), and the test's
+// quadrature adds ~1e-13 (annuli) or 1e-7 (the disc, see bin_flux): asserted 1e-6.
+TEST(McTableProfile, ReconstructionReproducesTheAnnulusFluxes) {
+  expect_reproduces_the_annulus_fluxes(small_table(), false);
 }
 
 // ∫ 2π r R over [0, ∞) against total_reflectance(), the interpolated tabulated total. The
@@ -181,13 +196,7 @@ TEST(McTableProfile, ReconstructionReproducesTheAnnulusFluxes) {
 // Between nodes the small table's coarse grid adds interpolation error; the shipped
 // table's test below covers that.
 TEST(McTableProfile, IntegralOfTheProfileIsTheTotalAtNodes) {
-  const McTableData& t = small_table();
-  for (std::size_t e = 0; e < t.eta.size(); ++e)
-    for (std::size_t a = 0; a < t.albedo.size(); ++a) {
-      const McTableProfile p(optical(t.albedo[a], t.eta[e]), t);
-      EXPECT_NEAR(integral(p, t), p.total_reflectance(), p.total_stderr())
-          << "albedo " << t.albedo[a] << " eta " << t.eta[e];
-    }
+  expect_integral_is_the_total_at_nodes(small_table(), false);
 }
 
 // A brighter medium (higher α', same η and σt') reflects more: the total rises strictly
@@ -300,24 +309,8 @@ TEST(McTableProfile, ApartLookupAtANodeIsTheNodesMultipleScattering) {
 // within one standard error (as IntegralOfTheProfileIsTheTotalAtNodes); the disc's share
 // below min_radius is smaller still than with single scattering (q ∝ r² ln(1/r)).
 TEST(McTableProfile, ApartReconstructionReproducesTheFluxesAndTheTotal) {
-  const McTableData& t = small_table();
-  const std::pair<double, double> media[] = {
-      {t.albedo[4], t.eta[1]}, {t.albedo[7], t.eta[0]}, {0.3, 1.1}, {0.9, 1.37}, {0.97, 1.0}, {0.004, 1.2}};
-  for (const auto& [a, eta] : media) {
-    const McTableProfile p(optical(a, eta), t, true);
-    EXPECT_LT(p.residual(), 1e-12) << a << " " << eta;
-    for (std::size_t b = 0; b < t.bins(); ++b) {
-      if (!p.enforced()[b]) continue;
-      const double f = p.target_flux()[b];
-      EXPECT_NEAR(bin_flux(p, t, b), f, 1e-6 * f) << "albedo " << a << " eta " << eta << " bin " << b;
-    }
-  }
-  for (std::size_t e = 0; e < t.eta.size(); ++e)
-    for (std::size_t a = 0; a < t.albedo.size(); ++a) {
-      const McTableProfile p(optical(t.albedo[a], t.eta[e]), t, true);
-      EXPECT_NEAR(integral(p, t), p.total_reflectance(), p.total_stderr())
-          << "albedo " << t.albedo[a] << " eta " << t.eta[e];
-    }
+  expect_reproduces_the_annulus_fluxes(small_table(), true);
+  expect_integral_is_the_total_at_nodes(small_table(), true);
 }
 
 // The apart total rises with α' along the fine sweep of BrighterMediumReflectsMore, the

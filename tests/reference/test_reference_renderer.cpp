@@ -44,6 +44,17 @@ scene::Scene block_scene(const scene::Material& material, float half_mm, float d
   return s;
 }
 
+// A subsurface material with no GGX lobe (specular 0) and no metal: the frame is the
+// scattered light alone.
+scene::Material matte_subsurface(const scene::SssMaterial& sss) {
+  scene::Material m;
+  m.metallic = 0.0f;
+  m.specular = 0.0f;
+  m.roughness = 1.0f;
+  m.sss = sss;
+  return m;
+}
+
 ReferenceOptions small(std::uint32_t w, std::uint32_t h) {
   ReferenceOptions o;
   o.width = w;
@@ -96,11 +107,7 @@ TEST(ReferenceRenderer, ThinSlabLitFromBehindTransmitsTheMultipoleTotal) {
   medium.thickness_mm = 2.0;
   auto made = scene::make_sss_material(scene::CoefficientSource{medium}, profiles::Model::Multipole);
   ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(made));
-  scene::Material m;
-  m.metallic = 0.0f;
-  m.specular = 0.0f;
-  m.roughness = 1.0f;
-  m.sss = std::get<scene::SssMaterial>(made);
+  const scene::Material m = matte_subsurface(std::get<scene::SssMaterial>(made));
   const scene::Scene s = block_scene(m, 60.0f, 2.0f, {0.0f, 1.0f, 0.0f});
   ReferenceOptions o = small(9, 9);
   o.fresnel = false;  // π L = exitance (DirectionalFresnelFactorsFollowTheirClosedForm has the factors)
@@ -129,11 +136,7 @@ TEST(ReferenceRenderer, DirectionalFresnelFactorsFollowTheirClosedForm) {
   // (2^-23 each, times d ln F_t/dμ = 0.81 at cos 70°: 1.9e-7 for both); 4.3e-7 in all,
   // measured 9.2e-8.
   // And --diffuse-only (M/π by definition) ignores the switch.
-  scene::Material m;
-  m.metallic = 0.0f;
-  m.specular = 0.0f;
-  m.roughness = 1.0f;
-  m.sss = scene::preset_sss_material("skin1");
+  const scene::Material m = matte_subsurface(scene::preset_sss_material("skin1"));
   const double t = 70.0 * kPi / 180.0;
   // The light comes from -x, the camera looks from +x: the block is wide enough (320 mm)
   // that its top face fills the tilted view, the +x side the camera could see is not lit,
@@ -197,12 +200,8 @@ TEST(ReferenceRenderer, MarchedSingleScatteringOfAFlatMediumIsThePlanarClosedFor
   medium.eta = {1.4, 1.4, 1.4};
   auto made = scene::make_sss_material(scene::CoefficientSource{medium}, profiles::Model::BetterDipole);
   ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(made));
-  scene::Material m;
-  m.metallic = 0.0f;
-  m.specular = 0.0f;
-  m.roughness = 1.0f;
+  scene::Material m = matte_subsurface(std::get<scene::SssMaterial>(made));
   m.base_color = glm::vec4(0.9f, 0.7f, 0.5f, 1.0f);
-  m.sss = std::get<scene::SssMaterial>(made);
   const double light = 60.0 * kPi / 180.0;
   for (const double view_deg : {40.0, 0.0}) {
     const double view = view_deg * kPi / 180.0;

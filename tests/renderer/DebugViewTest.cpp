@@ -184,7 +184,9 @@ TEST_F(DebugViewTest, SingleScatteringViewIsS1Alone) {
       const double s1 = profiles::single_scattering_brdf(medium.channel(c), 1.0, 1.0, 1.0);
       const float expected = encode(4.0f * float(s1));
       EXPECT_NEAR(f.display.pixel(8, 8)[c], expected, 1.5f * kCode) << "channel " << c << (on ? " on" : " off");
-      EXPECT_NEAR(f.specular.pixel(8, 8)[c], on ? s1 : 0.0, on ? 2e-3 * s1 : 1e-7) << "channel " << c;
+      // One half-float ulp (Vulkan may round toward zero) + the shader's float arithmetic
+      // (1e-4, as EdgeTest's S(1) check).
+      EXPECT_NEAR(f.specular.pixel(8, 8)[c], on ? s1 : 0.0, on ? (1.0 / 1024.0 + 1e-4) * s1 : 1e-7) << "channel " << c;
     }
   }
 }
