@@ -41,8 +41,21 @@ double pole_total(double z, double sigma) {
 // extrapolated planes (exactly for n → ∞). With the classical constants of Jensen et al.
 // 2001 (D = 1/(3σt'), σtr = √(3σa σt'), z_b = 2AD, A = (1 + Fdr)/(1 - Fdr)) the i = 0 pair
 // is the classical dipole.
-Multipole::Multipole(const Coefficients& c, double thickness_mm, int pairs) {
+Multipole::Multipole(const Coefficients& c, double thickness_mm, int pairs)
+    : Multipole(c, thickness_mm, pairs, c.eta, c.eta) {}
+
+// Different faces (Donner & Jensen 2005 §3 give each boundary of a layer its own A): the
+// mirror about the lit face's extrapolated plane z = -z_b still maps ℓ to -ℓ - 2z_b, the
+// one about the far face's plane z = d + z_b' maps z to 2(d + z_b') - z, and their
+// composition translates by 2(d + z_b + z_b'): the same lattice with that period.
+Multipole::Multipole(const Coefficients& c, double thickness_mm, int pairs, double eta_top,
+                     double eta_bottom) {
   if (auto e = c.validate()) throw std::invalid_argument("Multipole: " + e->what());
+  for (double eta : {eta_top, eta_bottom})
+    if (!(eta >= kEtaMin && eta <= kEtaMax))
+      throw std::invalid_argument("Multipole: a face's relative index must lie in [" +
+                                  message_number(kEtaMin) + ", " + message_number(kEtaMax) +
+                                  "], got " + message_number(eta));
   if (!std::isfinite(thickness_mm) || !(thickness_mm > 0.0))
     throw std::invalid_argument("Multipole: thickness must be a finite number > 0 mm, got " +
                                 std::to_string(thickness_mm));
@@ -53,12 +66,15 @@ Multipole::Multipole(const Coefficients& c, double thickness_mm, int pairs) {
   sigma_tr_ = c.sigma_tr_classical();
   thickness_ = thickness_mm;
   const double sigma_tp = c.sigma_t_reduced();
-  const double fdr = fresnel_diffuse_reflectance_fit(c.eta);
-  const double A = (1.0 + fdr) / (1.0 - fdr);
   const double D = 1.0 / (3.0 * sigma_tp);
+  const auto z_b = [D](double eta) {
+    const double fdr = fresnel_diffuse_reflectance_fit(eta);
+    return 2.0 * (1.0 + fdr) / (1.0 - fdr) * D;  // 2AD, A = (1 + Fdr)/(1 - Fdr)
+  };
   ell_ = 1.0 / sigma_tp;
-  z_b_ = 2.0 * A * D;
-  period_ = 2.0 * (thickness_ + 2.0 * z_b_);
+  z_b_ = z_b(eta_top);
+  z_b_far_ = z_b(eta_bottom);
+  period_ = 2.0 * (thickness_ + z_b_ + z_b_far_);
   // Pole i weighs about e^{-σtr |i| P} in the totals (and less in R(r)).
   n_ = pairs != kAutoPairs
            ? pairs
@@ -117,7 +133,7 @@ double Multipole::total_transmittance() const {
 double Multipole::support_radius() const {
   // As for the classical dipole: every pole decays as e^{-σtr ρ}/ρ² with ρ ≥ r, e^{-20}
   // ≈ 2e-9 of the scale at 20/σtr; the near field extends to the image depth ℓ + 2 z_b.
-  return 20.0 / sigma_tr_ + 10.0 * (ell_ + 2.0 * z_b_);
+  return 20.0 / sigma_tr_ + 10.0 * (ell_ + 2.0 * std::max(z_b_, z_b_far_));
 }
 
 double Multipole::inner_radius() const { return std::min(ell_, thickness_); }

@@ -30,6 +30,12 @@ class Multipole final : public RadialProfile {
   // positive number, or pairs < 0 other than kAutoPairs.
   static constexpr int kAutoPairs = -1;
   Multipole(const Coefficients& c, double thickness_mm, int pairs = 10);
+  // A slab whose two faces see different relative indices (a layer of a stack,
+  // profiles/Layered.h): eta_top at the lit face z = 0, eta_bottom at z = d; c.eta is not
+  // used. Each face gets its own extrapolation distance z_b = 2 A(η) D; with equal
+  // indices this is the constructor above.
+  Multipole(const Coefficients& c, double thickness_mm, int pairs, double eta_top,
+            double eta_bottom);
   double reflectance(double r_mm) const override;
   double transmittance(double r_mm) const override;
   double total_reflectance() const override;    // closed form, summed over the pairs
@@ -45,7 +51,9 @@ class Multipole final : public RadialProfile {
   double z_pos(int i) const { return i * period_ + ell_; }
   double z_neg(int i) const { return i * period_ - ell_ - 2.0 * z_b_; }
   double alpha_p_, sigma_tr_, thickness_;
-  double ell_, z_b_, period_;  // source depth 1/σt', extrapolation distance 2AD, 2(d + 2z_b)
+  // Source depth 1/σt', the extrapolation distances 2AD of the lit and the far face, and
+  // the period 2(d + z_b + z_b_far) of the pole lattice.
+  double ell_, z_b_, z_b_far_, period_;
   int n_;
 };
 
