@@ -51,6 +51,15 @@ struct Coefficients {
   std::optional<FieldError> validate(const std::string& suffix = "") const;
 };
 
+// One channel of one layer of a stack (profiles/Layered.h): the layer's coefficients and
+// its thickness in mm (> 0; infinity for a semi-infinite base, which only the last layer
+// of a stack may be). The interfaces between layers are index-matched: every layer of a
+// stack has the same eta (validate_layers in Layered.h says why).
+struct Layer {
+  Coefficients c;
+  double thickness_mm = std::numeric_limits<double>::infinity();
+};
+
 // The refractive index every model accepts, relative to the outside. Below 1 the
 // Groenhuis fit of Fdr that the classical dipole and the multipole use turns negative
 // (Fdr(0.9) = -0.26, so the boundary term A = (1+Fdr)/(1-Fdr) < 1, a boundary that

@@ -25,11 +25,19 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
   throw std::invalid_argument(field + ": " + why);
 }
 
-void validate(const Coefficients& c, const MonteCarloOptions& o) {
-  if (auto e = c.validate()) throw std::invalid_argument(e->what());
+// The options' checks; `layered`: for run_layered_monte_carlo, whose layers give the
+// thicknesses (thickness_mm must stay at infinity). The order of the checks is that of the
+// documented errors (the first bad field is reported).
+void validate_options(const MonteCarloOptions& o, bool layered) {
   if (o.photons == 0) fail("photons", "must be > 0");
   if (o.threads < 0) fail("threads", "must be >= 0 (0: all hardware threads)");
-  if (!(o.thickness_mm > 0.0)) fail("thickness_mm", "must be > 0 mm (or infinity)");
+  if (layered) {
+    if (o.thickness_mm != kInf)
+      fail("thickness_mm", "must be left at infinity (its default) for run_layered_monte_carlo: the "
+                           "layers give the thicknesses, got " + message_number(o.thickness_mm));
+  } else if (!(o.thickness_mm > 0.0)) {
+    fail("thickness_mm", "must be > 0 mm (or infinity)");
+  }
   if (o.bin_edges_mm.size() == 1) fail("bin_edges_mm", "a single edge bounds no bin");
   for (std::size_t i = 0; i < o.bin_edges_mm.size(); ++i) {
     const double e = o.bin_edges_mm[i];
@@ -55,6 +63,26 @@ void validate(const Coefficients& c, const MonteCarloOptions& o) {
     fail("exit_cosine_bins", "must lie in [0, 100000] (0: no exit-angle tally)");
 }
 
+void validate_stack(const std::vector<Layer>& layers) {
+  if (layers.empty()) fail("layers", "must not be empty");
+  for (std::size_t k = 0; k < layers.size(); ++k) {
+    const std::string name = "layers[" + std::to_string(k) + "].";
+    const Layer& l = layers[k];
+    if (auto e = l.c.validate()) fail(name + e->field, e->message);
+    const bool last = k + 1 == layers.size();
+    if (!last && !(l.thickness_mm > 0.0 && std::isfinite(l.thickness_mm)))
+      fail(name + "thickness_mm", "must be finite and > 0 mm (only the last layer may be "
+                                  "infinitely thick), got " + message_number(l.thickness_mm));
+    if (last && !(l.thickness_mm > 0.0))
+      fail(name + "thickness_mm", "must be > 0 mm (or infinity: a semi-infinite base), got " +
+                                      message_number(l.thickness_mm));
+    if (k > 0 && l.c.eta != layers[0].c.eta)
+      fail(name + "eta", "must equal layers[0].eta (interfaces between layers are index-matched): got " +
+                             message_number(l.c.eta) + ", layers[0].eta is " +
+                             message_number(layers[0].c.eta));
+  }
+}
+
 // Mean and standard error from sums of per-photon contributions x over n photons.
 void finish(double sum, double sum_sq, double n, double scale, double& mean, double& se) {
   mean = sum / n * scale;
@@ -66,10 +94,8 @@ void finish(double sum, double sum_sq, double n, double scale, double& mean, dou
   se = std::sqrt(m2 / (n * (n - 1.0))) * scale;
 }
 
-}  // namespace
-
-MonteCarloResult run_monte_carlo(const Coefficients& c, const MonteCarloOptions& opt) {
-  validate(c, opt);
+// The walk in a validated stack (o.thickness_mm unused): both entry points run it.
+MonteCarloResult run_stack(const std::vector<Layer>& layers, const MonteCarloOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   const std::size_t nb = opt.bin_edges_mm.empty() ? 0 : opt.bin_edges_mm.size() - 1;
   const std::size_t nc = static_cast<std::size_t>(opt.exit_cosine_bins);
@@ -82,7 +108,7 @@ MonteCarloResult run_monte_carlo(const Coefficients& c, const MonteCarloOptions&
   detail::run_ordered_chunks<ChunkSums>(
       chunks, opt.threads,
       [&] {
-        return [&, walker = std::make_shared<Walker>(c, opt)](std::uint64_t k, ChunkSums& sums) {
+        return [&, walker = std::make_shared<Walker>(layers, opt)](std::uint64_t k, ChunkSums& sums) {
           const std::uint64_t count =
               std::min(kMonteCarloChunkPhotons, opt.photons - k * kMonteCarloChunkPhotons);
           sums = ChunkSums(slots);
@@ -125,6 +151,21 @@ MonteCarloResult run_monte_carlo(const Coefficients& c, const MonteCarloOptions&
   finish(total.total[3], total.total_sq[3], n, 1.0, r.low_order_exits, r.low_order_exits_stderr);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
+}
+
+}  // namespace
+
+MonteCarloResult run_monte_carlo(const Coefficients& c, const MonteCarloOptions& opt) {
+  if (auto e = c.validate()) throw std::invalid_argument(e->what());
+  validate_options(opt, false);
+  return run_stack({Layer{c, opt.thickness_mm}}, opt);
+}
+
+MonteCarloResult run_layered_monte_carlo(const std::vector<Layer>& layers,
+                                         const MonteCarloOptions& opt) {
+  validate_stack(layers);
+  validate_options(opt, true);
+  return run_stack(layers, opt);
 }
 
 std::vector<double> log_bin_edges(double lo, double hi, int count) {

@@ -1,5 +1,6 @@
-// Internal to run_monte_carlo (MonteCarlo.cpp): the per-photon random walk that
-// MonteCarlo.h describes, and the per-chunk sums it tallies into.
+// Internal to run_monte_carlo and run_layered_monte_carlo (MonteCarlo.cpp): the per-photon
+// random walk in a stack of layers that MonteCarlo.h describes (a single medium is the
+// stack of one layer), and the per-chunk sums it tallies into.
 #pragma once
 
 #include "profiles/Medium.h"
@@ -42,7 +43,9 @@ struct ChunkSums {
 // allocated once and reused, so a photon allocates nothing.
 class Walker {
  public:
-  Walker(const Coefficients& c, const MonteCarloOptions& o);
+  // `layers`: a valid stack, top first (MonteCarlo.cpp validates it); its last layer's
+  // thickness may be infinite. o.thickness_mm is not used. Both must outlive the walker.
+  Walker(const std::vector<Layer>& layers, const MonteCarloOptions& o);
   // Walks `count` photons on the RNG stream (o.seed, chunk) and adds their per-photon
   // contributions, and their squares, to `out`.
   void run_chunk(std::uint64_t chunk, std::uint64_t count, ChunkSums& out);
@@ -62,8 +65,10 @@ class Walker {
   // Turns the unit direction u by a Henyey–Greenstein scattering event.
   static void scatter(Xoshiro256ss& rng, double g, double& ux, double& uy, double& uz);
 
-  const Coefficients& c_;
+  const std::vector<Layer>& layers_;
   const MonteCarloOptions& o_;
+  std::vector<double> bottom_;  // z of layer k's bottom face (infinity for a semi-infinite base)
+  bool scatters_;               // some layer has sigma_s > 0: flights draw an optical depth
   std::size_t nb_, nc_;
   std::vector<double> photon_;
   std::vector<std::size_t> touched_;
