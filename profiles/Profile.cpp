@@ -26,6 +26,7 @@ std::string_view model_name(Model m) {
     case Model::MonteCarlo: return "mc";
     case Model::McTable: return "mc-table";
     case Model::Qd: return "qd";
+    case Model::Layered: return "layered";
   }
   return "?";
 }
@@ -109,6 +110,10 @@ std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
     case Model::McTable: return std::make_unique<McTableProfile>(c, opt.single_scattering_apart);
     // Quantized diffusion (d'Eon & Irving 2011): semi-infinite, as the dipoles.
     case Model::Qd: return std::make_unique<QuantizedDiffusion>(c);
+    case Model::Layered:
+      throw std::invalid_argument(
+          "model: layered describes a stack of layers, not one medium: give the layers "
+          "(sss-fit --layers FILE.json, glTF extras.sss.layers)");
   }
   throw std::invalid_argument("unknown model");
 }

@@ -17,7 +17,9 @@
 
 namespace sss::profiles {
 
-enum class Model { Dipole, BetterDipole, Pbd, Burley, Multipole, MonteCarlo, McTable, Qd };
+// Layered is a stack of media (profiles/Layered.h), not one medium: it is not in
+// kAllModels (the models make_profile builds from one medium) and make_profile refuses it.
+enum class Model { Dipole, BetterDipole, Pbd, Burley, Multipole, MonteCarlo, McTable, Qd, Layered };
 
 inline constexpr std::array<Model, 8> kAllModels = {
     Model::Dipole,    Model::BetterDipole, Model::Pbd,     Model::Burley,
@@ -34,7 +36,9 @@ inline constexpr std::array<Model, 8> kAllModels = {
 // Change this one line to change the default everywhere.
 inline constexpr Model kDefaultModel = Model::McTable;
 
-// CLI names: dipole | better-dipole | pbd | burley | multipole | mc | mc-table | qd
+// CLI names: dipole | better-dipole | pbd | burley | multipole | mc | mc-table | qd, and
+// layered (which parse_model does not accept: a stack is given as layers, not as a model
+// of one medium)
 std::string_view model_name(Model m);
 std::optional<Model> parse_model(std::string_view name);
 // A comma-separated list of every model name, for messages.

@@ -225,6 +225,8 @@ TEST(ParameterRanges, NoProfileIsSingularAtZero) {
               ++mc_table_checked;
               break;
             }
+            case Model::Layered:  // not in kAllModels: a stack, not one medium
+              break;
           }
           ++checked;
         }
