@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 
 namespace sss::app {
 
@@ -37,17 +38,17 @@ Rgb edge_error(const profiles::RgbProfile& profile, const profiles::GaussianFit&
   return worst;
 }
 
-LogLogPlot make_plot(const FitArgs& a, const ResolvedMedium& rm, const profiles::RgbProfile& profile,
+LogLogPlot make_plot(const FitArgs& a, const ProfileSource& src, const profiles::RgbProfile& profile,
                      const profiles::FitTarget& target, const profiles::GaussianFit& fit,
                      const Rgb& edge, const profiles::ModelOptions& opt) {
   LogLogPlot plot;
-  plot.title = "r·R(r): " + a.common.model + " and a " + std::to_string(a.gaussians) +
-               "-Gaussian fit — " + rm.description;
+  plot.title = "r·R(r): " + src.model_name + " and a " + std::to_string(a.gaussians) +
+               "-Gaussian fit — " + src.description;
   plot.x_label = "r (mm)";
   plot.y_label = "r·R(r) (mm^-1)";
   for (int c = 0; c < 3; ++c) {
     PlotSeries model;
-    model.label = std::string(kChannelNames[c]) + " " + a.common.model;
+    model.label = std::string(kChannelNames[c]) + " " + src.model_name;
     model.color = kChannelColor[c];
     PlotSeries fitted;
     fitted.label = std::string(kChannelNames[c]) + " fit";
@@ -70,16 +71,20 @@ LogLogPlot make_plot(const FitArgs& a, const ResolvedMedium& rm, const profiles:
   }
   if (a.plot_mc) {
     for (int c = 0; c < 3; ++c) {
-      const auto k = rm.medium.channel(c);
+      // From 0.02 of the shortest reduced mean free path to 20 of the longest diffusion
+      // lengths 1/σtr among the layers (the medium's own for one medium).
+      double mfp = std::numeric_limits<double>::infinity(), diffusion = 0.0;
+      for (const profiles::Coefficients& k : src.channel_media(c)) {
+        mfp = std::min(mfp, k.mfp_reduced());
+        diffusion = std::max(diffusion, 1.0 / k.sigma_tr_classical());
+      }
       profiles::MonteCarloOptions mc;
       mc.photons = opt.mc_photons;
       mc.seed = opt.mc_seed + c;
       mc.threads = opt.mc_threads;
-      mc.thickness_mm = rm.medium.thickness_mm;
-      mc.bin_edges_mm = profiles::log_bin_edges(0.02 * k.mfp_reduced(),
-                                                20.0 / k.sigma_tr_classical(), 40);
+      mc.bin_edges_mm = profiles::log_bin_edges(0.02 * mfp, 20.0 * diffusion, 40);
       mc.progress = [c](double f) { progress_bar("Monte Carlo", (c + f) / 3.0); };
-      const auto res = profiles::run_monte_carlo(k, mc);
+      const auto res = src.monte_carlo(c, mc);
       PlotSeries pts;
       pts.label = std::string(kChannelNames[c]) + " Monte Carlo";
       pts.color = kChannelColor[c];
@@ -123,20 +128,17 @@ LogLogPlot make_plot(const FitArgs& a, const ResolvedMedium& rm, const profiles:
 }  // namespace
 
 int run_fit(const FitArgs& a) {
-  const auto model = resolve_model(a.common.model);
-  if (!model) return kExitUsage;
   if (a.gaussians < 1 || a.gaussians > profiles::kMaxGaussians)
     return usage_error("--gaussians: must be in [1, " + std::to_string(profiles::kMaxGaussians) +
                        "], got " + std::to_string(a.gaussians));
   if (a.taps != 0 && (a.taps < 3 || a.taps % 2 == 0 || a.taps > 255))
     return usage_error("--taps: must be odd and in [3, 255], got " + std::to_string(a.taps));
   const auto opt = model_options(a.common);
-  auto resolved = resolve_medium(a.common.medium, *model, opt);
-  if (auto* e = std::get_if<FieldError>(&resolved)) return usage_error(*e);
-  const auto& rm = std::get<ResolvedMedium>(resolved);
+  const auto src = resolve_source(a.common, opt, /*with_model=*/true);
+  if (!src) return kExitUsage;
 
   const auto t0 = std::chrono::steady_clock::now();
-  const profiles::RgbProfile profile(*model, rm.medium, opt);
+  const profiles::RgbProfile profile = src->make_profile(opt);
   const auto t1 = std::chrono::steady_clock::now();
   if (!(a.resolution < 0.0) && !(a.resolution <= 10.0))
     return usage_error("--resolution: must lie in [0, 10] inner radii (reduced mean free paths for mc-table and the dipoles), got " +
@@ -148,7 +150,7 @@ int run_fit(const FitArgs& a) {
   const Rgb edge = edge_error(profile, fit);
   std::optional<profiles::SeparableKernel> separable;
   if (a.taps > 0) separable = profiles::make_separable_kernel(profile, a.taps);
-  const profiles::KernelInfo info{a.common.model, rm.description};
+  const profiles::KernelInfo info{src->model_name, src->description};
   const std::string json = profiles::kernel_to_json(fit, info, separable ? &*separable : nullptr);
 
   if (!a.out.empty()) {
@@ -160,7 +162,7 @@ int run_fit(const FitArgs& a) {
     if (!write_output(a.out, bytes)) return kExitRuntime;
   }
   if (!a.plot.empty() &&
-      !write_output(a.plot, render_svg(make_plot(a, rm, profile, target, fit, edge, opt))))
+      !write_output(a.plot, render_svg(make_plot(a, *src, profile, target, fit, edge, opt))))
     return kExitRuntime;
 
   if (a.common.json) {
@@ -169,8 +171,8 @@ int run_fit(const FitArgs& a) {
   }
   const double ms_profile = std::chrono::duration<double, std::milli>(t1 - t0).count();
   const double ms_fit = std::chrono::duration<double, std::milli>(t2 - t1).count();
-  std::printf("%d-Gaussian fit of %s for %s\n", a.gaussians, a.common.model.c_str(),
-              rm.description.c_str());
+  std::printf("%d-Gaussian fit of %s for %s\n", a.gaussians, src->model_name.c_str(),
+              src->description.c_str());
   std::printf("G(v,r) = exp(-r^2/2v)/(2 pi v);  R(r) ~ sum_i w_i G(v_i, r)\n\n");
   std::printf("  %-12s %-12s %-12s %-12s\n", "v (mm^2)", "w_R", "w_G", "w_B");
   for (std::size_t i = 0; i < fit.variances_mm2.size(); ++i)

@@ -41,22 +41,19 @@ std::variant<std::vector<double>, FieldError> parse_radii(const std::string& tex
 }  // namespace
 
 int run_profile(const ProfileArgs& a) {
-  const auto model = resolve_model(a.common.model);
-  if (!model) return kExitUsage;
   const auto opt = model_options(a.common);
+  const auto src = resolve_source(a.common, opt, /*with_model=*/true);
+  if (!src) return kExitUsage;
   auto radii = parse_radii(a.radii, a.log_spacing);
   if (auto* e = std::get_if<FieldError>(&radii)) return usage_error(*e);
-  auto resolved = resolve_medium(a.common.medium, *model, opt);
-  if (auto* e = std::get_if<FieldError>(&resolved)) return usage_error(*e);
-  const auto& rm = std::get<ResolvedMedium>(resolved);
-  if (rm.medium.is_slab() && *model != profiles::Model::Multipole &&
-      *model != profiles::Model::MonteCarlo)
-    std::cerr << "sss-fit: note: model " << a.common.model
+  if (!src->layers && src->medium.is_slab() && src->model != profiles::Model::Multipole &&
+      src->model != profiles::Model::MonteCarlo)
+    std::cerr << "sss-fit: note: model " << src->model_name
               << " describes a semi-infinite medium and ignores --thickness\n";
 
-  const profiles::RgbProfile profile(*model, rm.medium, opt);
+  const profiles::RgbProfile profile = src->make_profile(opt);
   const auto& r = std::get<std::vector<double>>(radii);
-  const bool slab = rm.medium.is_slab() && (*model == profiles::Model::Multipole);
+  const bool slab = src->has_transmittance();
 
   if (a.common.json) {
     nlohmann::json R = nlohmann::json::array(), T = nlohmann::json::array();
@@ -64,11 +61,12 @@ int run_profile(const ProfileArgs& a) {
       R.push_back(to_json(profile.reflectance(x)));
       if (slab) T.push_back(to_json(profile.transmittance(x)));
     }
-    nlohmann::json out = {{"model", a.common.model},
-                          {"medium", rm.description},
+    nlohmann::json out = {{"model", src->model_name},
+                          {"medium", src->description},
                           {"radii_mm", r},
                           {"R", R},
                           {"total_reflectance", to_json(profile.total_reflectance())}};
+    if (src->layers) out["layers"] = layers_json(*src->layers);
     if (slab) {
       out["T"] = T;
       out["total_transmittance"] = to_json(profile.total_transmittance());
@@ -78,7 +76,7 @@ int run_profile(const ProfileArgs& a) {
   }
   const auto tot = profile.total_reflectance();
   std::printf("# model %s, %s\n# total reflectance R,G,B = %.6f %.6f %.6f\n",
-              a.common.model.c_str(), rm.description.c_str(), tot[0], tot[1], tot[2]);
+              src->model_name.c_str(), src->description.c_str(), tot[0], tot[1], tot[2]);
   std::printf("# r_mm  R_r R_g R_b (mm^-2)%s\n", slab ? "  T_r T_g T_b (mm^-2)" : "");
   for (double x : r) {
     const auto v = profile.reflectance(x);

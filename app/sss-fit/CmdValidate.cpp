@@ -2,16 +2,75 @@
 
 #include "profiles/Validation.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
 namespace sss::app {
 
+namespace {
+
+// The layered model against the layered Monte Carlo walk of the same stack, channel by
+// channel, as validate_against_monte_carlo compares one medium's models: the totals, and
+// R(r) as averages over vo.bins log-spaced annuli of r in [vo.r_lo_mfp, vo.r_hi_mfp], read
+// here in mm (a stack has no one mean free path to scale them by).
+profiles::ValidationReport validate_stack(const profiles::LayerStack& stack,
+                                          const profiles::ValidationOptions& vo) {
+  const auto start = std::chrono::steady_clock::now();
+  const profiles::RgbProfile profile = profiles::make_layered_rgb_profile(stack, vo.model_options);
+  profiles::ValidationReport report;
+  report.models.push_back({profiles::Model::Layered, {}});
+  for (int c = 0; c < 3; ++c) {
+    profiles::MonteCarloOptions mc;
+    mc.photons = vo.photons;
+    mc.seed = vo.seed + 1000003ull * static_cast<std::uint64_t>(c);  // as Validation.cpp
+    mc.threads = vo.threads;
+    mc.bin_edges_mm = profiles::log_bin_edges(vo.r_lo_mfp, vo.r_hi_mfp, vo.bins);
+    if (vo.model_options.single_scattering_apart) mc.min_scattering_order = 2;
+    if (vo.progress) mc.progress = [&, c](double f) { vo.progress((c + f) / 3.0); };
+    report.monte_carlo[c] = profiles::run_layered_monte_carlo(profiles::channel_layers(stack, c), mc);
+    const profiles::MonteCarloResult& res = report.monte_carlo[c];
+
+    // Annuli inside the range: log_bin_edges puts the disc [0, lo] first, skip it.
+    std::vector<double> rel_se;
+    double sum2 = 0.0, worst = 0.0;
+    int n = 0;
+    for (std::size_t b = 1; b + 1 < res.bin_edges_mm.size(); ++b) {
+      const double mc_value = res.reflectance.value[b];
+      if (!(mc_value > 0.0)) continue;
+      rel_se.push_back(res.reflectance.stderr_[b] / mc_value);
+      const double model_value = profiles::annulus_average(profile.channel(c), res.bin_edges_mm[b],
+                                                           res.bin_edges_mm[b + 1]);
+      const double e = model_value / mc_value - 1.0;
+      sum2 += e * e;
+      worst = std::max(worst, std::fabs(e));
+      ++n;
+    }
+    std::sort(rel_se.begin(), rel_se.end());
+    report.median_bin_rel_stderr[c] = rel_se.empty() ? 0.0 : rel_se[rel_se.size() / 2];
+
+    profiles::ChannelComparison& out = report.models[0].channels[c];
+    out.total = profile.channel(c).total_reflectance();
+    out.total_rel_error = out.total / res.reflectance.total - 1.0;
+    out.total_transmittance = profile.channel(c).total_transmittance();
+    if (res.transmittance.total > 0.0)
+      out.total_transmittance_rel_error = out.total_transmittance / res.transmittance.total - 1.0;
+    out.rms_rel_error = n ? std::sqrt(sum2 / n) : 0.0;
+    out.max_rel_error = worst;
+  }
+  report.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace
+
 int run_validate(const CommonArgs& a) {
   const auto opt = model_options(a);
-  auto resolved = resolve_medium(a.medium, profiles::kDefaultModel, opt);
-  if (auto* e = std::get_if<FieldError>(&resolved)) return usage_error(*e);
-  const auto& rm = std::get<ResolvedMedium>(resolved);
+  const auto src = resolve_source(a, opt, /*with_model=*/false);
+  if (!src) return kExitUsage;
 
   profiles::ValidationOptions vo;
   vo.photons = a.photons;
@@ -19,33 +78,46 @@ int run_validate(const CommonArgs& a) {
   vo.threads = a.threads;
   vo.model_options = opt;
   vo.progress = [](double f) { progress_bar("Monte Carlo", f); };
-  const auto rep = profiles::validate_against_monte_carlo(rm.medium, vo);
+  const bool stack = src->layers.has_value();
+  const auto rep = stack ? validate_stack(*src->layers, vo)
+                         : profiles::validate_against_monte_carlo(src->medium, vo);
+  // The walk has a far face: a slab, or a stack whose last layer is finite.
+  const bool far_face = stack ? src->has_transmittance() : src->medium.is_slab();
 
-  Rgb mc_total, mc_se, noise;
+  Rgb mc_total, mc_se, noise, mc_t, mc_t_se;
   for (int c = 0; c < 3; ++c) {
     mc_total[c] = rep.monte_carlo[c].reflectance.total;
     mc_se[c] = rep.monte_carlo[c].reflectance.total_stderr;
+    mc_t[c] = rep.monte_carlo[c].transmittance.total;
+    mc_t_se[c] = rep.monte_carlo[c].transmittance.total_stderr;
     noise[c] = rep.median_bin_rel_stderr[c];
   }
   if (a.json) {
     nlohmann::json models = nlohmann::json::array();
     for (const auto& m : rep.models) {
-      Rgb tot, terr, rms, mx;
+      Rgb tot, terr, rms, mx, t, t_err;
       for (int c = 0; c < 3; ++c) {
         tot[c] = m.channels[c].total;
         terr[c] = m.channels[c].total_rel_error;
         rms[c] = m.channels[c].rms_rel_error;
         mx[c] = m.channels[c].max_rel_error;
+        t[c] = m.channels[c].total_transmittance;
+        t_err[c] = m.channels[c].total_transmittance_rel_error;
       }
-      models.push_back({{"model", profiles::model_name(m.model)},
-                        {"total_reflectance", to_json(tot)},
-                        {"total_relative_error", to_json(terr)},
-                        {"rms_relative_error", to_json(rms)},
-                        {"max_relative_error", to_json(mx)}});
+      nlohmann::json entry = {{"model", profiles::model_name(m.model)},
+                              {"total_reflectance", to_json(tot)},
+                              {"total_relative_error", to_json(terr)},
+                              {"rms_relative_error", to_json(rms)},
+                              {"max_relative_error", to_json(mx)}};
+      if (far_face) {
+        entry["total_transmittance"] = to_json(t);
+        entry["total_transmittance_relative_error"] = to_json(t_err);
+      }
+      models.push_back(std::move(entry));
     }
     nlohmann::json out = {
-        {"medium", rm.description},
-        {"range_mfp", {vo.r_lo_mfp, vo.r_hi_mfp}},
+        {"medium", src->description},
+        {stack ? "range_mm" : "range_mfp", {vo.r_lo_mfp, vo.r_hi_mfp}},
         {"monte_carlo",
          {{"photons", a.photons},
           {"seed", a.seed},
@@ -54,18 +126,28 @@ int run_validate(const CommonArgs& a) {
           {"total_reflectance_stderr", to_json(mc_se)},
           {"median_bin_relative_stderr", to_json(noise)}}},
         {"models", models}};
+    if (far_face) {
+      out["monte_carlo"]["total_transmittance"] = to_json(mc_t);
+      out["monte_carlo"]["total_transmittance_stderr"] = to_json(mc_t_se);
+    }
+    if (stack) out["layers"] = layers_json(*src->layers);
     std::cout << out.dump(2) << '\n';
     return kExitOk;
   }
-  std::printf("Models against Monte Carlo for %s\n", rm.description.c_str());
+  std::printf("%s against Monte Carlo for %s\n", stack ? "Model layered" : "Models",
+              src->description.c_str());
   std::printf("Monte Carlo: %llu photons per channel, seed %llu, %.1f s\n",
               static_cast<unsigned long long>(a.photons), static_cast<unsigned long long>(a.seed),
               rep.seconds);
   std::printf("MC total reflectance   %.5f±%.5f  %.5f±%.5f  %.5f±%.5f\n", mc_total[0], mc_se[0],
               mc_total[1], mc_se[1], mc_total[2], mc_se[2]);
-  std::printf("R(r) compared on %d annuli over r = %.2g..%.2g reduced mean free paths "
+  if (far_face)
+    std::printf("MC total transmittance %.5f±%.5f  %.5f±%.5f  %.5f±%.5f\n", mc_t[0], mc_t_se[0],
+                mc_t[1], mc_t_se[1], mc_t[2], mc_t_se[2]);
+  std::printf("R(r) compared on %d annuli over r = %.2g..%.2g %s "
               "(MC noise per annulus: %.2f%% %.2f%% %.2f%%)\n\n",
-              vo.bins, vo.r_lo_mfp, vo.r_hi_mfp, 100 * noise[0], 100 * noise[1], 100 * noise[2]);
+              vo.bins, vo.r_lo_mfp, vo.r_hi_mfp, stack ? "mm" : "reduced mean free paths",
+              100 * noise[0], 100 * noise[1], 100 * noise[2]);
   std::printf("%-14s %-3s %9s %10s %10s %10s\n", "model", "ch", "total", "total err", "RMS err",
               "max err");
   for (const auto& m : rep.models) {
@@ -76,6 +158,15 @@ int run_validate(const CommonArgs& a) {
                   kChannelNames[c], ch.total, 100 * ch.total_rel_error, 100 * ch.rms_rel_error,
                   100 * ch.max_rel_error);
     }
+  }
+  if (far_face) {
+    std::printf("\n%-14s %-3s %9s %10s\n", "model", "ch", "T total", "T err");
+    for (const auto& m : rep.models)
+      for (int c = 0; c < 3; ++c)
+        std::printf("%-14s %-3s %9.5f %+9.2f%%\n",
+                    c == 0 ? std::string(profiles::model_name(m.model)).c_str() : "",
+                    kChannelNames[c], m.channels[c].total_transmittance,
+                    100 * m.channels[c].total_transmittance_rel_error);
   }
   return kExitOk;
 }

@@ -12,7 +12,11 @@ namespace sss::app {
 
 struct CommonArgs {
   MediumArgs medium;
+  // --layers FILE.json: a stack of layers (renderer/scene/SssLayers.h) instead of MEDIUM;
+  // implies --model layered.
+  std::string layers;
   std::string model{profiles::model_name(profiles::kDefaultModel)};
+  bool model_given = false;  // --model was on the command line
   bool json = false;
   int pbd_samples = 0;  // 0: the library default
   std::uint64_t photons = 1u << 20;

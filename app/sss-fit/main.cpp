@@ -14,10 +14,22 @@ namespace {
 
 void add_common(CLI::App& cmd, CommonArgs& a, bool with_model) {
   add_medium_options(cmd, a.medium);
+  cmd.add_option("--layers", a.layers,
+                 "A stack of layers instead of MEDIUM: FILE.json holding {\"layers\": [...]}, "
+                 "top first, each {\"sigma_a\", \"sigma_s\", \"g\", \"eta\", \"thickness_mm\"} "
+                 "or {\"preset\", \"thickness_mm\"} (mm^-1, mm; sigma as R,G,B arrays or one "
+                 "number); only the last layer may leave out thickness_mm (a semi-infinite base), "
+                 "and every layer has the same eta; a finite layer must be thicker than its "
+                 "reduced mean free path. Implies --model layered" +
+                     std::string(with_model ? "" : " (compared with a Monte Carlo walk of the stack "
+                                                   "over r = 0.25..8 mm)"))
+      ->type_name("FILE.json");
   if (with_model)
     cmd.add_option("--model", a.model,
                    "dipole | better-dipole | pbd | burley | multipole | mc | mc-table | qd "
-                   "(default " + std::string(sss::profiles::model_name(sss::profiles::kDefaultModel)) + ")");
+                   "(default " + std::string(sss::profiles::model_name(sss::profiles::kDefaultModel)) +
+                   "); layered with --layers")
+        ->each([&a](const std::string&) { a.model_given = true; });
   cmd.add_flag("--json", a.json, "Print one JSON document on stdout and nothing else");
   cmd.add_option("--pbd-samples", a.pbd_samples, "PBD depth samples per strategy (default 32)")
       ->check(CLI::Range(1, 4096));
@@ -67,7 +79,8 @@ int main(int argc, char** argv) {
                   "other models)");
 
   CommonArgs va;
-  auto* validate = app.add_subcommand("validate", "Every model against Monte Carlo");
+  auto* validate = app.add_subcommand(
+      "validate", "Every model against Monte Carlo (with --layers: the layered model)");
   add_common(*validate, va, false);
 
   McTableArgs ta;

@@ -28,6 +28,10 @@ std::string key_list() {
   return s;
 }
 
+}  // namespace
+
+namespace detail {
+
 // A number or an array of three; `scalar` tells which, so errors can name "g" or "g[1]".
 std::optional<FieldError> read_rgb(const json& o, const char* key, Rgb& out, bool& scalar) {
   const json& v = o.at(key);
@@ -70,7 +74,10 @@ FieldError as_written(FieldError e, const json& o) {
   return e;
 }
 
-}  // namespace
+}  // namespace detail
+
+using detail::as_written;
+using detail::read_rgb;
 
 std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
   if (!o.is_object()) return FieldError{"", "must be a JSON object"};

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <optional>
 #include <string_view>
 #include <variant>
 
@@ -31,5 +32,16 @@ std::variant<SssMaterial, FieldError> parse_sss_extras_text(std::string_view jso
 // gaussians, scale, albedo mode, thickness, enabled): what the viewer's export writes.
 // Every key is written, defaults included, so the file says what it means.
 nlohmann::json sss_extras_json(const SssMaterial& material);
+
+// Shared with extras.sss.layers (SssLayers.cpp), whose layers read σa, σs, g and η alike.
+namespace detail {
+// o[key] as a number (all channels; `scalar` set) or an array of 3 finite numbers; the
+// error names "key" or "key[1]".
+std::optional<FieldError> read_rgb(const nlohmann::json& o, const char* key, Rgb& out,
+                                   bool& scalar);
+// A profiles error ("sigma_a[G]", "sigma_t[R]", "eta[0]") named as the user wrote the
+// field in `o`: "sigma_a[1]" for an array, "sigma_a" for a single number.
+FieldError as_written(FieldError e, const nlohmann::json& o);
+}  // namespace detail
 
 }  // namespace sss::scene
