@@ -100,7 +100,10 @@ Rgb blurred_reflectance(const RgbProfile& p, double r, double v) {
 
 }  // namespace
 
-double default_fit_resolution(Model model) { return model == Model::McTable ? 0.25 : 0.0; }
+double default_fit_resolution(Model model) {
+  // A layered profile is its top medium's mc-table profile near the axis, 1/r peak included.
+  return model == Model::McTable || model == Model::Layered ? 0.25 : 0.0;
+}
 
 double gaussian_2d(double variance_mm2, double r_mm) {
   return std::exp(-r_mm * r_mm / (2.0 * variance_mm2)) / (2.0 * kPi * variance_mm2);

@@ -38,8 +38,9 @@ struct FitTarget {
 
 // The default resolution of a fit, as a fraction of the RgbProfile's inner_radius() (the
 // smallest over its channels; for mc-table and the dipoles one reduced mean free path
-// 1/σt', for Burley d = ℓ/s, for the tabulated mc its first node): 0.25 for mc-table, 0 (the
-// profile itself) for the others. mc-table's R(r) has the true 1/r peak of single
+// 1/σt', for Burley d = ℓ/s, for the tabulated mc its first node): 0.25 for mc-table and for
+// layered (near the axis it is the top medium's mc-table profile), 0 (the profile itself)
+// for the others. mc-table's R(r) has the true 1/r peak of single
 // scattering at the source, which no finite sum of Gaussians follows (the L2 error of r·R
 // is then dominated by radii below 0.02 mean free paths, which hold under 1% of the
 // energy); 0.25 mean free paths is where `sss-fit validate` starts comparing profiles

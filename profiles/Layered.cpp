@@ -305,6 +305,21 @@ class DiffusionStack {
   double zb_ = 0.0, zb_bottom_ = 0.0, zs_ = 0.0, alpha_ = 0.0;
 };
 
+// The sampled inverse transform's floor (LayeredTransform test: 1e-3 of the value plus
+// 1e-7 of the peak): beyond where a decaying profile first falls under 1e-6 of its peak,
+// what is left is the interpolant's weak oscillating tail, not light. Cut it there.
+void cut_tail(std::vector<double>& v) {
+  std::size_t peak = 0;
+  for (std::size_t j = 1; j < v.size(); ++j)
+    if (std::fabs(v[j]) > std::fabs(v[peak])) peak = j;
+  const double floor = 1e-6 * std::fabs(v[peak]);
+  for (std::size_t j = peak; j < v.size(); ++j)
+    if (std::fabs(v[j]) < floor) {
+      std::fill(v.begin() + static_cast<std::ptrdiff_t>(j), v.end(), 0.0);
+      break;
+    }
+}
+
 // ∫ 2πr f dr from 0 to `outer`: f(lo) on the disc [0, lo), lo = 10^-6 L, then the
 // midpoint rule on 256 log steps a decade (relative step 0.9%: the rule's error is
 // ~ (0.009)²/24 = 3e-6 of the integral where f is smooth).
@@ -544,6 +559,7 @@ LayeredProfile::LayeredProfile(const std::vector<Layer>& layers, const ModelOpti
     T = std::move(Tn);
     if (top) {
       s.added = inverse(added, s.L);
+      cut_tail(s.added);
       s.has_added = true;
       s.grid_total_r = f.total_down() + added.front();
     } else {
@@ -553,6 +569,7 @@ LayeredProfile::LayeredProfile(const std::vector<Layer>& layers, const ModelOpti
   s.top_finite = std::move(finite[0]);
   if (!base_profile) {
     s.trans = inverse(T, s.L);
+    cut_tail(s.trans);
     s.has_trans = true;
     s.grid_total_t = T.front();
   }
@@ -594,6 +611,7 @@ void LayeredProfile::build_diffusion(const std::vector<Layer>& layers, const Mod
     trans[i] = t;
   }
   s.added = inverse(delta, s.L);
+  cut_tail(s.added);
   s.has_added = true;
   const auto [r0, t0] = stack.solve(0.0);
   s.exact_total_r = r0, s.exact_total_t = t0;
@@ -601,6 +619,7 @@ void LayeredProfile::build_diffusion(const std::vector<Layer>& layers, const Mod
   const bool transmits = std::isfinite(layers[n - 1].thickness_mm);
   if (transmits) {
     s.trans = inverse(trans, s.L);
+    cut_tail(s.trans);
     s.has_trans = true;
     s.grid_total_t = trans.front();
   }
