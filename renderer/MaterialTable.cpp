@@ -53,14 +53,14 @@ MaterialData build(const std::vector<scene::Material>& materials, int separable_
       if (can_reuse && (*reuse)[index] && previous->profiles[index]) {
         p = *previous->profiles[index];
       } else {
-        const profiles::RgbProfile rgb(m.sss.model, m.sss.effective_medium(), model_options);
-        profiles::KernelFit k = profiles::fit_kernel(rgb, m.sss.gaussians, m.sss.effective_medium().is_slab());
+        const profiles::RgbProfile rgb = m.sss.profile(model_options);
+        profiles::KernelFit k = profiles::fit_kernel(rgb, m.sss.gaussians, m.sss.transmits());
         p = {std::move(k.fit), profiles::make_separable_kernel(rgb, separable_taps), std::move(k.transmittance)};
       }
       if (p.transmittance) {
         const Rgb t = p.transmittance->total;
         g.transmit = {float(t[0]), float(t[1]), float(t[2]),
-                      float(m.sss.effective_medium().thickness_mm)};
+                      float(m.sss.effective_thickness_mm())};
       }
       const Rgb eta = m.sss.medium.eta;  // the scale leaves η alone
       g.fresnel = {float(eta[0]), float(eta[1]), float(eta[2]), 0.0f};

@@ -1,6 +1,7 @@
 #include "MaterialOverrides.h"
 
 #include "profiles/Presets.h"
+#include "renderer/scene/SssLayers.h"
 
 namespace sss::app {
 
@@ -21,6 +22,9 @@ void add_material_override_options(CLI::App& app, MaterialOverrideArgs& args) {
   app.add_option("--albedo", args.albedo,
                  "Where SSS materials apply their colour: post-scatter | pre-post (sqrt before "
                  "and after scattering)");
+  app.add_option("--layers", args.layers,
+                 "A stack of layers for every SSS material instead of MEDIUM: FILE.json holding "
+                 "{\"layers\": [...]} (model layered; README \"Layered materials\")");
   add_medium_options(app, args.medium);
 }
 
@@ -43,12 +47,44 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
       return FieldError{"--albedo", "expected post-scatter or pre-post, got '" + args.albedo + "'"};
   }
   const bool medium = any_medium(args.medium);
-  if (!model && !args.gaussians && !medium && !albedo) return 0;
+  std::optional<profiles::LayerStack> layers;
+  if (!args.layers.empty()) {
+    if (medium || model)
+      return FieldError{"--layers", std::string("cannot be combined with ") +
+                                        (model ? "--model" : "the MEDIUM options") +
+                                        ": the layers are the medium, and the model is layered"};
+    auto parsed = scene::parse_sss_layers_file(args.layers);
+    if (auto* e = std::get_if<FieldError>(&parsed)) {
+      // A file error names the file already; a field inside it gets the file in front.
+      const std::string field = e->field == args.layers ? e->field : args.layers + ": " + e->field;
+      return FieldError{"--layers " + field, e->message};
+    }
+    layers = std::get<profiles::LayerStack>(std::move(parsed));
+  }
+  if (!model && !args.gaussians && !medium && !albedo && !layers) return 0;
 
   int changed = 0;
   for (scene::Material& m : scene.materials) {
     if (!m.sss.enabled) continue;
-    const profiles::Model use_model = model.value_or(m.sss.model);
+    // A stack given, or kept: the layered material with the other overrides applied.
+    const bool keep_stack = !m.sss.layers.empty() && !medium && !model;
+    if (layers || keep_stack) {
+      scene::SssMaterial s = m.sss;
+      if (layers) {
+        s.layers = *layers;
+        s.source = scene::CoefficientSource{layers->front()};
+        s.medium = layers->front();
+        s.model = profiles::Model::Layered;
+      }
+      s.gaussians = args.gaussians.value_or(s.gaussians);
+      s.albedo_mode = albedo.value_or(s.albedo_mode);
+      m.sss = std::move(s);
+      ++changed;
+      continue;
+    }
+    // A medium or model given to a layered material replaces its stack.
+    const profiles::Model use_model =
+        model.value_or(m.sss.layers.empty() ? m.sss.model : profiles::kDefaultModel);
     scene::SssSource source = m.sss.source;
     if (medium) {
       profiles::ModelOptions options;

@@ -21,9 +21,10 @@ struct MaterialOverrideArgs {
   std::optional<int> gaussians;
   std::string albedo;  // post-scatter | pre-post
   MediumArgs medium;
+  std::string layers;  // --layers FILE.json: a stack for every SSS material (issue 19)
 };
 
-// Adds --model, --gaussians, --albedo and the MEDIUM options to `app`.
+// Adds --model, --gaussians, --albedo, --layers and the MEDIUM options to `app`.
 void add_material_override_options(CLI::App& app, MaterialOverrideArgs& args);
 
 // Applies the overrides to every SSS material of the scene. Returns the number of

@@ -75,6 +75,7 @@ MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
     e.gaussians = s.gaussians;
     e.scale = static_cast<float>(s.scale);
     e.albedo = s.albedo_mode == scene::AlbedoMode::PrePost ? 1 : 0;
+    e.layers = s.layers.size();
     fill_coefficients(e, s.medium);
     if (const auto* p = std::get_if<scene::PresetSource>(&s.source)) {
       e.kind = SourceKind::Preset;
@@ -140,7 +141,7 @@ bool MaterialEditor::set_source_kind(std::size_t edit, SourceKind kind) {
     try {
       Rgb total = e.total_reflectance;
       if (!(total[0] > 0.0))  // not known yet: pbd's total costs ~10 ms here
-        total = profiles::RgbProfile(current.sss.model, m).total_reflectance();
+        total = current.sss.profile().total_reflectance();
       for (int c = 0; c < 3; ++c) {
         e.color[c] = std::clamp(static_cast<float>(total[c]), 0.001f, 0.999f);
         e.mfp_mm[c] = static_cast<float>(m.channel(c).mfp_reduced());
@@ -225,6 +226,12 @@ std::optional<SssSpec> MaterialEditor::spec_from_fields(MaterialEdit& e) {
 bool MaterialEditor::apply(std::size_t edit) {
   const auto edited = Clock::now();
   MaterialEdit& e = edits_.at(edit);
+  if (e.layers > 0) {  // the fields hold the top layer alone: applying them would drop the stack
+    e.error = "a layered material (" + std::to_string(e.layers) +
+              " layers): the viewer does not edit stacks yet; edit extras.sss.layers or "
+              "--layers FILE.json";
+    return false;
+  }
   std::optional<SssSpec> spec = spec_from_fields(e);
   if (!spec) return false;
   e.error.clear();

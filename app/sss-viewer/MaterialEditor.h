@@ -34,6 +34,9 @@ struct MaterialEdit {
   int gaussians = scene::kDefaultGaussians;
   float scale = 1.0f;
   int albedo = 0;  // 0 post-scatter, 1 pre-post
+  // A layered material's stack size (0: one medium). The editor shows its top layer and
+  // its plot but does not edit a stack yet (issue 19): apply() refuses, saying so.
+  std::size_t layers = 0;
   // The coefficient fields (mm^-1), per channel R, G, B; thickness 0: semi-infinite.
   std::array<float, 3> sigma_a{}, sigma_s{}, g{}, eta{1.3f, 1.3f, 1.3f};
   float thickness_mm = 0.0f;

@@ -12,7 +12,7 @@ ProfilePlot make_profile_plot(const scene::SssMaterial& material, const profiles
                               int samples) {
   if (samples < 2) throw std::invalid_argument("make_profile_plot: samples must be >= 2");
   if (!material.enabled) throw std::invalid_argument("make_profile_plot: not an SSS material");
-  const profiles::RgbProfile profile(material.model, material.effective_medium());
+  const profiles::RgbProfile profile = material.profile();
   const double lo = std::log(1e-2 * profile.inner_radius());
   const double hi = std::log(profile.support_radius());
   ProfilePlot p;

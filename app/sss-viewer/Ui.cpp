@@ -328,6 +328,9 @@ void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {
 }
 
 void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
+  if (e.layers > 0)
+    ImGui::TextDisabled("layered: %zu layers (the fields show the top layer; stacks are "
+                        "edited in their JSON)", e.layers);
   const auto all = profiles::presets();
   const int shown_preset = e.kind == SourceKind::Preset ? e.preset : -1;
   if (ImGui::BeginCombo("preset", preset_label(shown_preset).c_str())) {

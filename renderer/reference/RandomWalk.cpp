@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace sss::reference {
 
@@ -45,7 +46,16 @@ WalkScene::WalkScene(const scene::Scene& s, const RayScene& rays, std::vector<st
       const std::string w = medium_warning(s, surface);
       if (!w.empty()) warnings->push_back(w);
     }
-    const profiles::Medium eff = s.materials[surface.material].sss.effective_medium();
+    const scene::Material& material = s.materials[surface.material];
+    // The walk follows one medium inside a closed surface; a stack's layers would need
+    // the depth below the surface at every step (issue 19, not done). Say so rather than
+    // render the top layer as if it were the whole material.
+    if (!material.sss.layers.empty())
+      throw std::invalid_argument("material '" + material.name +
+                                  "': the random-walk ground truth does not follow layered "
+                                  "materials yet (extras.sss.layers); use the diffusion "
+                                  "reference (--method diffusion)");
+    const profiles::Medium eff = material.sss.effective_medium();
     WalkMedium m;
     m.material = surface.material;
     for (int c = 0; c < 3; ++c) {

@@ -173,13 +173,12 @@ std::string_view shadows_name(Shadows s) { return s == Shadows::ShadowMap ? "sha
 
 std::unique_ptr<profiles::RgbProfile> reference_profile(const scene::SssMaterial& sss, KernelSource kernel,
                                                         const profiles::ModelOptions& model_options) {
-  const profiles::Medium medium = sss.effective_medium();
-  if (kernel == KernelSource::Exact) return std::make_unique<profiles::RgbProfile>(sss.model, medium, model_options);
+  if (kernel == KernelSource::Exact) return std::make_unique<profiles::RgbProfile>(sss.profile(model_options));
   profiles::ModelOptions fit_options;  // the GPU's: defaults but for the S(1) switch
   fit_options.single_scattering_apart = model_options.single_scattering_apart;
-  const profiles::RgbProfile exact(sss.model, medium, fit_options);
+  const profiles::RgbProfile exact = sss.profile(fit_options);
   return std::make_unique<profiles::RgbProfile>(
-      profiles::make_kernel_profile(profiles::fit_kernel(exact, sss.gaussians, medium.is_slab()), sss.model));
+      profiles::make_kernel_profile(profiles::fit_kernel(exact, sss.gaussians, sss.transmits()), sss.model));
 }
 
 ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o,

@@ -3,6 +3,7 @@
 #include "profiles/Presets.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -32,6 +33,34 @@ profiles::Medium SssMaterial::effective_medium() const {
   }
   m.thickness_mm /= scale;  // stays infinite for a semi-infinite medium
   return m;
+}
+
+profiles::LayerStack SssMaterial::effective_layers() const {
+  profiles::LayerStack out = layers;
+  for (profiles::Medium& m : out) {
+    for (int c = 0; c < 3; ++c) {
+      m.sigma_a[c] *= scale;
+      m.sigma_s[c] *= scale;
+    }
+    m.thickness_mm /= scale;
+  }
+  return out;
+}
+
+double SssMaterial::effective_thickness_mm() const {
+  if (layers.empty()) return effective_medium().thickness_mm;
+  double t = 0.0;
+  for (const profiles::Medium& m : layers) t += m.thickness_mm;
+  return t / scale;
+}
+
+bool SssMaterial::transmits() const {
+  return effective_thickness_mm() < std::numeric_limits<double>::infinity();
+}
+
+profiles::RgbProfile SssMaterial::profile(const profiles::ModelOptions& opt) const {
+  if (!layers.empty()) return profiles::make_layered_rgb_profile(effective_layers(), opt);
+  return profiles::RgbProfile(model, effective_medium(), opt);
 }
 
 std::variant<profiles::Medium, FieldError> resolve_medium(const SssSource& source,

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "profiles/ArtistMapping.h"
+#include "profiles/Layered.h"
 #include "profiles/Medium.h"
 #include "profiles/Profile.h"
 
@@ -52,8 +53,22 @@ struct SssMaterial {
   // by scale (effective_medium()).
   double scale = 1.0;
   AlbedoMode albedo_mode = AlbedoMode::PostScatter;
+  // A layered material (extras.sss.layers, issue 19): the stack, top first (its medium
+  // profiles::LayerStack, thickness_mm per layer, the last may be infinite). `medium` is
+  // then its top layer (what single scattering sees) and `model` is Model::Layered.
+  // Empty for a material of one medium.
+  profiles::LayerStack layers;
 
   profiles::Medium effective_medium() const;
+  // The stack with the scale applied to each layer as effective_medium() applies it.
+  profiles::LayerStack effective_layers() const;
+  // Whether light leaves through a far face (a finite slab or a stack with a finite
+  // last layer), and that face's depth in mm after the scale (infinity when none).
+  bool transmits() const;
+  double effective_thickness_mm() const;
+  // The material's R(r) (and T(r)): the layered model for a stack, else `model` on the
+  // effective medium. Throws std::invalid_argument as RgbProfile does.
+  profiles::RgbProfile profile(const profiles::ModelOptions& opt = {}) const;
 };
 
 // The medium a source describes. Artist sources are inverted through `model`'s total

@@ -1,6 +1,7 @@
 #include "renderer/scene/SssExtras.h"
 
 #include "renderer/scene/GltfJson.h"
+#include "renderer/scene/SssLayers.h"
 
 #include <nlohmann/json.hpp>
 
@@ -16,9 +17,9 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::array<std::string_view, 13> kKeys = {
+constexpr std::array<std::string_view, 14> kKeys = {
     "enabled", "preset", "sigma_a", "sigma_s", "g", "eta", "color",
-    "mfp", "thickness", "model", "gaussians", "scale", "albedo_mode"};
+    "mfp", "thickness", "model", "gaussians", "scale", "albedo_mode", "layers"};
 
 const auto str = sss::message_number;
 
@@ -130,6 +131,25 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
       return FieldError{"thickness", "must be a number of mm > 0, got " + t.dump()};
   }
 
+  if (o.contains("layers")) {  // a stack (SssLayers.h): it is the medium and the model
+    for (const char* k : {"preset", "sigma_a", "sigma_s", "g", "eta", "color", "mfp",
+                          "thickness", "model"})
+      if (o.contains(k))
+        return FieldError{k, "cannot be combined with layers (the layers give the medium, "
+                             "their thicknesses, and the model: layered)"};
+    auto stack = parse_sss_layers(o["layers"]);
+    if (auto* e = std::get_if<FieldError>(&stack)) return *e;
+    auto& layers = std::get<profiles::LayerStack>(stack);
+    auto made = make_sss_material(CoefficientSource{layers.front()}, profiles::kDefaultModel,
+                                  gaussians, scale, albedo_mode);
+    if (auto* e = std::get_if<FieldError>(&made)) return *e;
+    auto& s = std::get<SssMaterial>(made);
+    s.enabled = enabled;
+    s.model = profiles::Model::Layered;
+    s.layers = std::move(layers);
+    return s;
+  }
+
   const bool preset = o.contains("preset");
   const bool coefficients = o.contains("sigma_a") || o.contains("sigma_s");
   const bool artist = o.contains("color") || o.contains("mfp");
@@ -198,6 +218,20 @@ nlohmann::json sss_extras_json(const SssMaterial& m) {
   json o = json::object();
   o["enabled"] = m.enabled;
   const auto rgb = [](const Rgb& v) { return json::array({v[0], v[1], v[2]}); };
+  if (!m.layers.empty()) {
+    json layers = json::array();
+    for (const profiles::Medium& l : m.layers) {
+      json e = {{"sigma_a", rgb(l.sigma_a)}, {"sigma_s", rgb(l.sigma_s)}, {"g", rgb(l.g)},
+                {"eta", rgb(l.eta)}};
+      if (std::isfinite(l.thickness_mm)) e["thickness_mm"] = l.thickness_mm;  // absent: the base
+      layers.push_back(std::move(e));
+    }
+    o["layers"] = std::move(layers);
+    o["gaussians"] = m.gaussians;
+    o["scale"] = m.scale;
+    o["albedo_mode"] = std::string(albedo_mode_name(m.albedo_mode));
+    return o;
+  }
   double thickness = m.medium.thickness_mm;
   if (const auto* p = std::get_if<PresetSource>(&m.source)) {
     o["preset"] = p->name;

@@ -3,6 +3,8 @@
 //   {"preset": "skin1"}
 //   {"sigma_a": [r,g,b], "sigma_s": [r,g,b], "g": g, "eta": e}      (mm^-1)
 //   {"color": [r,g,b], "mfp": [r,g,b]}                 (reduced mean free path, mm)
+//   {"layers": [{...}, ...]}      a stack, top first (SssLayers.h; model layered, no
+//                                  "model", "thickness" or other medium keys with it)
 // plus, with any of them: "model" (dipole | better-dipole | pbd | burley | multipole |
 // mc | mc-table, default profiles::kDefaultModel = mc-table), "gaussians" (1..8, default 6), "scale" (> 0, default 1),
 // "albedo_mode" ("post-scatter" | "pre-post"), "thickness" (mm, default infinite),

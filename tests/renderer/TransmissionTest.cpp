@@ -27,6 +27,7 @@
 #include "renderer/MaterialTable.h"
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/scene/Camera.h"
+#include "renderer/scene/SssExtras.h"
 
 #include "profiles/Fresnel.h"
 #include "profiles/Profile.h"
@@ -353,6 +354,37 @@ TEST_F(RenderTest, DefaultSceneBunnyEarsGlowFromTransmission) {
   EXPECT_GE(X, 0.10) << "the ears' thickness along the key lets too little through to glow";
   EXPECT_GE(median(measured), X);
   EXPECT_EQ(darker, 0);
+}
+
+}  // namespace
+}  // namespace sss::renderer::testing
+
+namespace sss::renderer::testing {
+namespace {
+
+// A layered material (extras.sss.layers) on the slab: the GPU's material table fits the
+// layered profile, so its reflectance total is the stack's (the fit preserves the total
+// exactly, KernelFit.h), its transmittance total the stack's T (a finite dermis), and the
+// slab's depth is the whole stack's.
+TEST(TransmittanceFit, LayeredMaterialFitsTheStack) {
+  scene::Scene s = scene::slab_scene();
+  const auto parsed = scene::parse_sss_extras_text(R"({"layers": [
+      {"thickness_mm": 0.25, "sigma_a": [0.3, 0.5, 0.8], "sigma_s": 8, "eta": 1.4},
+      {"thickness_mm": 1.75, "sigma_a": [0.02, 0.05, 0.1], "sigma_s": 2, "eta": 1.4}]})");
+  ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(parsed));
+  s.materials[0].sss = std::get<scene::SssMaterial>(parsed);
+  const MaterialData data = build_material_data(s, 17);
+  ASSERT_TRUE(data.profiles[0] && data.profiles[0]->transmittance);
+  profiles::ModelOptions o;  // as the table builds it: S(1) apart when it is on
+  o.single_scattering_apart = data.single_scattering;
+  const auto rgb = s.materials[0].sss.profile(o);
+  const Rgb r = rgb.total_reflectance(), t = rgb.total_transmittance();
+  for (int c = 0; c < 3; ++c) {
+    // Stored as float: within half an ulp, 6e-8 relative.
+    EXPECT_NEAR((&data.gpu[0].reflectance.x)[c], r[c], 6e-8 * r[c]) << c;
+    EXPECT_NEAR(data.profiles[0]->transmittance->total[c], t[c], 1e-9) << c;
+  }
+  EXPECT_FLOAT_EQ(data.gpu[0].transmit.w, 2.0f);
 }
 
 }  // namespace

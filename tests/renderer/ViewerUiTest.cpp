@@ -21,6 +21,8 @@
 
 #include "ViewerRun.h"
 
+#include "renderer/scene/SssExtras.h"
+
 #include <gtest/gtest.h>
 #include "HeadlessImGui.h"
 
@@ -363,6 +365,44 @@ TEST(FitWorker, RefitsOnlyTheEditedMaterial) {
   EXPECT_FALSE(r->plots[2].has_value());  // pbd marble: kept, not refitted
   EXPECT_EQ(r->data.profiles[2]->kernel.weights, previous->profiles[2]->kernel.weights);
   EXPECT_NE(r->data.profiles[0]->kernel.weights, previous->profiles[0]->kernel.weights);
+}
+
+// A layered material (extras.sss.layers) in the viewer: its plot is the stack's profile,
+// and the editor, whose fields hold one medium, refuses to apply them over the stack
+// rather than drop it (issue 19: the layer editor is not done).
+TEST(ProfilePlot, LayeredMaterialPlotsTheStackAndTheEditorKeepsIt) {
+  scene::Scene scene = default_scene();
+  const auto parsed = scene::parse_sss_extras_text(R"({"layers": [
+      {"thickness_mm": 0.25, "sigma_a": [0.3, 0.5, 0.8], "sigma_s": 8, "eta": 1.4},
+      {"sigma_a": 0.02, "sigma_s": 2, "eta": 1.4}]})");
+  ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(parsed));
+  std::size_t index = scene.materials.size();
+  for (std::size_t i = 0; i < scene.materials.size(); ++i)
+    if (scene.materials[i].sss.enabled) {
+      scene.materials[i].sss = std::get<scene::SssMaterial>(parsed);
+      index = i;
+      break;
+    }
+  ASSERT_LT(index, scene.materials.size());
+  const scene::SssMaterial& s = scene.materials[index].sss;
+  const profiles::RgbProfile rgb = s.profile();
+  profiles::FitOptions fo;
+  fo.gaussians = 6;
+  const app::ProfilePlot p =
+      app::make_profile_plot(s, profiles::fit_gaussians(profiles::make_fit_target(rgb), fo), 16);
+  for (std::size_t i = 0; i < p.r_mm.size(); ++i)
+    EXPECT_DOUBLE_EQ(p.model_rR[i][0], p.r_mm[i] * rgb.reflectance(p.r_mm[i])[0]);
+
+  MaterialEditor ed(scene, 17);
+  ASSERT_TRUE(ed.wait_idle(120s));
+  std::size_t edit = ed.edits().size();
+  for (std::size_t k = 0; k < ed.edits().size(); ++k)
+    if (ed.edits()[k].index == index) edit = k;
+  ASSERT_LT(edit, ed.edits().size());
+  EXPECT_EQ(ed.edits()[edit].layers, 2u);
+  EXPECT_FALSE(ed.apply(edit));
+  EXPECT_NE(ed.edits()[edit].error.find("layered"), std::string::npos) << ed.edits()[edit].error;
+  EXPECT_EQ(ed.applied()[index].sss.layers.size(), 2u);
 }
 
 TEST(ProfilePlot, SamplesTheModelAndTheFit) {

@@ -155,3 +155,70 @@ TEST(SssExtras, MakeSssMaterialChecksItsArguments) {
 
 }  // namespace
 }  // namespace sss::scene
+
+namespace sss::scene {
+namespace {
+
+// extras.sss.layers (issue 19): a stack is the material's medium and model.
+constexpr const char* kTwoLayers = R"({"layers": [
+  {"thickness_mm": 0.25, "sigma_a": [0.3, 0.5, 0.8], "sigma_s": 8, "eta": 1.4},
+  {"sigma_a": 0.02, "sigma_s": 2, "eta": 1.4}], "gaussians": 5, "scale": 2})";
+
+TEST(SssExtrasLayers, AStackIsTheMediumAndTheModel) {
+  const auto parsed = parse_sss_extras_text(kTwoLayers);
+  ASSERT_TRUE(std::holds_alternative<SssMaterial>(parsed)) << std::get<FieldError>(parsed).what();
+  const SssMaterial& m = std::get<SssMaterial>(parsed);
+  EXPECT_EQ(m.model, profiles::Model::Layered);
+  ASSERT_EQ(m.layers.size(), 2u);
+  EXPECT_EQ(m.layers[0].sigma_a[2], 0.8);
+  EXPECT_EQ(m.layers[0].thickness_mm, 0.25);
+  EXPECT_FALSE(m.layers[1].is_slab());
+  EXPECT_EQ(m.medium.sigma_s[0], 8.0);  // the top layer: what single scattering sees
+  EXPECT_EQ(m.gaussians, 5);
+  // The scale shrinks every layer (σ x 2, thickness / 2), as it does one medium.
+  const auto eff = m.effective_layers();
+  EXPECT_EQ(eff[0].sigma_s[1], 16.0);
+  EXPECT_EQ(eff[0].thickness_mm, 0.125);
+  EXPECT_FALSE(m.transmits());
+  // The material's profile is the layered model of that effective stack.
+  const auto p = m.profile();
+  EXPECT_EQ(p.model(), profiles::Model::Layered);
+  EXPECT_EQ(p.total_reflectance(), profiles::make_layered_rgb_profile(eff).total_reflectance());
+}
+
+TEST(SssExtrasLayers, WrittenBlockReadsBackAsTheSameStack) {
+  const SssMaterial a = std::get<SssMaterial>(parse_sss_extras_text(kTwoLayers));
+  const auto b = parse_sss_extras(sss_extras_json(a));
+  ASSERT_TRUE(std::holds_alternative<SssMaterial>(b)) << std::get<FieldError>(b).what();
+  const SssMaterial& m = std::get<SssMaterial>(b);
+  ASSERT_EQ(m.layers.size(), a.layers.size());
+  for (std::size_t k = 0; k < a.layers.size(); ++k) {
+    EXPECT_EQ(m.layers[k].sigma_a, a.layers[k].sigma_a);
+    EXPECT_EQ(m.layers[k].sigma_s, a.layers[k].sigma_s);
+    EXPECT_EQ(m.layers[k].g, a.layers[k].g);
+    EXPECT_EQ(m.layers[k].eta, a.layers[k].eta);
+    EXPECT_EQ(m.layers[k].thickness_mm, a.layers[k].thickness_mm);
+  }
+  EXPECT_EQ(m.model, profiles::Model::Layered);
+  EXPECT_EQ(m.scale, a.scale);
+  EXPECT_EQ(m.gaussians, a.gaussians);
+}
+
+TEST(SssExtrasLayers, ErrorsNameTheLayerOrTheConflictingKey) {
+  auto field = [](const std::string& text) {
+    const auto r = parse_sss_extras_text(text);
+    return std::holds_alternative<FieldError>(r) ? std::get<FieldError>(r).field : "no error";
+  };
+  EXPECT_EQ(field(R"({"layers": [{"sigma_a": [0.1, 0.1, -1], "sigma_s": 1}]})"),
+            "layers[0].sigma_a[2]");
+  EXPECT_EQ(field(R"({"layers": [{"sigma_a": 0.1, "sigma_s": 1}], "preset": "skin1"})"), "preset");
+  EXPECT_EQ(field(R"({"layers": [{"sigma_a": 0.1, "sigma_s": 1}], "model": "dipole"})"), "model");
+  EXPECT_EQ(field(R"({"layers": [{"sigma_a": 0.1, "sigma_s": 1}], "thickness": 2})"), "thickness");
+  EXPECT_EQ(field(R"({"layers": [{"sigma_a": 0.1, "sigma_s": 1}, {"sigma_a": 0.1, "sigma_s": 1}]})"),
+            "layers[0].thickness_mm");
+  EXPECT_EQ(field(R"({"layers": []})"), "layers");
+  EXPECT_EQ(field(R"({"layers": [{"sigma_a": 0.1, "sigma_s": 1}], "gaussians": 9})"), "gaussians");
+}
+
+}  // namespace
+}  // namespace sss::scene
