@@ -328,9 +328,12 @@ void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {
 }
 
 void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
-  if (e.layers > 0)
-    ImGui::TextDisabled("layered: %zu layers (the fields show the top layer; stacks are "
-                        "edited in their JSON)", e.layers);
+  if (e.layers > 0) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("model layered, %zu layers: the fields show the top layer; a stack is "
+                       "edited in its JSON (extras.sss.layers, --layers)", e.layers);
+    ImGui::PopStyleColor();
+  }
   const auto all = profiles::presets();
   const int shown_preset = e.kind == SourceKind::Preset ? e.preset : -1;
   if (ImGui::BeginCombo("preset", preset_label(shown_preset).c_str())) {
@@ -338,7 +341,7 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
       if (ImGui::Selectable(preset_label(k).c_str(), k == shown_preset)) editor_.select_preset(i, k);
     ImGui::EndCombo();
   }
-  if (ImGui::BeginCombo("model", model_label(e.model).c_str())) {
+  if (ImGui::BeginCombo("model", e.layers > 0 ? "layered" : model_label(e.model).c_str())) {
     for (int m = 0; m < int(MaterialEditor::models().size()); ++m)
       if (ImGui::Selectable(model_label(m).c_str(), m == e.model)) editor_.select_model(i, m);
     ImGui::EndCombo();
