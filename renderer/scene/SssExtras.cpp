@@ -75,6 +75,16 @@ FieldError as_written(FieldError e, const json& o) {
   return e;
 }
 
+std::optional<FieldError> read_thickness(const json& o, const char* key, double& out) {
+  if (!o.contains(key)) return std::nullopt;
+  const json& t = o[key];
+  const double v = t.is_number() ? t.get<double>() : std::nan("");
+  if (!std::isfinite(v) || !(v > 0.0))
+    return FieldError{key, "must be a number of mm > 0, got " + t.dump()};
+  out = v;
+  return std::nullopt;
+}
+
 }  // namespace detail
 
 using detail::as_written;
@@ -124,12 +134,7 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
     albedo_mode = *parsed;
   }
   double thickness = std::numeric_limits<double>::infinity();
-  if (o.contains("thickness")) {
-    const json& t = o["thickness"];
-    thickness = t.is_number() ? t.get<double>() : std::nan("");
-    if (!std::isfinite(thickness) || !(thickness > 0.0))
-      return FieldError{"thickness", "must be a number of mm > 0, got " + t.dump()};
-  }
+  if (auto e = detail::read_thickness(o, "thickness", thickness)) return *e;
 
   if (o.contains("layers")) {  // a stack (SssLayers.h): it is the medium and the model
     for (const char* k : {"preset", "sigma_a", "sigma_s", "g", "eta", "color", "mfp",

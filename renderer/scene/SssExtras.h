@@ -44,6 +44,9 @@ std::optional<FieldError> read_rgb(const nlohmann::json& o, const char* key, Rgb
 // A profiles error ("sigma_a[G]", "sigma_t[R]", "eta[0]") named as the user wrote the
 // field in `o`: "sigma_a[1]" for an array, "sigma_a" for a single number.
 FieldError as_written(FieldError e, const nlohmann::json& o);
+// o[key], if present, as a thickness in mm (finite, > 0) into `out` (left as it is when
+// absent); the error names `key`.
+std::optional<FieldError> read_thickness(const nlohmann::json& o, const char* key, double& out);
 }  // namespace detail
 
 }  // namespace sss::scene

@@ -49,12 +49,8 @@ std::variant<Medium, FieldError> parse_layer(const json& o, bool last) {
       return FieldError{item.key(), "unknown field; expected one of " + key_list()};
 
   double thickness = std::numeric_limits<double>::infinity();
-  if (o.contains("thickness_mm")) {
-    const json& t = o["thickness_mm"];
-    thickness = t.is_number() ? t.get<double>() : std::nan("");
-    if (!std::isfinite(thickness) || !(thickness > 0.0))
-      return FieldError{"thickness_mm", "must be a number of mm > 0, got " + t.dump()};
-  } else if (!last) {
+  if (auto e = detail::read_thickness(o, "thickness_mm", thickness)) return *e;
+  if (!o.contains("thickness_mm") && !last) {
     return FieldError{"thickness_mm",
                       "is required on every layer but the last (only the last may be "
                       "semi-infinite)"};

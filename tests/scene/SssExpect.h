@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string_view>
+#include <variant>
+
 namespace sss::scene::testing {
 
 inline void expect_same_sss(const SssMaterial& a, const SssMaterial& b) {
@@ -20,6 +23,22 @@ inline void expect_same_sss(const SssMaterial& a, const SssMaterial& b) {
   EXPECT_EQ(a.medium.g, b.medium.g);
   EXPECT_EQ(a.medium.eta, b.medium.eta);
   EXPECT_EQ(a.medium.thickness_mm, b.medium.thickness_mm);
+}
+
+// A parser's result (variant<T, FieldError>) for text that must parse, or must not: the
+// value or the error, with a test failure naming the text otherwise.
+template <class T, class Parse>
+T expect_parsed(Parse parse, std::string_view text) {
+  auto r = parse(text);
+  if (auto* e = std::get_if<FieldError>(&r)) ADD_FAILURE() << text << " -> " << e->what();
+  return r.index() == 0 ? std::get<T>(r) : T{};
+}
+
+template <class Parse>
+FieldError expect_refused(Parse parse, std::string_view text) {
+  auto r = parse(text);
+  if (r.index() == 0) ADD_FAILURE() << text << " parsed";
+  return r.index() == 1 ? std::get<FieldError>(r) : FieldError{};
 }
 
 }  // namespace sss::scene::testing

@@ -15,15 +15,11 @@ namespace sss::scene {
 namespace {
 
 SssMaterial parse_ok(std::string_view text) {
-  auto r = parse_sss_extras_text(text);
-  if (auto* e = std::get_if<FieldError>(&r)) ADD_FAILURE() << text << " -> " << e->what();
-  return r.index() == 0 ? std::get<SssMaterial>(r) : SssMaterial{};
+  return testing::expect_parsed<SssMaterial>([](std::string_view t) { return parse_sss_extras_text(t); }, text);
 }
 
 FieldError parse_error(std::string_view text) {
-  auto r = parse_sss_extras_text(text);
-  if (r.index() == 0) ADD_FAILURE() << text << " parsed";
-  return r.index() == 1 ? std::get<FieldError>(r) : FieldError{};
+  return testing::expect_refused([](std::string_view t) { return parse_sss_extras_text(t); }, text);
 }
 
 TEST(SssExtras, PresetWithDefaults) {

@@ -5,6 +5,8 @@
 
 #include "profiles/Presets.h"
 
+#include "SssExpect.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -26,15 +28,11 @@ using profiles::LayerStack;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 LayerStack parse_ok(std::string_view text) {
-  auto r = parse_sss_layers_text(text);
-  if (auto* e = std::get_if<FieldError>(&r)) ADD_FAILURE() << text << " -> " << e->what();
-  return r.index() == 0 ? std::get<LayerStack>(r) : LayerStack{};
+  return testing::expect_parsed<LayerStack>([](std::string_view t) { return parse_sss_layers_text(t); }, text);
 }
 
 FieldError parse_error(std::string_view text) {
-  auto r = parse_sss_layers_text(text);
-  if (r.index() == 0) ADD_FAILURE() << text << " parsed";
-  return r.index() == 1 ? std::get<FieldError>(r) : FieldError{};
+  return testing::expect_refused([](std::string_view t) { return parse_sss_layers_text(t); }, text);
 }
 
 // A file of its own under the system's temporary folder, removed at the end of the test.
