@@ -70,11 +70,10 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
     const bool keep_stack = !m.sss.layers.empty() && !medium && !model;
     if (layers || keep_stack) {
       scene::SssMaterial s = m.sss;
-      if (layers) {
-        s.layers = *layers;
-        s.source = scene::CoefficientSource{layers->front()};
-        s.medium = layers->front();
-        s.model = profiles::Model::Layered;
+      if (layers) {  // parse_sss_layers_file validated the stack, and s its other fields
+        auto made = scene::make_layered_sss_material(*layers, s.gaussians, s.scale, s.albedo_mode);
+        if (auto* e = std::get_if<FieldError>(&made)) return FieldError{"--layers " + args.layers, e->what()};
+        s = std::get<scene::SssMaterial>(std::move(made));
       }
       s.gaussians = args.gaussians.value_or(s.gaussians);
       s.albedo_mode = albedo.value_or(s.albedo_mode);

@@ -9,7 +9,9 @@ void FitWorker::compute_default(FitRequest& request, FitResult& result) {
   for (std::size_t i = 0; i < request.specs.size() && i < request.materials.size(); ++i) {
     if (!request.specs[i]) continue;
     const SssSpec& s = *request.specs[i];
-    auto made = scene::make_sss_material(s.source, s.model, s.gaussians, s.scale, s.albedo_mode);
+    auto made = s.layers.empty()
+                    ? scene::make_sss_material(s.source, s.model, s.gaussians, s.scale, s.albedo_mode)
+                    : scene::make_layered_sss_material(s.layers, s.gaussians, s.scale, s.albedo_mode);
     if (auto* e = std::get_if<FieldError>(&made)) {
       result.error = e->what();
       result.error_material = static_cast<int>(i);

@@ -37,6 +37,9 @@ struct SssSpec {
   int gaussians = scene::kDefaultGaussians;
   double scale = 1.0;
   scene::AlbedoMode albedo_mode = scene::AlbedoMode::PostScatter;
+  // Non-empty: a layered material (scene::make_layered_sss_material); `source` and `model`
+  // are then not used.
+  profiles::LayerStack layers;
 };
 
 struct FitRequest {

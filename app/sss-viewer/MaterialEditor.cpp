@@ -3,6 +3,7 @@
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -75,8 +76,8 @@ MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
     e.gaussians = s.gaussians;
     e.scale = static_cast<float>(s.scale);
     e.albedo = s.albedo_mode == scene::AlbedoMode::PrePost ? 1 : 0;
-    e.layers = s.layers.size();
     fill_coefficients(e, s.medium);
+    fill_layers(e, s.layers);
     if (const auto* p = std::get_if<scene::PresetSource>(&s.source)) {
       e.kind = SourceKind::Preset;
       e.preset = preset_index(p->name);
@@ -107,6 +108,134 @@ void MaterialEditor::fill_coefficients(MaterialEdit& e, const profiles::Medium& 
   e.thickness_mm = m.is_slab() ? static_cast<float>(m.thickness_mm) : 0.0f;
 }
 
+void MaterialEditor::fill_layers(MaterialEdit& e, const profiles::LayerStack& stack) {
+  e.layers.clear();
+  for (const profiles::Medium& m : stack) {
+    LayerEdit l;
+    for (int c = 0; c < 3; ++c) {
+      l.sigma_a[c] = static_cast<float>(m.sigma_a[c]);
+      l.sigma_s[c] = static_cast<float>(m.sigma_s[c]);
+      l.g[c] = static_cast<float>(m.g[c]);
+    }
+    l.thickness_mm = m.is_slab() ? static_cast<float>(m.thickness_mm) : 0.0f;
+    e.layers.push_back(l);
+  }
+  if (stack.empty()) return;
+  for (int c = 0; c < 3; ++c) e.eta[c] = static_cast<float>(stack.front().eta[c]);
+  e.kind = SourceKind::Coefficients;
+}
+
+namespace {
+
+// The stack the layer fields describe. A thickness of 0 is semi-infinite; anything else
+// (negative, NaN) goes to validate_layers as typed, so that its error names it.
+profiles::LayerStack stack_from_fields(const MaterialEdit& e) {
+  profiles::LayerStack out;
+  for (const LayerEdit& l : e.layers) {
+    profiles::Medium m;
+    for (int c = 0; c < 3; ++c) {
+      m.sigma_a[c] = l.sigma_a[c];
+      m.sigma_s[c] = l.sigma_s[c];
+      m.g[c] = l.g[c];
+      m.eta[c] = e.eta[c];
+    }
+    m.thickness_mm =
+        l.thickness_mm == 0.0f ? std::numeric_limits<double>::infinity() : double(l.thickness_mm);
+    out.push_back(m);
+  }
+  return out;
+}
+
+// The thinnest a layer of these coefficients may be (validate_layers: thicker than 1/σt'
+// in every channel), doubled so that a copy stays valid, and at least 0.1 mm.
+float copy_thickness(const LayerEdit& l) {
+  double mfp = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double st = double(l.sigma_a[c]) + double(l.sigma_s[c]) * (1.0 - double(l.g[c]));
+    if (st > 0.0) mfp = std::max(mfp, 1.0 / st);
+  }
+  return static_cast<float>(std::max(0.1, 2.0 * mfp));
+}
+
+}  // namespace
+
+bool MaterialEditor::add_layer(std::size_t edit, std::size_t at) {
+  MaterialEdit& e = edits_.at(edit);
+  if (e.layers.empty()) {  // the one medium becomes the stack's only layer first
+    if (e.kind == SourceKind::Artist) {
+      e.error = "add layer: an artist colour + mfp describes one medium; switch to "
+                "coefficients first";
+      return false;
+    }
+    LayerEdit l{e.sigma_a, e.sigma_s, e.g, e.thickness_mm > 0.0f ? e.thickness_mm : 0.0f};
+    e.layers.push_back(l);
+    at = 0;
+  }
+  if (at >= e.layers.size()) {
+    e.error = "add layer: no layer " + std::to_string(at);
+    return false;
+  }
+  if (e.layers.size() >= static_cast<std::size_t>(profiles::kMaxLayers)) {
+    e.error = "add layer: at most " + std::to_string(profiles::kMaxLayers) + " layers";
+    if (e.layers.size() == 1) e.layers.clear();
+    return false;
+  }
+  LayerEdit top = e.layers[at];
+  const float min_half = 0.5f * copy_thickness(top);  // one 1/σt', at least 0.05 mm
+  if (top.thickness_mm > 0.0f && 0.5f * top.thickness_mm > min_half) {
+    top.thickness_mm *= 0.5f;
+    e.layers[at].thickness_mm = top.thickness_mm;
+  } else {
+    top.thickness_mm = copy_thickness(top);
+  }
+  e.layers.insert(e.layers.begin() + static_cast<std::ptrdiff_t>(at), top);
+  e.kind = SourceKind::Coefficients;
+  return apply(edit);
+}
+
+bool MaterialEditor::remove_layer(std::size_t edit, std::size_t at) {
+  MaterialEdit& e = edits_.at(edit);
+  if (at >= e.layers.size()) {
+    e.error = "remove layer: no layer " + std::to_string(at);
+    return false;
+  }
+  e.layers.erase(e.layers.begin() + static_cast<std::ptrdiff_t>(at));
+  if (e.layers.size() == 1) {  // one medium again: its coefficients, the default model
+    const LayerEdit& l = e.layers.front();
+    e.sigma_a = l.sigma_a;
+    e.sigma_s = l.sigma_s;
+    e.g = l.g;
+    e.thickness_mm = l.thickness_mm;
+    e.model = std::max(model_index(profiles::kDefaultModel), 0);
+    e.layers.clear();
+  }
+  e.kind = SourceKind::Coefficients;
+  return apply(edit);
+}
+
+bool MaterialEditor::move_layer(std::size_t edit, std::size_t at, int by) {
+  MaterialEdit& e = edits_.at(edit);
+  const long to = static_cast<long>(at) + by;
+  if (at >= e.layers.size() || (by != -1 && by != 1) || to < 0 ||
+      to >= static_cast<long>(e.layers.size())) {
+    e.error = "move layer: cannot move layer " + std::to_string(at) + " by " + std::to_string(by);
+    return false;
+  }
+  std::swap(e.layers[at], e.layers[static_cast<std::size_t>(to)]);
+  return apply(edit);
+}
+
+bool MaterialEditor::set_layers(std::size_t edit, const profiles::LayerStack& stack) {
+  MaterialEdit& e = edits_.at(edit);
+  if (auto err = profiles::validate_layers(stack)) {
+    e.error = err->what();
+    return false;
+  }
+  fill_coefficients(e, stack.front());
+  fill_layers(e, stack);
+  return apply(edit);
+}
+
 bool MaterialEditor::select_preset(std::size_t edit, int preset) {
   MaterialEdit& e = edits_.at(edit);
   const auto all = profiles::presets();
@@ -116,6 +245,7 @@ bool MaterialEditor::select_preset(std::size_t edit, int preset) {
   }
   e.kind = SourceKind::Preset;
   e.preset = preset;
+  e.layers.clear();  // a preset is one medium: it replaces a stack
   fill_coefficients(e, profiles::preset_medium(all[static_cast<std::size_t>(preset)]));
   return apply(edit);
 }
@@ -126,6 +256,11 @@ bool MaterialEditor::select_model(std::size_t edit, int model) {
     e.error = "model: no model " + std::to_string(model);
     return false;
   }
+  if (!e.layers.empty()) {
+    e.error = "model: a stack's model is layered; remove its layers down to one (or choose a "
+              "preset) to choose another";
+    return false;
+  }
   e.model = model;
   return apply(edit);
 }
@@ -133,6 +268,11 @@ bool MaterialEditor::select_model(std::size_t edit, int model) {
 bool MaterialEditor::set_source_kind(std::size_t edit, SourceKind kind) {
   MaterialEdit& e = edits_.at(edit);
   if (kind == e.kind) return true;
+  if (!e.layers.empty() && kind == SourceKind::Artist) {
+    e.error = "artist: a colour + mfp describes one medium, not a stack; edit the layers' "
+              "coefficients";
+    return false;
+  }
   const scene::Material& current = applied_[e.index];
   const profiles::Medium& m = current.sss.medium;
   if (kind == SourceKind::Artist) {
@@ -223,16 +363,29 @@ std::optional<SssSpec> MaterialEditor::spec_from_fields(MaterialEdit& e) {
   return s;
 }
 
+std::optional<SssSpec> MaterialEditor::layered_spec(MaterialEdit& e) {
+  SssSpec s;
+  s.gaussians = e.gaussians;
+  s.scale = e.scale;
+  s.albedo_mode = e.albedo == 1 ? scene::AlbedoMode::PrePost : scene::AlbedoMode::PostScatter;
+  s.layers = stack_from_fields(e);
+  // The stack's checks and the material's (gaussians, scale) are cheap: made here, so that
+  // bad input never reaches the worker.
+  auto made = scene::make_layered_sss_material(s.layers, s.gaussians, s.scale, s.albedo_mode);
+  if (auto* err = std::get_if<FieldError>(&made)) {
+    e.error = err->what();
+    return std::nullopt;
+  }
+  s.model = profiles::Model::Layered;
+  s.source = std::get<scene::SssMaterial>(made).source;
+  fill_coefficients(e, s.layers.front());  // the top layer's fields follow the stack
+  return s;
+}
+
 bool MaterialEditor::apply(std::size_t edit) {
   const auto edited = Clock::now();
   MaterialEdit& e = edits_.at(edit);
-  if (e.layers > 0) {  // the fields hold the top layer alone: applying them would drop the stack
-    e.error = "a layered material (" + std::to_string(e.layers) +
-              " layers): the viewer does not edit stacks yet; edit extras.sss.layers or "
-              "--layers FILE.json";
-    return false;
-  }
-  std::optional<SssSpec> spec = spec_from_fields(e);
+  std::optional<SssSpec> spec = e.layers.empty() ? spec_from_fields(e) : layered_spec(e);
   if (!spec) return false;
   e.error.clear();
   pending_[e.index] = std::move(spec);

@@ -25,6 +25,15 @@ namespace sss::app {
 
 enum class SourceKind { Preset, Coefficients, Artist };
 
+// One layer of a stack as the editor shows it (issue 19): σa, σs, g per channel R, G, B in
+// mm^-1, and the thickness in mm (0: semi-infinite, the last layer only). The stack's η is
+// MaterialEdit::eta, for every layer: the interfaces between layers are index-matched
+// (profiles/Layered.h).
+struct LayerEdit {
+  std::array<float, 3> sigma_a{}, sigma_s{}, g{};
+  float thickness_mm = 0.0f;
+};
+
 struct MaterialEdit {
   std::size_t index = 0;  // into the scene's materials
   std::string name;
@@ -34,9 +43,9 @@ struct MaterialEdit {
   int gaussians = scene::kDefaultGaussians;
   float scale = 1.0f;
   int albedo = 0;  // 0 post-scatter, 1 pre-post
-  // A layered material's stack size (0: one medium). The editor shows its top layer and
-  // its plot but does not edit a stack yet (issue 19): apply() refuses, saying so.
-  std::size_t layers = 0;
+  // A layered material's stack, top first (empty: one medium). Its model is layered, its
+  // source coefficients; the fields below then hold its top layer (and eta the stack's).
+  std::vector<LayerEdit> layers;
   // The coefficient fields (mm^-1), per channel R, G, B; thickness 0: semi-infinite.
   std::array<float, 3> sigma_a{}, sigma_s{}, g{}, eta{1.3f, 1.3f, 1.3f};
   float thickness_mm = 0.0f;
@@ -82,6 +91,21 @@ class MaterialEditor {
   // Switches the fields: Coefficients from the current medium; Artist from its total
   // reflectance and reduced mfp; Preset selects the last preset (or skin1).
   bool set_source_kind(std::size_t edit, SourceKind kind);
+  // The stack (issue 19). add_layer splits layer `at` (the one medium of a material that
+  // has no stack, which then becomes a two-layer stack) into two identical layers, so the
+  // look stays as it was until either is edited (identical layers are the homogeneous
+  // medium): a finite layer into two halves, when each half stays thicker than its 1/σt';
+  // otherwise a copy goes on top of it, 2·max 1/σt' thick (at least 0.1 mm). remove_layer
+  // drops layer `at`; the last layer left makes the material one medium again, under the
+  // default model. move_layer swaps layer `at` with the one above (by = -1) or below
+  // (+1). set_layers replaces the stack (`sss-viewer --test-edit layers=FILE.json`). Each
+  // applies the result (false: the stack, e.g. a semi-infinite layer moved up, is not
+  // valid; its error names the layer and field, and the frame keeps the last valid one).
+  bool add_layer(std::size_t edit, std::size_t at);
+  bool remove_layer(std::size_t edit, std::size_t at);
+  bool move_layer(std::size_t edit, std::size_t at, int by);
+  bool set_layers(std::size_t edit, const profiles::LayerStack& stack);
+
   // After the widgets changed the edit's fields (coefficients, artist values, gaussians,
   // scale, albedo): checks and queues a refit. Editing a coefficient of a preset makes
   // the source Coefficients first.
@@ -105,7 +129,9 @@ class MaterialEditor {
 
  private:
   void fill_coefficients(MaterialEdit& e, const profiles::Medium& m);
+  void fill_layers(MaterialEdit& e, const profiles::LayerStack& stack);
   std::optional<SssSpec> spec_from_fields(MaterialEdit& e);
+  std::optional<SssSpec> layered_spec(MaterialEdit& e);
   void submit(Clock::time_point edited);
 
   std::vector<scene::Material> applied_;  // what the renderer draws

@@ -17,6 +17,7 @@ ProfilePlot make_profile_plot(const scene::SssMaterial& material, const profiles
   const double hi = std::log(profile.support_radius());
   ProfilePlot p;
   p.fit_relative_error = fit.relative_error;
+  const bool transmits = material.transmits();
   for (int i = 0; i < samples; ++i) {
     const double r = std::exp(lo + (hi - lo) * i / (samples - 1));
     const Rgb model = profile.reflectance(r);
@@ -31,6 +32,10 @@ ProfilePlot make_profile_plot(const scene::SssMaterial& material, const profiles
     p.model_rR.push_back(m);
     p.fit_rR.push_back(f);
     p.rel_error.push_back(e);
+    if (transmits) {
+      const Rgb t = profile.transmittance(r);
+      p.model_rT.push_back({r * t[0], r * t[1], r * t[2]});
+    }
   }
   return p;
 }

@@ -7,6 +7,7 @@
 #include "profiles/Profile.h"
 #include "renderer/SssTexturePass.h"
 #include "renderer/image/Image.h"
+#include "renderer/scene/SssLayers.h"
 
 #include <imgui.h>
 
@@ -85,11 +86,12 @@ void draw_axes(ImDrawList* dl, const LogAxes& a, bool x_labels, const char* y_ti
 }
 
 // One curve per channel; dashed draws every other segment.
+// pattern 0: solid; k > 1: one segment in k drawn (2 dashed, 3 dotted).
 void draw_curves(ImDrawList* dl, const LogAxes& a, const std::vector<double>& r,
-                 const std::vector<Rgb>& v, bool dashed, float thickness) {
+                 const std::vector<Rgb>& v, int pattern, float thickness) {
   for (int c = 0; c < 3; ++c)
-    for (std::size_t i = 1; i < r.size(); ++i) {
-      if (dashed && i % 2 == 0) continue;
+    for (std::size_t i = 1; i < r.size() && i < v.size(); ++i) {
+      if (pattern > 1 && i % std::size_t(pattern) != 1) continue;
       if (!(v[i - 1][c] > 0.0) || !(v[i][c] > 0.0)) continue;
       dl->AddLine(a.map(r[i - 1], v[i - 1][c]), a.map(r[i], v[i][c]), kChannelColor[c], thickness);
     }
@@ -105,6 +107,7 @@ void draw_profile_plot(const ProfilePlot& p, bool with_error) {
   ImDrawList* dl = ImGui::GetWindowDrawList();
   std::vector<double> all;
   for (const Rgb& v : p.model_rR) all.insert(all.end(), v.begin(), v.end());
+  for (const Rgb& v : p.model_rT) all.insert(all.end(), v.begin(), v.end());
   LogAxes top;
   top.p0 = ImVec2(origin.x + margin, origin.y);
   top.p1 = ImVec2(origin.x + width - 4, origin.y + top_h);
@@ -112,10 +115,11 @@ void draw_profile_plot(const ProfilePlot& p, bool with_error) {
   top.x.hi = int(std::ceil(std::log10(p.r_mm.back())));
   top.y = log_range(all, 5);
   dl->PushClipRect(ImVec2(origin.x, origin.y - 8), ImVec2(origin.x + width, origin.y + total_h), true);
-  draw_axes(dl, top, !with_error, "r R(r) 1/mm");
+  draw_axes(dl, top, !with_error, p.model_rT.empty() ? "r R(r) 1/mm" : "r R(r), r T(r) 1/mm");
   dl->PushClipRect(top.p0, top.p1, true);
-  draw_curves(dl, top, p.r_mm, p.model_rR, false, 2.0f);
-  draw_curves(dl, top, p.r_mm, p.fit_rR, true, 1.0f);
+  draw_curves(dl, top, p.r_mm, p.model_rR, 0, 2.0f);
+  draw_curves(dl, top, p.r_mm, p.fit_rR, 2, 1.0f);
+  draw_curves(dl, top, p.r_mm, p.model_rT, 3, 2.0f);
   dl->PopClipRect();
   if (with_error) {
     LogAxes err = top;
@@ -124,7 +128,7 @@ void draw_profile_plot(const ProfilePlot& p, bool with_error) {
     err.y = {-4, 0};
     draw_axes(dl, err, true, "rel. error");
     dl->PushClipRect(err.p0, err.p1, true);
-    draw_curves(dl, err, p.r_mm, p.rel_error, false, 1.0f);
+    draw_curves(dl, err, p.r_mm, p.rel_error, 0, 1.0f);
     dl->PopClipRect();
   }
   dl->AddText(ImVec2(origin.x, origin.y + total_h - 13), IM_COL32(200, 200, 200, 255), "mm");
@@ -143,6 +147,8 @@ bool valid_script_edit(const std::string& edit) {
   if (eq == std::string::npos) return false;
   const std::string key = edit.substr(0, eq), value = edit.substr(eq + 1);
   if (key == "preset") return profiles::find_preset(value) != nullptr;
+  if (key == "layers")
+    return std::holds_alternative<profiles::LayerStack>(scene::parse_sss_layers_file(value));
   if (key != "model") return false;
   const auto m = profiles::parse_model(value);
   const auto& offered = MaterialEditor::models();
@@ -164,6 +170,8 @@ void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
     // valid_script_edit accepted it: the preset or offered model exists.
     if (key == "preset")
       editor_.select_preset(0, MaterialEditor::preset_index(value));
+    else if (key == "layers")
+      editor_.set_layers(0, std::get<profiles::LayerStack>(scene::parse_sss_layers_file(value)));
     else
       editor_.select_model(0, MaterialEditor::model_index(*profiles::parse_model(value)));
     script_.clear();
@@ -327,13 +335,61 @@ void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {
   }
 }
 
-void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
-  if (e.layers > 0) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("model layered, %zu layers: the fields show the top layer; a stack is "
-                       "edited in its JSON (extras.sss.layers, --layers)", e.layers);
-    ImGui::PopStyleColor();
+bool ViewerUi::draw_layers(MaterialEdit& e, std::size_t i) {
+  ImGui::TextDisabled("model layered, %zu layers, top first", e.layers.size());
+  const ImGuiInputTextFlags typed = ImGuiInputTextFlags_CharsScientific;
+  bool apply = false;
+  // A button's change to the stack waits until the rows are drawn (the loop walks it).
+  enum class Op { None, Split, Remove, Up, Down } op = Op::None;
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < e.layers.size(); ++k) {
+    LayerEdit& l = e.layers[k];
+    ImGui::PushID(int(k));
+    const bool last = k + 1 == e.layers.size();
+    ImGui::Separator();
+    ImGui::Text("layer %zu%s", k, last && l.thickness_mm == 0.0f ? " (semi-infinite)" : "");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("split")) op = Op::Split, at = k;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("two identical layers in its place (the look stays)");
+    ImGui::SameLine();
+    ImGui::BeginDisabled(k == 0);
+    if (ImGui::SmallButton("up")) op = Op::Up, at = k;
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(last);
+    if (ImGui::SmallButton("down")) op = Op::Down, at = k;
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (ImGui::SmallButton("remove")) op = Op::Remove, at = k;
+    ImGui::InputFloat3("sigma_a 1/mm", l.sigma_a.data(), "%.4g", typed);
+    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::InputFloat3("sigma_s 1/mm", l.sigma_s.data(), "%.4g", typed);
+    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::InputFloat3("g", l.g.data(), "%.3g", typed);
+    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::InputFloat("thickness mm", &l.thickness_mm, 0.0f, 0.0f, "%.3g", typed);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("mm; 0: semi-infinite (the last layer only); a layer must be thicker "
+                        "than its 1/sigma_t'");
+    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::PopID();
   }
+  ImGui::Separator();
+  ImGui::InputFloat3("eta (all)", e.eta.data(), "%.3g", typed);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("every layer's: the interfaces are index-matched");
+  apply |= ImGui::IsItemDeactivatedAfterEdit();
+  switch (op) {  // each applies the stack itself
+    case Op::Split: editor_.add_layer(i, at); return false;
+    case Op::Remove: editor_.remove_layer(i, at); return false;
+    case Op::Up: editor_.move_layer(i, at, -1); return false;
+    case Op::Down: editor_.move_layer(i, at, +1); return false;
+    case Op::None: break;
+  }
+  return apply;
+}
+
+void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
+  const bool layered = !e.layers.empty();
   const auto all = profiles::presets();
   const int shown_preset = e.kind == SourceKind::Preset ? e.preset : -1;
   if (ImGui::BeginCombo("preset", preset_label(shown_preset).c_str())) {
@@ -341,7 +397,9 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
       if (ImGui::Selectable(preset_label(k).c_str(), k == shown_preset)) editor_.select_preset(i, k);
     ImGui::EndCombo();
   }
-  if (ImGui::BeginCombo("model", e.layers > 0 ? "layered" : model_label(e.model).c_str())) {
+  if (layered && ImGui::IsItemHovered()) ImGui::SetTooltip("a preset replaces the stack");
+  ImGui::BeginDisabled(layered);  // a stack's model is layered
+  if (ImGui::BeginCombo("model", layered ? "layered" : model_label(e.model).c_str())) {
     for (int m = 0; m < int(MaterialEditor::models().size()); ++m)
       if (ImGui::Selectable(model_label(m).c_str(), m == e.model)) editor_.select_model(i, m);
     ImGui::EndCombo();
@@ -350,12 +408,15 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
   if (ImGui::RadioButton("coefficients", &kind, 0)) editor_.set_source_kind(i, SourceKind::Coefficients);
   ImGui::SameLine();
   if (ImGui::RadioButton("artist", &kind, 1)) editor_.set_source_kind(i, SourceKind::Artist);
+  ImGui::EndDisabled();
 
   // Typed fields apply when the edit ends (Enter, Tab, click away); drags, sliders and
   // the colour picker apply on every change (the refit is asynchronous).
   bool apply = false;
   const ImGuiInputTextFlags typed = ImGuiInputTextFlags_CharsScientific;
-  if (e.kind != SourceKind::Artist) {
+  if (layered) {
+    apply |= draw_layers(e, i);
+  } else if (e.kind != SourceKind::Artist) {
     ImGui::InputFloat3("sigma_a 1/mm", e.sigma_a.data(), "%.4g", typed);
     if (ImGui::IsItemDeactivatedAfterEdit()) { e.kind = SourceKind::Coefficients; apply = true; }
     ImGui::InputFloat3("sigma_s 1/mm", e.sigma_s.data(), "%.4g", typed);
@@ -370,11 +431,19 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
     ImGui::InputFloat("eta", &e.artist_eta, 0.0f, 0.0f, "%.3g", typed);
     apply |= ImGui::IsItemDeactivatedAfterEdit();
   }
-  ImGui::InputFloat("thickness mm", &e.thickness_mm, 0.0f, 0.0f, "%.3g", typed);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: semi-infinite (multipole needs a slab)");
-  if (ImGui::IsItemDeactivatedAfterEdit()) {
-    if (e.kind == SourceKind::Preset) e.kind = SourceKind::Coefficients;
-    apply = true;
+  if (!layered) {
+    ImGui::InputFloat("thickness mm", &e.thickness_mm, 0.0f, 0.0f, "%.3g", typed);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: semi-infinite (multipole needs a slab)");
+    if (ImGui::IsItemDeactivatedAfterEdit()) {
+      if (e.kind == SourceKind::Preset) e.kind = SourceKind::Coefficients;
+      apply = true;
+    }
+    ImGui::BeginDisabled(e.kind == SourceKind::Artist);
+    if (ImGui::SmallButton("add layer")) editor_.add_layer(i, 0);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("make this medium a stack of two identical layers (the look stays); then "
+                        "edit either layer");
+    ImGui::EndDisabled();
   }
   apply |= ImGui::SliderInt("gaussians", &e.gaussians, scene::kMinGaussians, scene::kMaxGaussians);
   apply |= ImGui::SliderFloat("scale", &e.scale, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
@@ -390,7 +459,10 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
                         100.0 * e.plot->fit_relative_error[1], 100.0 * e.plot->fit_relative_error[2]);
     draw_profile_plot(*e.plot, plot_error_);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("r R(r): model solid, Gaussian fit dashed; below: relative error");
+      ImGui::SetTooltip(e.plot->model_rT.empty()
+                            ? "r R(r): model solid, Gaussian fit dashed; below: relative error"
+                            : "r R(r): model solid, Gaussian fit dashed; r T(r), the light through "
+                              "the far face: dotted; below: R's relative error");
   }
 }
 

@@ -19,7 +19,8 @@
 namespace sss::app {
 
 // Whether `edit` is a scripted edit script_edit accepts ("preset=NAME" with a known
-// preset, "model=NAME" with an offered model): checked before a window opens.
+// preset, "model=NAME" with an offered model, "layers=FILE.json" with a valid stack file):
+// checked before a window opens.
 bool valid_script_edit(const std::string& edit);
 
 class ViewerUi {
@@ -35,7 +36,8 @@ class ViewerUi {
   void frame_presented(double frame_ms) { editor_.frame_presented(frame_ms); }
   // A refit is running or waiting to be presented.
   bool busy() const { return editor_.busy(); }
-  // Scripted edit (sss-viewer --test-edit): "preset=NAME" or "model=NAME" on the first
+  // Scripted edit (sss-viewer --test-edit): "preset=NAME", "model=NAME" or
+  // "layers=FILE.json" (MaterialEditor::set_layers) on the first
   // SSS material, made by the first draw() with no refit running (the start-up one
   // done), through the widgets' own calls. False if the
   // text names nothing.
@@ -67,6 +69,9 @@ class ViewerUi {
   bool draw_texture_objects(const renderer::Renderer& r, renderer::RenderOptions& o);
   void draw_materials(renderer::Renderer& r);
   void draw_material(MaterialEdit& e, std::size_t i);
+  // A stack's rows (per layer: its coefficients, thickness, split / up / down / remove) and
+  // its η; true when a field's edit ended (the caller applies).
+  bool draw_layers(MaterialEdit& e, std::size_t i);
   void draw_light(renderer::Renderer& r);
   void draw_stats(const renderer::Renderer& r, double frame_ms);
   void draw_screenshot(const renderer::Renderer& r);

@@ -48,7 +48,7 @@ struct ViewerArgs {
   std::string test_compare;
   float interactive_scale = 0.5f;  // --interactive-scale: render size while the view moves
   bool test_interaction = false;   // hidden: every frame counts as interacting (timing)
-  std::string test_edit;     // hidden: preset=NAME | model=NAME, edited at the first frame
+  std::string test_edit;     // hidden: preset=NAME | model=NAME | layers=FILE.json, edited at the first frame
   // --soak N (headless): N frames, the material changed every soak_every frames (Soak.h)
   int soak = 0;
   int soak_every = 100;

@@ -336,7 +336,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
 
   ViewerTools tools(ctx);
   if (!a.test_edit.empty() && !session->ui->script_edit(a.test_edit)) {
-    std::cerr << "sss-viewer: error: --test-edit: expected preset=NAME or model=NAME, got '"
+    std::cerr << "sss-viewer: error: --test-edit: expected preset=NAME, model=NAME or layers=FILE.json, got '"
               << a.test_edit << "'\n";
     return kExitUsage;
   }

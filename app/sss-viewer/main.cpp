@@ -200,7 +200,8 @@ int viewer_main(int argc, char** argv) {
       a.test_compare != "error" && a.test_compare != "log-ratio")
     return usage("--test-compare: expected split, reference, error or log-ratio");
   if (!a.test_edit.empty() && !valid_script_edit(a.test_edit))
-    return usage("--test-edit: expected preset=NAME or model=NAME, got '" + a.test_edit + "'");
+    return usage("--test-edit: expected preset=NAME, model=NAME or layers=FILE.json, got '" +
+                 a.test_edit + "'");
   if (a.vsync != "on" && a.vsync != "off")
     return usage("--vsync: expected on or off, got '" + a.vsync + "'");
   renderer::RenderOptions options;

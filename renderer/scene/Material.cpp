@@ -107,6 +107,19 @@ std::variant<SssMaterial, FieldError> make_sss_material(SssSource source,
   return s;
 }
 
+std::variant<SssMaterial, FieldError> make_layered_sss_material(profiles::LayerStack layers,
+                                                                int gaussians, double scale,
+                                                                AlbedoMode albedo_mode) {
+  if (auto e = profiles::validate_layers(layers)) return *e;
+  auto made = make_sss_material(CoefficientSource{layers.front()}, profiles::kDefaultModel,
+                                gaussians, scale, albedo_mode);
+  if (auto* e = std::get_if<FieldError>(&made)) return *e;
+  auto& s = std::get<SssMaterial>(made);
+  s.model = profiles::Model::Layered;
+  s.layers = std::move(layers);
+  return made;
+}
+
 SssMaterial preset_sss_material(std::string_view preset) {
   auto s = make_sss_material(PresetSource{std::string(preset)});
   if (auto* e = std::get_if<FieldError>(&s)) throw std::invalid_argument(e->what());

@@ -83,6 +83,14 @@ std::variant<SssMaterial, FieldError> make_sss_material(
     int gaussians = kDefaultGaussians, double scale = 1.0,
     AlbedoMode albedo_mode = AlbedoMode::PostScatter);
 
+// An enabled layered SssMaterial: the stack (top first, checked by profiles::validate_layers,
+// whose errors name "layers[k].field") is the medium and the model (Model::Layered); its top
+// layer is `medium` and the source, as extras.sss.layers, --layers and the viewer's layer
+// editor make one. Other errors as make_sss_material's.
+std::variant<SssMaterial, FieldError> make_layered_sss_material(
+    profiles::LayerStack layers, int gaussians = kDefaultGaussians, double scale = 1.0,
+    AlbedoMode albedo_mode = AlbedoMode::PostScatter);
+
 // For built-in content: throws std::invalid_argument if the preset is unknown or unusable.
 SssMaterial preset_sss_material(std::string_view preset);
 

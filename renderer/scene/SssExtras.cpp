@@ -144,15 +144,11 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
                              "their thicknesses, and the model: layered)"};
     auto stack = parse_sss_layers(o["layers"]);
     if (auto* e = std::get_if<FieldError>(&stack)) return *e;
-    auto& layers = std::get<profiles::LayerStack>(stack);
-    auto made = make_sss_material(CoefficientSource{layers.front()}, profiles::kDefaultModel,
-                                  gaussians, scale, albedo_mode);
+    auto made = make_layered_sss_material(std::get<profiles::LayerStack>(std::move(stack)),
+                                          gaussians, scale, albedo_mode);
     if (auto* e = std::get_if<FieldError>(&made)) return *e;
-    auto& s = std::get<SssMaterial>(made);
-    s.enabled = enabled;
-    s.model = profiles::Model::Layered;
-    s.layers = std::move(layers);
-    return s;
+    std::get<SssMaterial>(made).enabled = enabled;
+    return made;
   }
 
   const bool preset = o.contains("preset");

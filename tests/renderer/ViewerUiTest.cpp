@@ -39,7 +39,9 @@
 #include <future>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <variant>
 
 namespace sss::renderer::testing {
@@ -367,42 +369,208 @@ TEST(FitWorker, RefitsOnlyTheEditedMaterial) {
   EXPECT_NE(r->data.profiles[0]->kernel.weights, previous->profiles[0]->kernel.weights);
 }
 
-// A layered material (extras.sss.layers) in the viewer: its plot is the stack's profile,
-// and the editor, whose fields hold one medium, refuses to apply them over the stack
-// rather than drop it (issue 19: the layer editor is not done).
-TEST(ProfilePlot, LayeredMaterialPlotsTheStackAndTheEditorKeepsIt) {
-  scene::Scene scene = default_scene();
-  const auto parsed = scene::parse_sss_extras_text(R"({"layers": [
-      {"thickness_mm": 0.25, "sigma_a": [0.3, 0.5, 0.8], "sigma_s": 8, "eta": 1.4},
-      {"sigma_a": 0.02, "sigma_s": 2, "eta": 1.4}]})");
-  ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(parsed));
-  std::size_t index = scene.materials.size();
-  for (std::size_t i = 0; i < scene.materials.size(); ++i)
-    if (scene.materials[i].sss.enabled) {
-      scene.materials[i].sss = std::get<scene::SssMaterial>(parsed);
-      index = i;
-      break;
+// A layered material (extras.sss.layers) in the viewer: its plot is the stack's R(r) and,
+// for a stack with a finite bottom, its T(r) (r·T at the plot's radii, from the same
+// profile); a half-space stack has no T curve.
+TEST(ProfilePlot, LayeredMaterialPlotsItsReflectanceAndTransmittance) {
+  for (const bool finite : {false, true}) {
+    const std::string bottom = finite ? R"(, "thickness_mm": 2)" : "";
+    const auto parsed = scene::parse_sss_extras_text(R"({"layers": [
+        {"thickness_mm": 0.25, "sigma_a": [0.3, 0.5, 0.8], "sigma_s": 8, "eta": 1.4},
+        {"sigma_a": 0.02, "sigma_s": 2, "eta": 1.4)" + bottom + "}]}");
+    ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(parsed));
+    const scene::SssMaterial& s = std::get<scene::SssMaterial>(parsed);
+    EXPECT_EQ(s.transmits(), finite);
+    const profiles::RgbProfile rgb = s.profile();
+    profiles::FitOptions fo;
+    fo.gaussians = 6;
+    const app::ProfilePlot p =
+        app::make_profile_plot(s, profiles::fit_gaussians(profiles::make_fit_target(rgb), fo), 16);
+    ASSERT_EQ(p.model_rT.size(), finite ? p.r_mm.size() : 0u);
+    for (std::size_t i = 0; i < p.r_mm.size(); ++i) {
+      EXPECT_DOUBLE_EQ(p.model_rR[i][0], p.r_mm[i] * rgb.reflectance(p.r_mm[i])[0]);
+      if (finite) {
+        EXPECT_DOUBLE_EQ(p.model_rT[i][2], p.r_mm[i] * rgb.transmittance(p.r_mm[i])[2]);
+      }
     }
-  ASSERT_LT(index, scene.materials.size());
-  const scene::SssMaterial& s = scene.materials[index].sss;
-  const profiles::RgbProfile rgb = s.profile();
-  profiles::FitOptions fo;
-  fo.gaussians = 6;
-  const app::ProfilePlot p =
-      app::make_profile_plot(s, profiles::fit_gaussians(profiles::make_fit_target(rgb), fo), 16);
-  for (std::size_t i = 0; i < p.r_mm.size(); ++i)
-    EXPECT_DOUBLE_EQ(p.model_rR[i][0], p.r_mm[i] * rgb.reflectance(p.r_mm[i])[0]);
+  }
+}
 
-  MaterialEditor ed(scene, 17);
-  ASSERT_TRUE(ed.wait_idle(120s));
-  std::size_t edit = ed.edits().size();
-  for (std::size_t k = 0; k < ed.edits().size(); ++k)
-    if (ed.edits()[k].index == index) edit = k;
-  ASSERT_LT(edit, ed.edits().size());
-  EXPECT_EQ(ed.edits()[edit].layers, 2u);
-  EXPECT_FALSE(ed.apply(edit));
-  EXPECT_NE(ed.edits()[edit].error.find("layered"), std::string::npos) << ed.edits()[edit].error;
-  EXPECT_EQ(ed.applied()[index].sss.layers.size(), 2u);
+// The editor's layer calls, with the worker's own compute (no renderer: each request's
+// materials are kept as the worker resolved them).
+struct LayerEditorFixture {
+  std::mutex mutex;
+  std::vector<scene::Material> last;  // the newest request's materials, resolved
+  int computed = 0;
+  scene::Scene scene = default_scene();
+  std::size_t index = 0;  // the edited material (the first SSS one)
+  std::unique_ptr<MaterialEditor> ed;
+
+  LayerEditorFixture() {
+    for (std::size_t i = 0; i < scene.materials.size(); ++i)
+      if (scene.materials[i].sss.enabled) {
+        index = i;
+        break;
+      }
+    scene.materials[index].sss = scene::preset_sss_material("skin1");  // mc-table
+    ed = std::make_unique<MaterialEditor>(scene, 17, [this](app::FitRequest& q, app::FitResult& r) {
+      app::FitWorker::compute_default(q, r);
+      std::lock_guard lock(mutex);
+      last = q.materials;
+      ++computed;
+    });
+    EXPECT_TRUE(ed->wait_idle(120s));
+  }
+  MaterialEdit& edit() { return ed->edits().front(); }
+  scene::SssMaterial resolved() {
+    EXPECT_TRUE(ed->wait_idle(120s));
+    std::lock_guard lock(mutex);
+    return last.at(index).sss;
+  }
+};
+
+// Splitting a medium gives two identical layers, which are the medium itself: the frame's
+// profile stays (to the float rounding of the fields: the coefficients pass through float,
+// a relative change of 2^-24 ≈ 6e-8 each, and R's logarithmic derivative in them stays
+// below 20 on [0.01, 10] mm for skin1, so 2e-6 of R(r) bounds it), plus the layered
+// model's own identity bound, 1e-9 of the profile's peak (test_layered.cpp), which is what
+// is left far in the tail (R at 10 mm is 1e-9 of the peak in blue). Editing the top layer
+// then builds that stack: a top layer ten times as absorbing darkens the material.
+TEST(LayerEditor, SplittingKeepsTheProfileAndEditsBuildTheStack) {
+  LayerEditorFixture f;
+  const profiles::RgbProfile before = f.scene.materials[f.index].sss.profile();
+  ASSERT_TRUE(f.ed->add_layer(0, 0)) << f.edit().error;
+  ASSERT_EQ(f.edit().layers.size(), 2u);
+  EXPECT_GT(f.edit().layers[0].thickness_mm, 0.0f);
+  EXPECT_EQ(f.edit().layers[1].thickness_mm, 0.0f);  // the base stays semi-infinite
+  const scene::SssMaterial split = f.resolved();
+  ASSERT_EQ(split.model, profiles::Model::Layered);
+  ASSERT_EQ(split.layers.size(), 2u);
+  const profiles::RgbProfile after = split.profile();
+  const Rgb peak = before.reflectance(0.01);  // R falls with r: the largest sampled
+  for (double r : {0.01, 0.1, 0.3, 1.0, 3.0, 10.0})
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(after.reflectance(r)[c], before.reflectance(r)[c],
+                  2e-6 * before.reflectance(r)[c] + 1e-9 * peak[c])
+          << "r " << r << " channel " << c;
+
+  for (float& a : f.edit().layers[0].sigma_a) a *= 10.0f;
+  ASSERT_TRUE(f.ed->apply(0)) << f.edit().error;
+  const scene::SssMaterial darker = f.resolved();
+  EXPECT_FLOAT_EQ(static_cast<float>(darker.layers[0].sigma_a[0]), f.edit().layers[0].sigma_a[0]);
+  EXPECT_FLOAT_EQ(static_cast<float>(darker.medium.sigma_a[0]), f.edit().layers[0].sigma_a[0]);
+  const Rgb t0 = after.total_reflectance(), t1 = darker.profile().total_reflectance();
+  for (int c = 0; c < 3; ++c) EXPECT_LT(t1[c], t0[c]) << c;
+
+  // Split the base: a copy goes on top of it (it is semi-infinite), so three layers.
+  ASSERT_TRUE(f.ed->add_layer(0, 1)) << f.edit().error;
+  EXPECT_EQ(f.resolved().layers.size(), 3u);
+  // Split a finite layer: two halves.
+  const float top = f.edit().layers[0].thickness_mm;
+  ASSERT_TRUE(f.ed->add_layer(0, 0)) << f.edit().error;
+  ASSERT_EQ(f.edit().layers.size(), 4u);
+  EXPECT_FLOAT_EQ(f.edit().layers[0].thickness_mm, 0.5f * top);
+  EXPECT_FLOAT_EQ(f.edit().layers[1].thickness_mm, 0.5f * top);
+}
+
+// Reordering, removing, and what is refused: a semi-infinite layer moved up is not a valid
+// stack (its error names the layer and field, and nothing is submitted); a stack's model and
+// artist mode cannot be chosen over it; a preset replaces it; the last layer removed but
+// one makes the material one medium under the default model.
+TEST(LayerEditor, ReordersRemovesAndRefusesWhatIsNotAStack) {
+  LayerEditorFixture f;
+  ASSERT_TRUE(f.ed->set_layers(0, {[] {
+                                      profiles::Medium m;
+                                      m.sigma_a = {0.3, 0.5, 0.8};
+                                      m.sigma_s = {8, 8, 8};
+                                      m.g = {0, 0, 0};
+                                      m.eta = {1.4, 1.4, 1.4};
+                                      m.thickness_mm = 0.25;
+                                      return m;
+                                    }(),
+                                    [] {
+                                      profiles::Medium m;
+                                      m.sigma_a = {0.02, 0.05, 0.1};
+                                      m.sigma_s = {2, 2.2, 2.5};
+                                      m.g = {0, 0, 0};
+                                      m.eta = {1.4, 1.4, 1.4};
+                                      return m;
+                                    }()}))
+      << f.edit().error;
+  EXPECT_EQ(f.resolved().layers.size(), 2u);
+  f.ed->wait_idle(120s);
+  const int computed = [&] { std::lock_guard l(f.mutex); return f.computed; }();
+
+  EXPECT_FALSE(f.ed->move_layer(0, 0, +1));  // the semi-infinite base would be on top
+  EXPECT_NE(f.edit().error.find("layers[0].thickness_mm"), std::string::npos) << f.edit().error;
+  EXPECT_FALSE(f.ed->move_layer(0, 0, -1));  // nothing above the top
+  f.edit().layers[0].thickness_mm = 1.0f;    // the user gives it a thickness ...
+  ASSERT_TRUE(f.ed->apply(0)) << f.edit().error;  // ... and the swapped stack is valid
+  const scene::SssMaterial swapped = f.resolved();
+  EXPECT_NEAR(swapped.layers[0].sigma_a[0], 0.02, 1e-7);
+  EXPECT_NEAR(swapped.layers[1].sigma_a[0], 0.3, 1e-7);
+  EXPECT_EQ(f.computed, computed + 1);  // the refused move submitted nothing
+
+  // Thickness errors name the layer and the field.
+  f.edit().layers[0].thickness_mm = 0.25f;  // thinner than 1/σt' = 1/2.02 mm
+  EXPECT_FALSE(f.ed->apply(0));
+  EXPECT_NE(f.edit().error.find("layers[0].thickness_mm[R]"), std::string::npos) << f.edit().error;
+  f.edit().layers[0].thickness_mm = -1.0f;
+  EXPECT_FALSE(f.ed->apply(0));
+  EXPECT_NE(f.edit().error.find("layers[0].thickness_mm"), std::string::npos) << f.edit().error;
+  f.edit().layers[0].thickness_mm = 1.0f;
+
+  EXPECT_FALSE(f.ed->select_model(0, model(profiles::Model::BetterDipole)));
+  EXPECT_NE(f.edit().error.find("layered"), std::string::npos) << f.edit().error;
+  EXPECT_FALSE(f.ed->set_source_kind(0, SourceKind::Artist));
+  EXPECT_EQ(f.edit().layers.size(), 2u);
+
+  ASSERT_TRUE(f.ed->remove_layer(0, 0)) << f.edit().error;
+  EXPECT_TRUE(f.edit().layers.empty());
+  const scene::SssMaterial one = f.resolved();
+  EXPECT_TRUE(one.layers.empty());
+  EXPECT_EQ(one.model, profiles::kDefaultModel);
+  EXPECT_NEAR(one.medium.sigma_a[0], 0.3, 1e-7);  // the layer that was left
+  EXPECT_NEAR(one.medium.thickness_mm, 0.25, 1e-7);
+
+  ASSERT_TRUE(f.ed->add_layer(0, 0));
+  ASSERT_TRUE(f.ed->select_preset(0, preset("marble")));
+  EXPECT_TRUE(f.edit().layers.empty());
+  EXPECT_TRUE(f.resolved().layers.empty());
+}
+
+// The panel draws a stack's rows (ImGui checks its ID and disabled stacks in debug
+// builds; here: it draws, stays within the window's budget, and its scripted edit
+// layers=FILE.json reaches the renderer).
+TEST_F(ViewerUiTest, LayeredPanelDrawsItsRowsAndTheScriptedStackIsUploaded) {
+  const scene::Scene scene = default_scene();
+  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  Renderer r(ctx(), scene, o);
+  renderer::testing::HeadlessImGui imgui;
+  ImGuiIO& io = imgui.io();
+  const std::string file = std::string(SSS_SOURCE_DIR) + "/assets/layers/skin-two-layers-slab.json";
+  EXPECT_FALSE(app::valid_script_edit("layers=/no/such/file.json"));
+  app::ViewerUi ui(scene, o.separable_taps);
+  ASSERT_TRUE(ui.script_edit("layers=" + file));
+  for (int frame = 0; frame < 400 && (frame < 3 || ui.busy()); ++frame) {
+    io.DeltaTime = 1.0f / 60.0f;
+    ImGui::NewFrame();
+    ui.draw(r, 16.0);
+    ImGui::Render();
+    r.render_frame();
+    ui.frame_presented(16.0);
+    if (ui.editor().fitting()) std::this_thread::sleep_for(5ms);
+  }
+  EXPECT_FALSE(ui.busy());
+  const MaterialEdit& e = ui.editor().edits()[0];
+  EXPECT_TRUE(e.error.empty()) << e.error;
+  ASSERT_EQ(e.layers.size(), 2u);
+  EXPECT_EQ(ui.editor().applied()[e.index].sss.layers.size(), 2u);
+  ASSERT_TRUE(e.plot.has_value());
+  EXPECT_EQ(e.plot->model_rT.size(), e.plot->r_mm.size());  // a finite bottom: T is plotted
+  const ImGuiWindow* panel = ImGui::FindWindowByName("sss-viewer");
+  ASSERT_NE(panel, nullptr);
+  EXPECT_LE(panel->Pos.x + panel->Size.x, 0.35f * 960.0f);
 }
 
 TEST(ProfilePlot, SamplesTheModelAndTheFit) {
