@@ -13,6 +13,7 @@
 #include "FitWorker.h"
 #include "MaterialEditor.h"
 #include "ProfilePlot.h"
+#include "Tools.h"
 #include "Ui.h"
 
 #include "profiles/Presets.h"
@@ -28,6 +29,7 @@
 
 #include <imgui.h>
 #include <imgui_internal.h>
+#include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <chrono>
@@ -36,6 +38,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <future>
 #include <limits>
 #include <memory>
@@ -471,6 +474,25 @@ TEST(LayerEditor, SplittingKeepsTheProfileAndEditsBuildTheStack) {
   ASSERT_EQ(f.edit().layers.size(), 4u);
   EXPECT_FLOAT_EQ(f.edit().layers[0].thickness_mm, 0.5f * top);
   EXPECT_FLOAT_EQ(f.edit().layers[1].thickness_mm, 0.5f * top);
+
+  // Export writes the stack the editor built (extras.sss.layers), and it reads back.
+  std::vector<scene::Material> materials = f.scene.materials;
+  materials[f.index].sss = f.resolved();
+  const app::LiveState live{&f.scene, "builtin:bunny", materials, f.scene.lights};
+  const std::string out =
+      (std::filesystem::temp_directory_path() / "sss_layer_editor_export.json").string();
+  ASSERT_EQ(app::export_materials(live, out, true), "saved " + out);
+  std::ifstream in(out);
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  const auto back = scene::parse_sss_extras(doc["materials"][f.index]["extras"]["sss"]);
+  ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(back));
+  const scene::SssMaterial& read = std::get<scene::SssMaterial>(back);
+  ASSERT_EQ(read.layers.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(read.layers[k].thickness_mm, materials[f.index].sss.layers[k].thickness_mm) << k;
+    EXPECT_EQ(read.layers[k].sigma_a[1], materials[f.index].sss.layers[k].sigma_a[1]) << k;
+  }
+  std::filesystem::remove(out);
 }
 
 // Reordering, removing, and what is refused: a semi-infinite layer moved up is not a valid
