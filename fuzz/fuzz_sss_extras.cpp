@@ -29,6 +29,14 @@ int sss_fuzz_sss_extras(const std::uint8_t* data, std::size_t size) {
     sss::fuzz::fuzz_check(m->gaussians >= kMinGaussians && m->gaussians <= kMaxGaussians,
                           "gaussians in 1..8");
     sss::fuzz::fuzz_check(std::isfinite(m->scale) && m->scale > 0.0, "scale is finite and > 0");
+    // A stack (extras.sss.layers) is a valid one, and its top layer is the medium.
+    if (!m->layers.empty()) {
+      sss::fuzz::fuzz_check(!sss::profiles::validate_layers(m->layers), "an accepted stack is valid");
+      sss::fuzz::fuzz_check(m->model == sss::profiles::Model::Layered, "a stack's model is layered");
+      sss::fuzz::fuzz_check(m->medium.sigma_a == m->layers.front().sigma_a &&
+                                m->medium.sigma_s == m->layers.front().sigma_s,
+                            "a stack's medium is its top layer");
+    }
     auto again = parse_sss_extras(sss_extras_json(*m));
     sss::fuzz::fuzz_check(std::holds_alternative<SssMaterial>(again),
                           "the exported block of an accepted material is accepted");
