@@ -72,7 +72,9 @@ MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
     MaterialEdit e;
     e.index = i;
     e.name = applied_[i].name.empty() ? "material " + std::to_string(i) : applied_[i].name;
-    e.model = std::max(model_index(s.model), 0);
+    // A stack's model (layered) is not offered: the model it gets if it becomes one medium
+    // again (a preset, its layers removed) is the default.
+    e.model = std::max(model_index(s.layers.empty() ? s.model : profiles::kDefaultModel), 0);
     e.gaussians = s.gaussians;
     e.scale = static_cast<float>(s.scale);
     e.albedo = s.albedo_mode == scene::AlbedoMode::PrePost ? 1 : 0;
@@ -161,7 +163,8 @@ float copy_thickness(const LayerEdit& l) {
 
 bool MaterialEditor::add_layer(std::size_t edit, std::size_t at) {
   MaterialEdit& e = edits_.at(edit);
-  if (e.layers.empty()) {  // the one medium becomes the stack's only layer first
+  const bool one_medium = e.layers.empty();
+  if (one_medium) {  // the one medium becomes the stack's only layer first
     if (e.kind == SourceKind::Artist) {
       e.error = "add layer: an artist colour + mfp describes one medium; switch to "
                 "coefficients first";
@@ -177,7 +180,6 @@ bool MaterialEditor::add_layer(std::size_t edit, std::size_t at) {
   }
   if (e.layers.size() >= static_cast<std::size_t>(profiles::kMaxLayers)) {
     e.error = "add layer: at most " + std::to_string(profiles::kMaxLayers) + " layers";
-    if (e.layers.size() == 1) e.layers.clear();
     return false;
   }
   LayerEdit top = e.layers[at];
@@ -189,8 +191,14 @@ bool MaterialEditor::add_layer(std::size_t edit, std::size_t at) {
     top.thickness_mm = copy_thickness(top);
   }
   e.layers.insert(e.layers.begin() + static_cast<std::ptrdiff_t>(at), top);
+  const SourceKind kind = e.kind;
   e.kind = SourceKind::Coefficients;
-  return apply(edit);
+  if (apply(edit)) return true;
+  if (one_medium) {  // e.g. a slab thinner than a layer may be: stay the medium it was
+    e.layers.clear();
+    e.kind = kind;
+  }
+  return false;
 }
 
 bool MaterialEditor::remove_layer(std::size_t edit, std::size_t at) {
@@ -199,9 +207,12 @@ bool MaterialEditor::remove_layer(std::size_t edit, std::size_t at) {
     e.error = "remove layer: no layer " + std::to_string(at);
     return false;
   }
+  const LayerEdit removed = e.layers[at];
   e.layers.erase(e.layers.begin() + static_cast<std::ptrdiff_t>(at));
-  if (e.layers.size() == 1) {  // one medium again: its coefficients, the default model
-    const LayerEdit& l = e.layers.front();
+  // One layer left (or a stack of one, read from a file, emptied): one medium again, with
+  // that layer's coefficients, under the default model.
+  if (e.layers.size() <= 1) {
+    const LayerEdit l = e.layers.empty() ? removed : e.layers.front();
     e.sigma_a = l.sigma_a;
     e.sigma_s = l.sigma_s;
     e.g = l.g;

@@ -92,11 +92,14 @@ class MaterialEditor {
   // reflectance and reduced mfp; Preset selects the last preset (or skin1).
   bool set_source_kind(std::size_t edit, SourceKind kind);
   // The stack (issue 19). add_layer splits layer `at` (the one medium of a material that
-  // has no stack, which then becomes a two-layer stack) into two identical layers, so the
-  // look stays as it was until either is edited (identical layers are the homogeneous
-  // medium): a finite layer into two halves, when each half stays thicker than its 1/σt';
-  // otherwise a copy goes on top of it, 2·max 1/σt' thick (at least 0.1 mm). remove_layer
-  // drops layer `at`; the last layer left makes the material one medium again, under the
+  // has no stack, which then becomes a two-layer stack; refused for an artist source) into
+  // two identical layers: a finite layer into two halves, when each half stays thicker
+  // than its 1/σt'; otherwise a copy goes on top of it, 2·max 1/σt' thick (at least
+  // 0.1 mm), and the stack gets that much deeper. Identical layers are the homogeneous
+  // medium, so a split of a stack's layer into halves, or of a semi-infinite medium under
+  // the default model (mc-table: the stack's base model), keeps the look until a layer is
+  // edited. If the new stack is refused, a medium stays one medium. remove_layer drops
+  // layer `at`; the last layer left makes the material one medium again, under the
   // default model. move_layer swaps layer `at` with the one above (by = -1) or below
   // (+1). set_layers replaces the stack (`sss-viewer --test-edit layers=FILE.json`). Each
   // applies the result (false: the stack, e.g. a semi-infinite layer moved up, is not

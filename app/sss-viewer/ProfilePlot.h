@@ -17,7 +17,8 @@ struct ProfilePlot {
   std::vector<Rgb> fit_rR;      // r·R̃(r) of the fit
   std::vector<Rgb> rel_error;   // |fit − model| / model (0 where the model is 0)
   // r·T(r) of the model at the same radii: the light leaving the far face of a slab or of
-  // a stack with a finite bottom (SssMaterial::transmits()); empty for a half-space.
+  // a stack with a finite bottom (SssMaterial::transmits()); empty for a half-space and
+  // for a model that gives a slab no T(r).
   std::vector<Rgb> model_rT;
   Rgb fit_relative_error{};     // the fit's own L2 measure (GaussianFit::relative_error)
 };

@@ -52,15 +52,17 @@ double run_once(const app::SssSpec& spec) {
   return ms;
 }
 
-double one_medium_ms() {  // the baseline: the mean of 20 edits of one-medium skin1
-  static const double ms = [] {
-    const app::SssSpec s = spec_of("");
-    run_once(s);  // the table's first parse
-    double sum = 0.0;
-    for (int i = 0; i < 20; ++i) sum += run_once(s);
-    return sum / 20.0;
-  }();
-  return ms;
+// The baseline: the one-medium case's mean, set when it runs (it is registered first);
+// under a filter that leaves it out, the mean of 20 edits measured here.
+double g_one_medium_ms = 0.0;
+
+double one_medium_ms() {
+  if (g_one_medium_ms > 0.0) return g_one_medium_ms;
+  const app::SssSpec s = spec_of("");
+  run_once(s);  // the table's first parse
+  double sum = 0.0;
+  for (int i = 0; i < 20; ++i) sum += run_once(s);
+  return g_one_medium_ms = sum / 20.0;
 }
 
 void BM_RefitEdit(benchmark::State& state, std::string layers) {
@@ -73,6 +75,7 @@ void BM_RefitEdit(benchmark::State& state, std::string layers) {
     state.SetIterationTime(ms / 1000.0);
   }
   const double mean = total / static_cast<double>(state.iterations());
+  if (layers.empty()) g_one_medium_ms = mean;
   state.counters["fit_ms"] = mean;
   state.counters["vs_one_medium"] = mean / one_medium_ms();
 }

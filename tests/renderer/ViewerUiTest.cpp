@@ -43,6 +43,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <variant>
@@ -409,13 +410,13 @@ struct LayerEditorFixture {
   std::size_t index = 0;  // the edited material (the first SSS one)
   std::unique_ptr<MaterialEditor> ed;
 
-  LayerEditorFixture() {
+  explicit LayerEditorFixture(std::optional<scene::SssMaterial> material = std::nullopt) {
     for (std::size_t i = 0; i < scene.materials.size(); ++i)
       if (scene.materials[i].sss.enabled) {
         index = i;
         break;
       }
-    scene.materials[index].sss = scene::preset_sss_material("skin1");  // mc-table
+    scene.materials[index].sss = material ? *material : scene::preset_sss_material("skin1");
     ed = std::make_unique<MaterialEditor>(scene, 17, [this](app::FitRequest& q, app::FitResult& r) {
       app::FitWorker::compute_default(q, r);
       std::lock_guard lock(mutex);
@@ -525,6 +526,8 @@ TEST(LayerEditor, ReordersRemovesAndRefusesWhatIsNotAStack) {
 
   EXPECT_FALSE(f.ed->move_layer(0, 0, +1));  // the semi-infinite base would be on top
   EXPECT_NE(f.edit().error.find("layers[0].thickness_mm"), std::string::npos) << f.edit().error;
+  ASSERT_TRUE(f.ed->wait_idle(120s));
+  EXPECT_EQ(f.computed, computed);  // nothing was submitted
   EXPECT_FALSE(f.ed->move_layer(0, 0, -1));  // nothing above the top
   f.edit().layers[0].thickness_mm = 1.0f;    // the user gives it a thickness ...
   ASSERT_TRUE(f.ed->apply(0)) << f.edit().error;  // ... and the swapped stack is valid
@@ -559,6 +562,36 @@ TEST(LayerEditor, ReordersRemovesAndRefusesWhatIsNotAStack) {
   ASSERT_TRUE(f.ed->select_preset(0, preset("marble")));
   EXPECT_TRUE(f.edit().layers.empty());
   EXPECT_TRUE(f.resolved().layers.empty());
+}
+
+// A stack read from the scene has no offered model of its own: when it becomes one medium
+// again (a preset chosen, or its layers removed) that medium gets the default model, not
+// the first entry of the menu. And a medium that cannot be a layer (a slab thinner than
+// its 1/σt', fine under mc-table) stays the medium it was when add_layer is refused.
+TEST(LayerEditor, AStackFromTheSceneBecomesOneMediumUnderTheDefaultModel) {
+  const auto parsed = scene::parse_sss_extras_text(R"({"layers": [
+      {"thickness_mm": 0.25, "sigma_a": [0.3, 0.5, 0.8], "sigma_s": 8, "eta": 1.4},
+      {"sigma_a": 0.02, "sigma_s": 2, "eta": 1.4}]})");
+  ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(parsed));
+  for (const bool by_preset : {true, false}) {
+    LayerEditorFixture f(std::get<scene::SssMaterial>(parsed));
+    ASSERT_EQ(f.edit().layers.size(), 2u);
+    if (by_preset)
+      ASSERT_TRUE(f.ed->select_preset(0, preset("marble"))) << f.edit().error;
+    else
+      ASSERT_TRUE(f.ed->remove_layer(0, 1)) << f.edit().error;
+    const scene::SssMaterial one = f.resolved();
+    EXPECT_TRUE(one.layers.empty());
+    EXPECT_EQ(one.model, profiles::kDefaultModel) << (by_preset ? "preset" : "removed");
+  }
+  LayerEditorFixture thin;
+  thin.edit().thickness_mm = 0.5f;  // skin1's red 1/σt' is over 1 mm
+  thin.edit().kind = SourceKind::Coefficients;  // as the thickness field's edit does
+  ASSERT_TRUE(thin.ed->apply(0)) << thin.edit().error;
+  EXPECT_FALSE(thin.ed->add_layer(0, 0));
+  EXPECT_NE(thin.edit().error.find("thickness_mm"), std::string::npos) << thin.edit().error;
+  EXPECT_TRUE(thin.edit().layers.empty());
+  EXPECT_EQ(thin.edit().kind, SourceKind::Coefficients);
 }
 
 // The panel draws a stack's rows (ImGui checks its ID and disabled stacks in debug
