@@ -21,9 +21,9 @@ double total_at(Model model, double alpha_p, double eta, double g, double thickn
                 const ModelOptions& opt) {
   // mc-table: the interpolated tabulated total, exactly what its profile's
   // total_reflectance() returns, without building R(r) (64 bisection steps per channel).
-  // The thickness is ignored as make_profile ignores it (semi-infinite).
-  if (model == Model::McTable)
-    return mc_table_total(optical_units(alpha_p, eta, g), shipped_mc_table()).total;
+  // The thickness is ignored as make_profile ignores it (semi-infinite). Any g: the total
+  // interpolated over the anisotropic layers, as the profile is.
+  if (model == Model::McTable) return mc_table_total_any_g(optical_units(alpha_p, eta, g)).total;
   return make_profile(model, optical_units(alpha_p, eta, g), thickness_mfp, opt)
       ->total_reflectance();
 }

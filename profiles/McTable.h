@@ -47,7 +47,23 @@
 
 namespace sss::profiles {
 
+// The real single-scattering albedo α = σs/σt of a medium with reduced albedo α' and
+// Henyey-Greenstein g: σs' = σs(1 - g) and σt' = σa + σs' give α' = α(1 - g)/(1 - α g),
+// so α = α'/(1 - g + g α'). Its reduced mean free path is 1/σt' = 1/(σt (1 - α g)).
+inline double real_albedo(double albedo_reduced, double g) {
+  return albedo_reduced / (1.0 - g + g * albedo_reduced);
+}
+
 struct McTableData {
+  // The Henyey-Greenstein g of the walks (format version 3; 0 for version 2). With g != 0
+  // the walks scatter with the real phase function (issue 18 part 4) instead of the
+  // similarity medium's isotropic one; the axes are still η and the reduced albedo α',
+  // r still in reduced mean free paths. The once-scattered light then no longer scales as
+  // α' q of one q per η (the reduced radius of an exit depends on α), so single_total
+  // and single_flux hold the once-scattered flux itself per node, laid out as total and
+  // flux ([eta][albedo], [eta][albedo][bin]).
+  double g = 0.0;
+  bool single_per_node() const { return g != 0.0; }
   std::uint64_t photons = 0;        // random walks behind every node
   std::uint64_t seed = 0;
   std::uint64_t chunk_photons = 0;  // walks per batch: standard errors are batch-means
@@ -93,12 +109,26 @@ struct McTableOptions {
   // the start: below roulette_weight it survives with probability roulette_survival.
   double roulette_weight = 0.05;
   double roulette_survival = 0.1;
+  // Henyey-Greenstein g of the walks, in (-1, 1). 0: the isotropic walk of the shipped
+  // table, in reduced units with albedo scaling over α'. Otherwise the walk runs in real
+  // units (σt = 1) with HG scattering; node a's real albedo is real_albedo(α'_a, g) (one
+  // walk still serves every node by albedo scaling: flights do not depend on α), and an
+  // exit at real radius r lands in node a's annulus of r (1 - α_a g), its radius in
+  // reduced mean free paths.
+  double g = 0.0;
   // Called after each batch with the fraction done; calls never overlap.
   std::function<void(double)> progress;
 };
 
 // The grid and budget of the shipped table (the `sss-fit mc-table` defaults).
 McTableOptions shipped_mc_table_options();
+// The g nodes of the shipped anisotropic layers (profiles/data/mc_table_g.bin), ascending;
+// the isotropic table is the node g = 0.
+const std::vector<double>& shipped_mc_table_g_values();
+// The grid and budget of the shipped layer at g (`sss-fit mc-table --anisotropic`): a
+// coarser grid than the isotropic table's, to keep the shipped data small (profiles/data/
+// README.md).
+McTableOptions shipped_mc_table_g_options(double g);
 
 // Runs the walks. Deterministic for a seed whatever `threads` is. Throws
 // std::invalid_argument naming the field for a bad grid or budget.
@@ -109,8 +139,16 @@ std::string serialize_mc_table(const McTableData& t);
 // Throws std::invalid_argument "NAME: FIELD: why" for anything malformed.
 McTableData parse_mc_table(std::string_view bytes, std::string_view name);
 
+// A set of tables (the anisotropic layers, profiles/data/mc_table_g.bin): each a table of
+// Henyey-Greenstein walks, g ascending. Layout in profiles/data/README.md.
+std::string serialize_mc_table_set(const std::vector<McTableData>& tables);
+std::vector<McTableData> parse_mc_table_set(std::string_view bytes, std::string_view name);
+
 // The table compiled into the library from profiles/data/mc_table.bin, parsed on first
 // use (thread-safe).
 const McTableData& shipped_mc_table();
+// The anisotropic layers compiled in from profiles/data/mc_table_g.bin (g ascending,
+// shipped_mc_table_g_values()), parsed on first use (thread-safe).
+const std::vector<McTableData>& shipped_mc_table_layers();
 
 }  // namespace sss::profiles

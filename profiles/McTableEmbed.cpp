@@ -9,6 +9,9 @@
 #ifndef SSS_MC_TABLE_PATH
 #error "SSS_MC_TABLE_PATH must name profiles/data/mc_table.bin (set by profiles/CMakeLists.txt)"
 #endif
+#ifndef SSS_MC_TABLE_G_PATH
+#error "SSS_MC_TABLE_G_PATH must name profiles/data/mc_table_g.bin (set by profiles/CMakeLists.txt)"
+#endif
 
 __asm__(
     ".pushsection .rodata\n"
@@ -25,4 +28,18 @@ __asm__(
     ".type sss_mc_table_size, @object\n"
     "sss_mc_table_size:\n"
     ".8byte sss_mc_table_end - sss_mc_table_begin\n"
+    // The anisotropic layers (issue 18 part 4), the same way.
+    ".balign 16\n"
+    ".globl sss_mc_table_g_begin\n"
+    ".hidden sss_mc_table_g_begin\n"
+    ".type sss_mc_table_g_begin, @object\n"
+    "sss_mc_table_g_begin:\n"
+    ".incbin \"" SSS_MC_TABLE_G_PATH "\"\n"
+    "sss_mc_table_g_end:\n"
+    ".balign 8\n"
+    ".globl sss_mc_table_g_size\n"
+    ".hidden sss_mc_table_g_size\n"
+    ".type sss_mc_table_g_size, @object\n"
+    "sss_mc_table_g_size:\n"
+    ".8byte sss_mc_table_g_end - sss_mc_table_g_begin\n"
     ".popsection\n");

@@ -17,6 +17,8 @@ extern "C" {
 // their count computed by the assembler (no pointer subtraction across two objects).
 extern const char sss_mc_table_begin[];
 extern const unsigned long long sss_mc_table_size;
+extern const char sss_mc_table_g_begin[];
+extern const unsigned long long sss_mc_table_g_size;
 }
 
 namespace sss::profiles {
@@ -31,6 +33,12 @@ constexpr char kMagic[8] = {'S', 'S', 'S', 'M', 'C', 'T', 'B', 'L'};
 // 2: adds the once-scattered flux per unit albedo and the multiply-scattered errors
 // (McTable.h). Version 1 files lack them and are refused: regenerate with sss-fit mc-table.
 constexpr std::uint32_t kVersion = 2;
+// 3: a table of Henyey-Greenstein walks (g != 0, issue 18 part 4): g after the roulette
+// settings, and the once-scattered arrays per node (McTableData::g). Version 2 is still
+// what a g = 0 table is written as, so the shipped isotropic table keeps its bytes.
+constexpr std::uint32_t kVersionAnisotropic = 3;
+constexpr char kSetMagic[8] = {'S', 'S', 'S', 'M', 'C', 'T', 'G', 'S'};
+constexpr std::uint32_t kSetVersion = 1;
 
 // FNV-1a, 64 bit (Fowler, Noll & Vo; offset basis and prime as published by the authors).
 std::uint64_t fnv1a(std::string_view bytes) {
@@ -91,6 +99,7 @@ class Reader {
     return v;
   }
   std::size_t pos() const { return pos_; }
+  void skip(std::size_t n) { pos_ += n; }
 
  private:
   std::string_view b_;
@@ -116,7 +125,7 @@ void check_axis(const Reader& r, const std::vector<double>& v, const char* field
 std::string serialize_mc_table(const McTableData& t) {
   Writer w;
   w.s.append(kMagic, sizeof(kMagic));
-  w.put<std::uint32_t>(kVersion);
+  w.put<std::uint32_t>(t.single_per_node() ? kVersionAnisotropic : kVersion);
   w.put<std::uint32_t>(static_cast<std::uint32_t>(t.eta.size()));
   w.put<std::uint32_t>(static_cast<std::uint32_t>(t.albedo.size()));
   w.put<std::uint32_t>(static_cast<std::uint32_t>(t.r_edges.size()));
@@ -125,6 +134,7 @@ std::string serialize_mc_table(const McTableData& t) {
   w.put<std::uint64_t>(t.chunk_photons);
   w.put<double>(t.roulette_weight);
   w.put<double>(t.roulette_survival);
+  if (t.single_per_node()) w.put<double>(t.g);
   w.put_doubles(t.eta);
   w.put_doubles(t.albedo);
   w.put_doubles(t.r_edges);
@@ -160,10 +170,10 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
   Reader r(body, name);
   r.get<std::uint64_t>("magic");
   const auto version = r.get<std::uint32_t>("version");
-  if (version != kVersion)
+  if (version != kVersion && version != kVersionAnisotropic)
     r.fail("version", "format " + std::to_string(version) + " is not supported (this build reads " +
-                          std::to_string(kVersion) +
-                          (version < kVersion ? ", which adds the once-scattered flux; regenerate "
+                          std::to_string(kVersion) + " and " + std::to_string(kVersionAnisotropic) +
+                          (version < kVersion ? "; 2 adds the once-scattered flux: regenerate "
                                                 "the table with sss-fit mc-table)"
                                               : ")"));
   McTableData t;
@@ -186,6 +196,11 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
     r.fail("roulette_weight", "must lie in (0, 1)");
   if (!(t.roulette_survival > 0.0 && t.roulette_survival < 1.0))
     r.fail("roulette_survival", "must lie in (0, 1)");
+  if (version == kVersionAnisotropic) {
+    t.g = r.get<double>("g");
+    if (!(t.g > -1.0 && t.g < 1.0) || t.g == 0.0)
+      r.fail("g", "a version 3 table must have g in (-1, 1) and not 0, got " + message_number(t.g));
+  }
   t.eta = r.get_array<double>("eta", ne);
   t.albedo = r.get_array<double>("albedo", na);
   t.r_edges = r.get_array<double>("r_edges", nedges);
@@ -197,21 +212,23 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
   const std::size_t nb = nedges - 1;
   t.total = r.get_array<double>("total", ne * na);
   t.total_se = r.get_array<double>("total_se", ne * na);
-  t.single_total = r.get_array<double>("single_total", ne);
-  t.single_total_se = r.get_array<double>("single_total_se", ne);
+  // Once-scattered: per η (version 2) or per node (version 3).
+  const std::size_t ns = t.single_per_node() ? ne * na : ne;
+  t.single_total = r.get_array<double>("single_total", ns);
+  t.single_total_se = r.get_array<double>("single_total_se", ns);
   t.multiple_total_se = r.get_array<double>("multiple_total_se", ne * na);
   t.flux = r.get_array<float>("flux", ne * na * nb);
   t.flux_se = r.get_array<float>("flux_se", ne * na * nb);
-  t.single_flux = r.get_array<float>("single_flux", ne * nb);
-  t.single_flux_se = r.get_array<float>("single_flux_se", ne * nb);
+  t.single_flux = r.get_array<float>("single_flux", ns * nb);
+  t.single_flux_se = r.get_array<float>("single_flux_se", ns * nb);
   t.multiple_flux_se = r.get_array<float>("multiple_flux_se", ne * na * nb);
   for (std::size_t i = 0; i < t.total.size(); ++i)
     if (!(t.total[i] >= 0.0 && t.total[i] <= 1.0) || !(t.total_se[i] >= 0.0))
       r.fail("total", "node " + std::to_string(i) + " is outside [0, 1] or has a negative error");
   for (std::size_t i = 0; i < t.single_total.size(); ++i)
     if (!(t.single_total[i] >= 0.0 && t.single_total[i] <= 1.0) || !(t.single_total_se[i] >= 0.0))
-      r.fail("single_total",
-             "eta " + std::to_string(i) + " is outside [0, 1] or has a negative error");
+      r.fail("single_total", std::string(t.single_per_node() ? "node " : "eta ") +
+                                 std::to_string(i) + " is outside [0, 1] or has a negative error");
   auto non_negative = [&](const std::vector<double>& v, const char* field) {
     for (std::size_t i = 0; i < v.size(); ++i)
       if (!(v[i] >= 0.0)) r.fail(field, "entry " + std::to_string(i) + " is negative");
@@ -228,11 +245,73 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
 }
 
 double McTableData::multiple_flux(std::size_t e, std::size_t a, std::size_t b) const {
+  if (single_per_node()) return std::max(0.0, flux[slot(e, a, b)] - single_flux[slot(e, a, b)]);
   return std::max(0.0, flux[slot(e, a, b)] - albedo[a] * single_flux[single_slot(e, b)]);
 }
 
 double McTableData::multiple_total(std::size_t e, std::size_t a) const {
+  if (single_per_node()) return std::max(0.0, total[node(e, a)] - single_total[node(e, a)]);
   return std::max(0.0, total[node(e, a)] - albedo[a] * single_total[e]);
+}
+
+std::string serialize_mc_table_set(const std::vector<McTableData>& tables) {
+  Writer w;
+  w.s.append(kSetMagic, sizeof(kSetMagic));
+  w.put<std::uint32_t>(kSetVersion);
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(tables.size()));
+  for (const McTableData& t : tables) {
+    const std::string one = serialize_mc_table(t);
+    w.put<std::uint64_t>(one.size());
+    w.s += one;
+  }
+  w.put<std::uint64_t>(fnv1a(w.s));
+  return std::move(w.s);
+}
+
+std::vector<McTableData> parse_mc_table_set(std::string_view bytes, std::string_view name) {
+  {
+    const Reader whole(bytes, name);
+    if (bytes.size() < sizeof(kSetMagic) ||
+        std::memcmp(bytes.data(), kSetMagic, sizeof(kSetMagic)) != 0)
+      whole.fail("magic", "not a set of mc-tables (expected the 8 bytes SSSMCTGS)");
+    if (bytes.size() < 8 + sizeof(std::uint64_t)) whole.fail("checksum", "the file ends early");
+    std::uint64_t stored;
+    std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
+    if (stored != fnv1a(bytes.substr(0, bytes.size() - 8)))
+      whole.fail("checksum", "the FNV-1a checksum of the contents does not match (file damaged)");
+  }
+  const std::string_view body = bytes.substr(0, bytes.size() - 8);
+  Reader r(body, name);
+  r.get<std::uint64_t>("magic");
+  const auto version = r.get<std::uint32_t>("version");
+  if (version != kSetVersion)
+    r.fail("version", "set format " + std::to_string(version) + " is not supported (this build "
+                      "reads " + std::to_string(kSetVersion) + ")");
+  const std::size_t count = r.get<std::uint32_t>("count");
+  if (count < 1 || count > 64) r.fail("count", "must lie in [1, 64], got " + std::to_string(count));
+  std::vector<McTableData> out;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string field = "table " + std::to_string(i);
+    const auto size = r.get<std::uint64_t>(field.c_str());
+    if (size > body.size() - r.pos())
+      r.fail(field, "its size (" + std::to_string(size) + " bytes) runs past the end of the file");
+    out.push_back(parse_mc_table(body.substr(r.pos(), size),
+                                 std::string(name) + " (" + field + ")"));
+    r.skip(size);
+    if (!out.back().single_per_node())
+      r.fail(field, "must be a table of Henyey-Greenstein walks (format version 3, g != 0)");
+    if (i > 0 && !(out.back().g > out[i - 1].g)) r.fail(field, "g must be strictly ascending");
+  }
+  if (r.pos() != body.size())
+    r.fail("size", std::to_string(body.size() - r.pos()) + " unexpected bytes before the checksum");
+  return out;
+}
+
+const std::vector<McTableData>& shipped_mc_table_layers() {
+  static const std::vector<McTableData> layers = parse_mc_table_set(
+      std::string_view(sss_mc_table_g_begin, static_cast<std::size_t>(sss_mc_table_g_size)),
+      "profiles/data/mc_table_g.bin (compiled in)");
+  return layers;
 }
 
 const McTableData& shipped_mc_table() {

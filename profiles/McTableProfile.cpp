@@ -143,12 +143,14 @@ std::size_t check_table(const McTableData& t, bool apart) {
       t.total_se.size() != nodes || t.flux.size() != nodes * bins || t.flux_se.size() != nodes * bins)
     throw std::invalid_argument(
         "mc-table: the table's arrays do not match its axes (eta, albedo, at least 4 radial bins)");
-  if (apart && (t.single_total.size() != ne || t.single_total_se.size() != ne ||
-                t.single_flux.size() != ne * bins || t.single_flux_se.size() != ne * bins ||
+  // Once-scattered arrays per η (version 2), or per node (an anisotropic layer).
+  const std::size_t ns = t.single_per_node() ? nodes : ne;
+  if (apart && (t.single_total.size() != ns || t.single_total_se.size() != ns ||
+                t.single_flux.size() != ns * bins || t.single_flux_se.size() != ns * bins ||
                 t.multiple_total_se.size() != nodes || t.multiple_flux_se.size() != nodes * bins))
     throw std::invalid_argument(
         "mc-table: single scattering apart needs the table's once-scattered arrays (format "
-        "version 2), sized to its axes");
+        "version 2 or 3), sized to its axes");
   const double step = std::log(t.r_edges[2] / t.r_edges[1]);
   if (t.r_edges[0] != 0.0 || !(t.r_edges[1] > 0.0) || !(step > 0.0))
     throw std::invalid_argument("mc-table: r_edges must be 0, then ascending radii");
@@ -667,6 +669,109 @@ double McTableProfile::reflectance(double r) const {
   const double t = v - static_cast<double>(j);
   const double* a = &coef_[4 * j];
   return std::exp(a[0] + t * (a[1] + t * (a[2] + t * a[3])));
+}
+
+McTableGBracket mc_table_g_bracket(double g) {
+  const McTableData& iso = shipped_mc_table();
+  const std::vector<McTableData>& layers = shipped_mc_table_layers();
+  McTableGBracket b;
+  b.lo = &iso;
+  if (!(g > 0.0)) return b;  // g <= 0 (and NaN, which Coefficients::validate refuses)
+  double g_prev = 0.0;
+  for (const McTableData& layer : layers) {
+    if (g == layer.g) {
+      b.lo = &layer;
+      return b;
+    }
+    if (g < layer.g) {
+      b.hi = &layer;
+      b.t = (std::log1p(-g) - std::log1p(-g_prev)) / (std::log1p(-layer.g) - std::log1p(-g_prev));
+      return b;
+    }
+    b.lo = &layer;
+    g_prev = layer.g;
+  }
+  return b;  // above the last layer: that layer alone
+}
+
+std::optional<std::string> mc_table_g_warning(double g) {
+  const std::vector<McTableData>& layers = shipped_mc_table_layers();
+  const double g_max = layers.empty() ? 0.0 : layers.back().g;
+  if (g < 0.0)
+    return "g " + str(g) + " < 0: mc-table tabulates 0 <= g <= " + str(g_max) +
+           "; looked up in the isotropic table by the similarity relation (sigma_s' = sigma_s "
+           "(1 - g))";
+  if (g > g_max)
+    return "g " + str(g) + " > " + str(g_max) + ": mc-table tabulates 0 <= g <= " + str(g_max) +
+           "; looked up in the g = " + str(g_max) +
+           " layer by the similarity relation (its reduced coefficients)";
+  return std::nullopt;
+}
+
+McTableTotal mc_table_total_any_g(const Coefficients& c, bool single_scattering_apart) {
+  const McTableGBracket b = mc_table_g_bracket(c.g);
+  const McTableTotal lo = mc_table_total(c, *b.lo, single_scattering_apart);
+  if (!b.hi) return lo;
+  const McTableTotal hi = mc_table_total(c, *b.hi, single_scattering_apart);
+  // The layers' walks share their seed, so their errors may be correlated: the weighted
+  // sum bounds the interpolated error whatever the correlation.
+  return {(1.0 - b.t) * lo.total + b.t * hi.total,
+          (1.0 - b.t) * lo.stderr_ + b.t * hi.stderr_};
+}
+
+namespace {
+
+// R(r) between two g nodes: (1 - t) R_lo + t R_hi, every quantity likewise.
+class McTableGBlend final : public RadialProfile {
+ public:
+  McTableGBlend(const Coefficients& c, const McTableGBracket& b, bool apart)
+      : lo_(c, *b.lo, apart), hi_(c, *b.hi, apart), t_(b.t) {}
+  double reflectance(double r) const override {
+    return (1.0 - t_) * lo_.reflectance(r) + t_ * hi_.reflectance(r);
+  }
+  double total_reflectance() const override {
+    return (1.0 - t_) * lo_.total_reflectance() + t_ * hi_.total_reflectance();
+  }
+  double support_radius() const override {
+    return std::max(lo_.support_radius(), hi_.support_radius());
+  }
+  double inner_radius() const override { return lo_.inner_radius(); }
+
+ private:
+  McTableProfile lo_, hi_;
+  double t_;
+};
+
+}  // namespace
+
+std::unique_ptr<RadialProfile> make_mc_table_profile(const Coefficients& c,
+                                                     bool single_scattering_apart) {
+  if (auto e = c.validate()) throw std::invalid_argument(e->what());
+  McTableGBracket b = mc_table_g_bracket(c.g);
+  // A layer's walks (2^18, a sixteenth of the isotropic table's) can be too few to shape
+  // R(r) at its darkest nodes for a high η and g: at α' = 0.01 and g = 0.95 a walk's real
+  // albedo is 0.17 and HG sends almost nothing back up, and at η = 2.5 little of that
+  // leaves. Where a layer's lookup finds fewer than two reliable annuli, the next node
+  // towards g = 0 stands in for it (ultimately the isotropic table, 2^22 walks), so every
+  // medium that had a profile before the layers still has one.
+  const auto builds = [&](const McTableData& t) {
+    try {
+      McTableProfile(c, t, single_scattering_apart);
+      return true;
+    } catch (const std::invalid_argument& e) {
+      if (std::string(e.what()).rfind("mc-table: fewer than two annuli", 0) != 0) throw;
+      return false;
+    }
+  };
+  if (b.hi && !builds(*b.hi)) b.hi = nullptr;
+  while (b.lo != &shipped_mc_table() && !builds(*b.lo)) {
+    const std::vector<McTableData>& layers = shipped_mc_table_layers();
+    const auto k = static_cast<std::size_t>(b.lo - layers.data());
+    b.lo = k == 0 ? &shipped_mc_table() : &layers[k - 1];
+    b.hi = nullptr;
+  }
+  if (!b.hi) return std::make_unique<McTableProfile>(c, *b.lo, single_scattering_apart);
+  return std::make_unique<McTableGBlend>(c, b, single_scattering_apart);
 }
 
 }  // namespace sss::profiles

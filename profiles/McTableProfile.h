@@ -26,11 +26,13 @@
 // errors; ln(flux/α'²) and total/α'² (in value) are interpolated and the first slice is
 // scaled by (α'/α'_0)² below the first node (the part is O(α'²)); inside the first
 // reliable annulus R grows like ln(1/r) instead of 1/r (no single scattering left).
-// Everything else is as above. For g ≠ 0 what is left out is the once-scattered light of
-// the similarity medium (isotropic, α'), not that of the real phase function, which the
-// renderer's S(1) adds: the multiply-scattered totals still agree with the analog walk's
-// real-g exits after two or more events within 0.33% on skin1 R and B, ketchup R and
-// marble G (tests/profiles/test_single_scattering_apart.cpp).
+// Everything else is as above. With the isotropic table and g ≠ 0 what is left out is the
+// once-scattered light of the similarity medium (isotropic, α'), not that of the real
+// phase function, which the renderer's S(1) adds: the multiply-scattered totals still
+// agree with the analog walk's real-g exits after two or more events within 0.33% on
+// skin1 R and B, ketchup R and marble G (tests/profiles/test_single_scattering_apart.cpp).
+// With an anisotropic layer (McTableData::g != 0, used by make_mc_table_profile for
+// 0 < g <= 0.95) it is the real phase function's once-scattered light, stored per node.
 //
 // Evaluation is a log, a table index computed from it, a cubic and an exp: no search.
 #pragma once
@@ -40,6 +42,9 @@
 #include "profiles/Profile.h"
 
 #include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace sss::profiles {
@@ -61,6 +66,30 @@ struct McTableTotal {
 };
 McTableTotal mc_table_total(const Coefficients& c, const McTableData& table,
                             bool single_scattering_apart = false);
+
+// Anisotropic media (issue 18 part 4). The isotropic table (g = 0) and the shipped layers
+// of Henyey-Greenstein walks (shipped_mc_table_layers(), g = 0.3, 0.6, 0.8, 0.9, 0.95) are
+// nodes on a g axis. A medium is looked up at its reduced coefficients (α', η, σt') in the
+// two nodes that bracket its g, and R(r) and the totals are interpolated linearly in
+// ln(1 - g) between them (the nodes are nearly uniform in it; McTableGenerator.cpp). At a
+// node it is that node's lookup. Outside [0, 0.95] there is no node to interpolate to: a
+// medium with g > 0.95 is looked up in the g = 0.95 layer and one with g < 0 in the
+// isotropic table, by the similarity relation from there; mc_table_g_warning says so.
+struct McTableGBracket {
+  const McTableData* lo = nullptr;
+  const McTableData* hi = nullptr;  // null: lo alone
+  double t = 0.0;                   // R = (1 - t) R_lo + t R_hi
+};
+McTableGBracket mc_table_g_bracket(double g);
+// A one-line warning for a g outside the tabulated [0, 0.95] (what the lookup does
+// instead), or nothing.
+std::optional<std::string> mc_table_g_warning(double g);
+// mc_table_total over the g axis (as make_mc_table_profile interpolates it).
+McTableTotal mc_table_total_any_g(const Coefficients& c, bool single_scattering_apart = false);
+// The profile of model mc-table for a medium of any g: a McTableProfile at a node, else
+// the interpolation of two.
+std::unique_ptr<RadialProfile> make_mc_table_profile(const Coefficients& c,
+                                                     bool single_scattering_apart = false);
 
 class McTableProfile final : public RadialProfile {
  public:

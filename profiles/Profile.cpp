@@ -107,7 +107,8 @@ std::unique_ptr<RadialProfile> make_profile(Model model, const Coefficients& c,
     // glTF "thickness"), and a user who switches such a material to mc-table in the
     // viewer's menu expects its reflectance profile, as with the other semi-infinite
     // models, not an error. The multipole is the model for a slab's own profile.
-    case Model::McTable: return std::make_unique<McTableProfile>(c, opt.single_scattering_apart);
+    // Any g: the isotropic table and the anisotropic layers (McTableProfile.h).
+    case Model::McTable: return make_mc_table_profile(c, opt.single_scattering_apart);
     // Quantized diffusion (d'Eon & Irving 2011): semi-infinite, as the dipoles.
     case Model::Qd: return std::make_unique<QuantizedDiffusion>(c);
     case Model::Layered:

@@ -37,7 +37,7 @@ export LD_PRELOAD="$PWD/$BUILD_DIR/asan-nodlclose.so${LD_PRELOAD:+:$LD_PRELOAD}"
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:strict_init_order=1:verify_asan_link_order=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
-STATISTICAL='^(GroundTruthPhysics\.|GroundTruthSampling\.DirectBeams|Models/ProbeEdgeTest\.|ReferenceSuiteTest\.|TextureSpaceTest\.(EdgeMatches|StretchedUvs)|Presets/McTableAccuracyProfile\.|McTableAccuracyInterpolation\.|OffNode/McTableAccuracyTotal\.|Nodes/McTableVsAnalog\.|Nodes/McTableSimilarity\.|FitBounds\.MonteCarloTable|EdgeTest\.GaussiansMatch|PointOctree\.HierarchyError)'
+STATISTICAL='^(GroundTruthPhysics\.|GroundTruthSampling\.DirectBeams|Models/ProbeEdgeTest\.|ReferenceSuiteTest\.|TextureSpaceTest\.(EdgeMatches|StretchedUvs)|Presets/McTableAccuracyProfile\.|McTableAccuracyInterpolation\.|OffNode/McTableAccuracyTotal\.|Nodes/McTableVsAnalog\.|Nodes/McTableSimilarity\.|OffNode/McTableAnisotropicAccuracy\.|FitBounds\.MonteCarloTable|EdgeTest\.GaussiansMatch|PointOctree\.HierarchyError)'
 exclude=()
 [ "${SSS_ASAN_ALL:-0}" = 1 ] || exclude=(-E "$STATISTICAL")
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j"$(nproc)" --timeout 1800 "${exclude[@]}" "$@"

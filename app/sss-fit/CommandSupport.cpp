@@ -1,11 +1,13 @@
 #include "CommandSupport.h"
 
+#include "profiles/McTableProfile.h"
 #include "renderer/image/AtomicFile.h"
 #include "renderer/scene/SssLayers.h"
 
 #include <cstdio>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -53,6 +55,16 @@ profiles::RgbProfile ProfileSource::make_profile(const profiles::ModelOptions& o
       // (a layer thinner than its reduced mean free path): say which file.
       throw std::invalid_argument("--layers " + layers_file + ": " + e.what());
     }
+  }
+  if (model == profiles::Model::McTable) {
+    // g outside the tabulated range: the lookup falls back to the similarity relation.
+    // Said once per distinct g (the channels usually share it).
+    std::optional<double> said;
+    for (int c = 0; c < 3; ++c)
+      if (const auto w = profiles::mc_table_g_warning(medium.g[c]); w && said != medium.g[c]) {
+        std::cerr << "sss-fit: warning: g[" << "RGB"[c] << "]: " << *w << '\n';
+        said = medium.g[c];
+      }
   }
   return profiles::RgbProfile(model, medium, opt);
 }

@@ -6,6 +6,7 @@
 #include "MediumArgs.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace sss::app {
@@ -46,6 +47,8 @@ struct McTableArgs {
   std::uint64_t photons = 0;  // 0: the shipped budget
   std::uint64_t seed = 1;
   int threads = 0;
+  bool anisotropic = false;       // every shipped layer, as a set
+  std::optional<double> g;        // one layer at g
 };
 
 int run_presets(bool json);

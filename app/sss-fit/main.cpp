@@ -95,6 +95,15 @@ int main(int argc, char** argv) {
   mc_table->add_option("--seed", ta.seed, "Seed (default 1, the shipped table's)");
   mc_table->add_option("--threads", ta.threads, "Threads (0: all cores); the file does not depend on it")
       ->check(CLI::Range(0, 1024));
+  auto* aniso = mc_table->add_flag(
+      "--anisotropic", ta.anisotropic,
+      "Write the anisotropic layers instead (Henyey-Greenstein walks at g = 0.3, 0.6, 0.8, "
+      "0.9, 0.95: profiles/data/mc_table_g.bin)");
+  mc_table->add_option("--g", ta.g,
+                       "One anisotropic layer at this Henyey-Greenstein g, on the layers' grid "
+                       "(a version 3 table; for experiments and tests)")
+      ->check(CLI::Range(-0.99, 0.99))
+      ->excludes(aniso);
 
   if (const auto stop = parse_command_line(app, argc, argv, "sss-fit")) return *stop;
 

@@ -171,8 +171,13 @@ TEST(McTableFormat, ParseRefusesMalformedFilesNamingTheField) {
   expect_parse_error(rechecksum(s), "eta", "truncated inside eta, re-checksummed", "ends early");
 
   s = good;
+  s[kVersionAt] = 4;
+  expect_parse_error(rechecksum(s), "version", "wrong version", "4 is not supported");
+  // Version 3 (an anisotropic layer) carries g after the roulette settings: a version 2
+  // body relabelled 3 reads its first η as g (1: outside (-1, 1)).
+  s = good;
   s[kVersionAt] = 3;
-  expect_parse_error(rechecksum(s), "version", "wrong version", "3 is not supported");
+  expect_parse_error(rechecksum(s), "g", "version 3 without g", "must have g in (-1, 1)");
   // A version 1 file (no once-scattered part) is refused with what to do about it.
   s[kVersionAt] = 1;
   expect_parse_error(rechecksum(s), "version", "version 1", "1 is not supported");
