@@ -120,6 +120,21 @@ void check_axis(const Reader& r, const std::vector<double>& v, const char* field
   }
 }
 
+// A table or a set: checks the 8-byte magic and the trailing FNV-1a checksum, and returns
+// everything but the checksum (a body that is short must not read the checksum as data).
+std::string_view checked_body(std::string_view bytes, std::string_view name, const char (&magic)[8],
+                              const char* not_magic) {
+  const Reader whole(bytes, name);
+  if (bytes.size() < sizeof(magic) || std::memcmp(bytes.data(), magic, sizeof(magic)) != 0)
+    whole.fail("magic", not_magic);
+  if (bytes.size() < 8 + sizeof(std::uint64_t)) whole.fail("checksum", "the file ends early");
+  std::uint64_t stored;
+  std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
+  if (stored != fnv1a(bytes.substr(0, bytes.size() - 8)))
+    whole.fail("checksum", "the FNV-1a checksum of the contents does not match (file damaged)");
+  return bytes.substr(0, bytes.size() - 8);
+}
+
 }  // namespace
 
 std::string serialize_mc_table(const McTableData& t) {
@@ -155,18 +170,8 @@ std::string serialize_mc_table(const McTableData& t) {
 }
 
 McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
-  {
-    const Reader whole(bytes, name);
-    if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
-      whole.fail("magic", "not an mc-table file (expected the 8 bytes SSSMCTBL)");
-    if (bytes.size() < 8 + sizeof(std::uint64_t)) whole.fail("checksum", "the file ends early");
-    std::uint64_t stored;
-    std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
-    if (stored != fnv1a(bytes.substr(0, bytes.size() - 8)))
-      whole.fail("checksum", "the FNV-1a checksum of the contents does not match (file damaged)");
-  }
-  // Everything but the checksum: a body that is short must not read the checksum as data.
-  const std::string_view body = bytes.substr(0, bytes.size() - 8);
+  const std::string_view body =
+      checked_body(bytes, name, kMagic, "not an mc-table file (expected the 8 bytes SSSMCTBL)");
   Reader r(body, name);
   r.get<std::uint64_t>("magic");
   const auto version = r.get<std::uint32_t>("version");
@@ -269,18 +274,8 @@ std::string serialize_mc_table_set(const std::vector<McTableData>& tables) {
 }
 
 std::vector<McTableData> parse_mc_table_set(std::string_view bytes, std::string_view name) {
-  {
-    const Reader whole(bytes, name);
-    if (bytes.size() < sizeof(kSetMagic) ||
-        std::memcmp(bytes.data(), kSetMagic, sizeof(kSetMagic)) != 0)
-      whole.fail("magic", "not a set of mc-tables (expected the 8 bytes SSSMCTGS)");
-    if (bytes.size() < 8 + sizeof(std::uint64_t)) whole.fail("checksum", "the file ends early");
-    std::uint64_t stored;
-    std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
-    if (stored != fnv1a(bytes.substr(0, bytes.size() - 8)))
-      whole.fail("checksum", "the FNV-1a checksum of the contents does not match (file damaged)");
-  }
-  const std::string_view body = bytes.substr(0, bytes.size() - 8);
+  const std::string_view body = checked_body(
+      bytes, name, kSetMagic, "not a set of mc-tables (expected the 8 bytes SSSMCTGS)");
   Reader r(body, name);
   r.get<std::uint64_t>("magic");
   const auto version = r.get<std::uint32_t>("version");

@@ -188,23 +188,17 @@ class TableWalker {
       std::size_t a0 = na_;
       while (a0 > 0 && (dn - 1.0) * ln_albedo_[a0 - 1] > -50.0) --a0;
       for (std::size_t a = a0; a < na_; ++a) power_[a] = std::exp(dn * ln_albedo_[a]);
+      const bool once = n == 1;
+      // Where the exit lands: one annulus for every albedo (g = 0), or one per albedo.
       double* bin_block = nullptr;
       double* single_block = nullptr;
-      if (r < o_.r_edges.back()) {
+      if (aniso_) {
+        scaled_bins(r, a0);
+      } else if (r < o_.r_edges.back()) {
         const auto b = static_cast<std::size_t>(
             std::upper_bound(o_.r_edges.begin(), o_.r_edges.end(), r) - o_.r_edges.begin() - 1);
         bin_block = out.flux.data() + b * ne_ * na_;
         single_block = out.single_flux.data() + b * ne_;
-      }
-      const bool once = n == 1;
-      if (aniso_) {
-        a0_ = a0, mu_ = mu;
-        tally_scaled(r, once, out);
-        w_max = w_max_;
-        if (w_max < kNegligible) return;
-        n_roulette = roulette_count(w_max);
-        uz = -uz;
-        continue;
       }
       w_max = 0.0;
       for (std::size_t e = 0; e < ne_; ++e) {
@@ -214,6 +208,10 @@ class TableWalker {
         const double escaped = w * (1.0 - fr);
         weight_[e] = w * fr;
         w_max = std::max(w_max, weight_[e]);
+        if (aniso_) {
+          tally_scaled(e, escaped, a0, once, out);
+          continue;
+        }
         double* tot = out.total.data() + e * na_;
         for (std::size_t a = a0; a < na_; ++a) tot[a] += escaped * power_[a];
         if (bin_block) {
@@ -232,37 +230,32 @@ class TableWalker {
   }
 
   // g != 0: the exit at real radius r lands in node a's annulus of r·σt'(a), a different
-  // one per albedo (power_ holds α^n from a0_ up). Tallies every η and albedo, leaves the
-  // reflected weights in weight_ and their largest in w_max_.
-  void tally_scaled(double r, bool once, Chunk& out) {
+  // one per albedo: bin_[a] for the albedos from a0 up (nb_: past the last edge).
+  void scaled_bins(double r, std::size_t a0) {
     const double last = o_.r_edges.back();
-    for (std::size_t a = a0_; a < na_; ++a) {
+    for (std::size_t a = a0; a < na_; ++a) {
       const double rs = r * radial_scale_[a];
       bin_[a] = rs < last ? static_cast<std::size_t>(
                                 std::upper_bound(o_.r_edges.begin(), o_.r_edges.end(), rs) -
                                 o_.r_edges.begin() - 1)
                           : nb_;
     }
-    w_max_ = 0.0;
+  }
+
+  // g != 0: η node e's escaped weight into every albedo's total and annulus (power_ holds
+  // α^n from a0 up); the once-scattered flux per node.
+  void tally_scaled(std::size_t e, double escaped, std::size_t a0, bool once, Chunk& out) {
     const std::size_t block = ne_ * na_;
-    for (std::size_t e = 0; e < ne_; ++e) {
-      const double w = weight_[e];
-      if (w == 0.0) continue;
-      const double fr = fresnel_dielectric(mu_, inv_eta_[e]);
-      const double escaped = w * (1.0 - fr);
-      weight_[e] = w * fr;
-      w_max_ = std::max(w_max_, weight_[e]);
-      double* tot = out.total.data() + e * na_;
-      double* stot = out.single_total.data() + e * na_;
-      for (std::size_t a = a0_; a < na_; ++a) {
-        const double v = escaped * power_[a];
-        tot[a] += v;
-        if (once) stot[a] += v;
-        if (bin_[a] == nb_) continue;
-        const std::size_t k = bin_[a] * block + e * na_ + a;
-        out.flux[k] += v;
-        if (once) out.single_flux[k] += v;
-      }
+    double* tot = out.total.data() + e * na_;
+    double* stot = out.single_total.data() + e * na_;
+    for (std::size_t a = a0; a < na_; ++a) {
+      const double v = escaped * power_[a];
+      tot[a] += v;
+      if (once) stot[a] += v;
+      if (bin_[a] == nb_) continue;
+      const std::size_t k = bin_[a] * block + e * na_ + a;
+      out.flux[k] += v;
+      if (once) out.single_flux[k] += v;
     }
   }
 
@@ -298,8 +291,6 @@ class TableWalker {
   bool aniso_;
   std::vector<double> inv_eta_, ln_albedo_, power_, weight_, radial_scale_;
   std::vector<std::size_t> bin_;
-  std::size_t a0_ = 0;
-  double mu_ = 0.0, w_max_ = 0.0;
   double ln_albedo_max_ = 0.0, ln_roulette_ = 0.0;
 };
 

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace sss::profiles {
 
@@ -34,6 +35,9 @@ double transport_decay_rate(double albedo) {
 namespace {
 
 const auto str = sss::message_number;
+// The start of the constructor's error for a table whose walks are too few at a medium
+// (make_mc_table_profile falls back to another node on it).
+constexpr std::string_view kTooFewAnnuli = "mc-table: fewer than two annuli";
 
 // Interpolation weights along one axis: a cubic Hermite segment on [x_i, x_i+1] whose
 // tangents are the derivatives of the parabola through the node and its two neighbours
@@ -462,7 +466,7 @@ McTableProfile::McTableProfile(const Coefficients& c, const McTableData& table,
       ++enforced_annuli;
     }
   if (enforced_annuli < 2)
-    throw std::invalid_argument("mc-table: fewer than two annuli with a reliable flux at albedo " +
+    throw std::invalid_argument(std::string(kTooFewAnnuli) + " with a reliable flux at albedo " +
                                 str(c.albedo_reduced()) + ", eta " + str(eta) +
                                 " (the table's photon budget is too small)");
   std::vector<double> phi(K + 1, 0.0), centre(K + 1);
@@ -724,54 +728,62 @@ namespace {
 // R(r) between two g nodes: (1 - t) R_lo + t R_hi, every quantity likewise.
 class McTableGBlend final : public RadialProfile {
  public:
-  McTableGBlend(const Coefficients& c, const McTableGBracket& b, bool apart)
-      : lo_(c, *b.lo, apart), hi_(c, *b.hi, apart), t_(b.t) {}
+  McTableGBlend(std::unique_ptr<McTableProfile> lo, std::unique_ptr<McTableProfile> hi, double t)
+      : lo_(std::move(lo)), hi_(std::move(hi)), t_(t) {}
   double reflectance(double r) const override {
-    return (1.0 - t_) * lo_.reflectance(r) + t_ * hi_.reflectance(r);
+    return (1.0 - t_) * lo_->reflectance(r) + t_ * hi_->reflectance(r);
   }
   double total_reflectance() const override {
-    return (1.0 - t_) * lo_.total_reflectance() + t_ * hi_.total_reflectance();
+    return (1.0 - t_) * lo_->total_reflectance() + t_ * hi_->total_reflectance();
   }
   double support_radius() const override {
-    return std::max(lo_.support_radius(), hi_.support_radius());
+    return std::max(lo_->support_radius(), hi_->support_radius());
   }
-  double inner_radius() const override { return lo_.inner_radius(); }
+  double inner_radius() const override { return lo_->inner_radius(); }
 
  private:
-  McTableProfile lo_, hi_;
+  std::unique_ptr<McTableProfile> lo_, hi_;
   double t_;
 };
+
+// The lookup in table t, or null where t's walks are too few to shape R(r) there (the
+// constructor's kTooFewAnnuli error); any other error propagates.
+std::unique_ptr<McTableProfile> try_profile(const Coefficients& c, const McTableData& t,
+                                            bool apart) {
+  try {
+    return std::make_unique<McTableProfile>(c, t, apart);
+  } catch (const std::invalid_argument& e) {
+    if (std::string_view(e.what()).starts_with(kTooFewAnnuli)) return nullptr;
+    throw;
+  }
+}
 
 }  // namespace
 
 std::unique_ptr<RadialProfile> make_mc_table_profile(const Coefficients& c,
                                                      bool single_scattering_apart) {
   if (auto e = c.validate()) throw std::invalid_argument(e->what());
-  McTableGBracket b = mc_table_g_bracket(c.g);
+  const McTableGBracket b = mc_table_g_bracket(c.g);
   // A layer's walks (2^18, a sixteenth of the isotropic table's) can be too few to shape
   // R(r) at its darkest nodes for a high η and g: at α' = 0.01 and g = 0.95 a walk's real
   // albedo is 0.17 and HG sends almost nothing back up, and at η = 2.5 little of that
   // leaves. Where a layer's lookup finds fewer than two reliable annuli, the next node
-  // towards g = 0 stands in for it (ultimately the isotropic table, 2^22 walks), so every
-  // medium that had a profile before the layers still has one.
-  const auto builds = [&](const McTableData& t) {
-    try {
-      McTableProfile(c, t, single_scattering_apart);
-      return true;
-    } catch (const std::invalid_argument& e) {
-      if (std::string(e.what()).rfind("mc-table: fewer than two annuli", 0) != 0) throw;
-      return false;
-    }
-  };
-  if (b.hi && !builds(*b.hi)) b.hi = nullptr;
-  while (b.lo != &shipped_mc_table() && !builds(*b.lo)) {
-    const std::vector<McTableData>& layers = shipped_mc_table_layers();
-    const auto k = static_cast<std::size_t>(b.lo - layers.data());
-    b.lo = k == 0 ? &shipped_mc_table() : &layers[k - 1];
-    b.hi = nullptr;
+  // towards g = 0 stands in for it (ultimately the isotropic table, 2^22 walks, whose
+  // errors propagate), so every medium that had a profile before the layers still has
+  // one. Each profile is built once.
+  std::unique_ptr<McTableProfile> hi =
+      b.hi ? try_profile(c, *b.hi, single_scattering_apart) : nullptr;
+  const McTableData* node = b.lo;
+  std::unique_ptr<McTableProfile> lo;
+  const std::vector<McTableData>& layers = shipped_mc_table_layers();
+  while (node != &shipped_mc_table() && !(lo = try_profile(c, *node, single_scattering_apart))) {
+    const auto k = static_cast<std::size_t>(node - layers.data());
+    node = k == 0 ? &shipped_mc_table() : &layers[k - 1];
+    hi.reset();  // no longer the neighbour of the node in use
   }
-  if (!b.hi) return std::make_unique<McTableProfile>(c, *b.lo, single_scattering_apart);
-  return std::make_unique<McTableGBlend>(c, b, single_scattering_apart);
+  if (!lo) lo = std::make_unique<McTableProfile>(c, *node, single_scattering_apart);
+  if (!hi) return lo;
+  return std::make_unique<McTableGBlend>(std::move(lo), std::move(hi), b.t);
 }
 
 }  // namespace sss::profiles
