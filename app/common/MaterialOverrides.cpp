@@ -1,7 +1,13 @@
 #include "MaterialOverrides.h"
 
 #include "profiles/Presets.h"
+#include "renderer/scene/ScatterScale.h"
 #include "renderer/scene/SssLayers.h"
+#include "renderer/scene/UvAtlas.h"
+
+#include <cmath>
+#include <set>
+#include <sstream>
 
 namespace sss::app {
 
@@ -10,7 +16,186 @@ bool any_medium(const MediumArgs& m) {
   return !m.preset.empty() || !m.sigma_a.empty() || !m.sigma_s.empty() || !m.color.empty() ||
          !m.mfp.empty() || !m.g.empty() || !m.eta.empty() || !m.thickness.empty();
 }
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return {};
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+constexpr const char* kSpecKeys =
+    "preset, sigma-a, sigma-s, color, mfp, g, eta, thickness, model, gaussians, albedo, scale";
+
+std::variant<double, FieldError> parse_scale(const std::string& option, const std::string& text) {
+  auto v = parse_number(option, text);
+  if (auto* e = std::get_if<FieldError>(&v)) return *e;
+  const double scale = std::get<double>(v);
+  if (!std::isfinite(scale) || !(scale > 0.0))
+    return FieldError{option, "must be a finite number > 0, got '" + text + "'"};
+  return scale;
+}
+
+// The materials a spec's TARGET names: `all`, an index, or every material of that name.
+std::variant<std::vector<std::size_t>, FieldError> match_target(const scene::Scene& scene,
+                                                                const SssMaterialSpec& spec) {
+  std::vector<std::size_t> out;
+  if (spec.target == "all") {
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) out.push_back(i);
+  } else {
+    for (std::size_t i = 0; i < scene.materials.size(); ++i)
+      if (scene.materials[i].name == spec.target) out.push_back(i);
+    const bool digits = spec.target.find_first_not_of("0123456789") == std::string::npos;
+    if (out.empty() && digits && spec.target.size() < 10) {
+      const std::size_t i = std::stoul(spec.target);
+      if (i < scene.materials.size()) out.push_back(i);
+    }
+  }
+  if (out.empty())
+    return FieldError{"--sss-material " + spec.text,
+                      scene.materials.empty()
+                          ? std::string("the scene has no materials")
+                          : "no material named or numbered '" + spec.target +
+                                "'; the scene's materials: " + material_list(scene)};
+  return out;
+}
+
+// The material a spec makes of `m`: its keys, then the global options, then m's own
+// values (when it scatters already), then the defaults.
+std::variant<scene::SssMaterial, FieldError> material_from_spec(
+    const scene::Material& m, const SssMaterialSpec& spec, const MaterialOverrideArgs& global,
+    std::optional<profiles::Model> global_model, std::optional<scene::AlbedoMode> global_albedo) {
+  const std::string field = "--sss-material " + spec.text;
+  const bool had = m.sss.enabled;
+  std::optional<profiles::Model> model = global_model;
+  if (!spec.model.empty()) {
+    model = profiles::parse_model(spec.model);
+    if (!model)
+      return FieldError{field + ": model", "unknown model '" + spec.model + "' (expected one of " +
+                                               profiles::model_names() + ")"};
+  }
+  std::optional<scene::AlbedoMode> albedo = global_albedo;
+  if (!spec.albedo.empty()) {
+    albedo = scene::parse_albedo_mode(spec.albedo);
+    if (!albedo)
+      return FieldError{field + ": albedo", "expected post-scatter or pre-post, got '" + spec.albedo + "'"};
+  }
+  const int gaussians = spec.gaussians.value_or(global.gaussians.value_or(had ? m.sss.gaussians : scene::kDefaultGaussians));
+  const double scale = spec.scale.value_or(global.scale.value_or(had ? m.sss.scale : 1.0));
+  const scene::AlbedoMode albedo_mode = albedo.value_or(had ? m.sss.albedo_mode : scene::AlbedoMode::PostScatter);
+  const auto named = [&](FieldError e) {
+    e.field = field + ": " + (e.field.rfind("--", 0) == 0 ? e.field.substr(2) : e.field);
+    return e;
+  };
+
+  if (!any_medium(spec.medium)) {
+    if (!had)
+      return FieldError{field, "material '" + m.name + "' has no subsurface medium yet: give a "
+                               "preset, sigma-a and sigma-s, or color and mfp"};
+    if (!m.sss.layers.empty() && !model) {  // a stack keeps its layers
+      auto made = scene::make_layered_sss_material(m.sss.layers, gaussians, scale, albedo_mode);
+      if (auto* e = std::get_if<FieldError>(&made)) return named(*e);
+      return std::get<scene::SssMaterial>(std::move(made));
+    }
+    const profiles::Model use = model.value_or(m.sss.layers.empty() ? m.sss.model : profiles::kDefaultModel);
+    auto made = scene::make_sss_material(m.sss.source, use, gaussians, scale, albedo_mode);
+    if (auto* e = std::get_if<FieldError>(&made)) return named(*e);
+    return std::get<scene::SssMaterial>(std::move(made));
+  }
+
+  const profiles::Model use = model.value_or(had && m.sss.layers.empty() ? m.sss.model : profiles::kDefaultModel);
+  auto resolved = resolve_medium(spec.medium, use, profiles::ModelOptions{});
+  if (auto* e = std::get_if<FieldError>(&resolved)) return named(*e);
+  // Keep the source as the user gave it, so that the panel shows it and Export writes it:
+  // a preset by name, an artist colour and mfp as such (mc inverts through mc-table, see
+  // resolve_medium, so it keeps the coefficients), coefficients otherwise.
+  const MediumArgs& a = spec.medium;
+  scene::SssSource source = scene::CoefficientSource{std::get<ResolvedMedium>(resolved).medium};
+  if (!a.preset.empty() && a.eta.empty() && a.thickness.empty()) {
+    source = scene::PresetSource{a.preset};
+  } else if (!a.color.empty() && use != profiles::Model::MonteCarlo) {
+    profiles::ArtistParameters p;
+    p.color = std::get<Rgb>(parse_rgb("color", a.color));  // resolve_medium parsed them
+    p.mfp_mm = std::get<Rgb>(parse_rgb("mfp", a.mfp));
+    const profiles::Medium& r = std::get<ResolvedMedium>(resolved).medium;
+    p.eta = r.eta[0];
+    p.g = r.g[0];
+    p.thickness_mm = r.thickness_mm;
+    source = scene::ArtistSource{p};
+  }
+  auto made = scene::make_sss_material(std::move(source), use, gaussians, scale, albedo_mode);
+  if (auto* e = std::get_if<FieldError>(&made)) return named(*e);
+  return std::get<scene::SssMaterial>(std::move(made));
+}
 }  // namespace
+
+std::variant<SssMaterialSpec, FieldError> parse_sss_material_spec(const std::string& text) {
+  SssMaterialSpec spec;
+  spec.text = text;
+  const std::string field = "--sss-material " + text;
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    return FieldError{"--sss-material",
+                      "expected TARGET=SPEC (TARGET: a material's name or index, or all; SPEC: "
+                      "off, a preset, or key=value items separated by ';'), got '" + text + "'"};
+  spec.target = text.substr(0, eq);
+  const std::string rest = text.substr(eq + 1);
+  if (trim(rest) == "off") {
+    spec.off = true;
+    return spec;
+  }
+  std::vector<std::string> items;
+  std::stringstream ss(rest);
+  for (std::string item; std::getline(ss, item, ';');) items.push_back(trim(item));
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const std::string& item = items[i];
+    if (item.empty()) return FieldError{field, "an empty item between ';'"};
+    const auto k = item.find('=');
+    std::string key = trim(item.substr(0, k)), value = k == std::string::npos ? "" : trim(item.substr(k + 1));
+    if (k == std::string::npos) {
+      if (i != 0)
+        return FieldError{field, "expected key=value, got '" + item + "' (keys: " + kSpecKeys + ")"};
+      value = key;  // a bare preset name first
+      key = "preset";
+    }
+    if (!seen.insert(key).second) return FieldError{field + ": " + key, "given twice"};
+    if (value.empty()) return FieldError{field + ": " + key, "has no value"};
+    MediumArgs& m = spec.medium;
+    if (key == "preset") m.preset = value;
+    else if (key == "sigma-a") m.sigma_a = value;
+    else if (key == "sigma-s") m.sigma_s = value;
+    else if (key == "color") m.color = value;
+    else if (key == "mfp") m.mfp = value;
+    else if (key == "g") m.g = value;
+    else if (key == "eta") m.eta = value;
+    else if (key == "thickness") m.thickness = value;
+    else if (key == "model") spec.model = value;
+    else if (key == "albedo") spec.albedo = value;
+    else if (key == "scale") {
+      auto v = parse_scale(field + ": scale", value);
+      if (auto* e = std::get_if<FieldError>(&v)) return *e;
+      spec.scale = std::get<double>(v);
+    } else if (key == "gaussians") {
+      auto v = parse_number(field + ": gaussians", value);
+      if (auto* e = std::get_if<FieldError>(&v)) return *e;
+      const double n = std::get<double>(v);
+      if (!(n >= scene::kMinGaussians && n <= scene::kMaxGaussians) || n != std::floor(n))
+        return FieldError{field + ": gaussians", "must be an integer in 1..8, got '" + value + "'"};
+      spec.gaussians = int(n);
+    } else {
+      return FieldError{field + ": " + key, std::string("unknown key (keys: ") + kSpecKeys + ")"};
+    }
+  }
+  return spec;
+}
+
+std::string material_list(const scene::Scene& scene) {
+  std::string out;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i)
+    out += (i ? ", " : "") + std::to_string(i) + " '" + scene.materials[i].name + "'" +
+           (scene.materials[i].sss.enabled ? " (subsurface)" : "");
+  return out.empty() ? "none" : out;
+}
 
 void add_material_override_options(CLI::App& app, MaterialOverrideArgs& args) {
   app.add_option("--model", args.model,
@@ -25,6 +210,18 @@ void add_material_override_options(CLI::App& app, MaterialOverrideArgs& args) {
   app.add_option("--layers", args.layers,
                  "A stack of layers for every SSS material instead of MEDIUM: FILE.json holding "
                  "{\"layers\": [...]} (model layered; README \"Layered materials\")");
+  app.add_option("--scale", args.scale,
+                 "SssMaterial scale for every SSS material: the object scatters as if it were "
+                 "SCALE times larger (a distance d scatters as d x SCALE), > 0. Lower it for a "
+                 "model in metres that should look like a small object (the opposite of "
+                 "Blender's Subsurface Scale)");
+  app.add_option("--sss-material", args.sss_material,
+                 "TARGET=SPEC, repeatable: gives subsurface scattering to materials of any "
+                 "glTF (with or without extras.sss). TARGET: a material's name, its index, or "
+                 "all. SPEC: off (opaque), a preset, or key=value items separated by ';' "
+                 "(quote them): preset, sigma-a, sigma-s, color, mfp, g, eta, thickness as the "
+                 "MEDIUM options, and model, gaussians, albedo, scale. Its keys win over the "
+                 "global options for those materials. Example: 'all=marble;scale=0.05'");
   add_medium_options(app, args.medium);
 }
 
@@ -40,6 +237,8 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
   if (args.gaussians && (*args.gaussians < scene::kMinGaussians ||
                          *args.gaussians > scene::kMaxGaussians))
     return FieldError{"--gaussians", "must be in 1..8, got " + std::to_string(*args.gaussians)};
+  if (args.scale && (!std::isfinite(*args.scale) || !(*args.scale > 0.0)))
+    return FieldError{"--scale", "must be a finite number > 0, got " + message_number(*args.scale)};
   std::optional<scene::AlbedoMode> albedo;
   if (!args.albedo.empty()) {
     albedo = scene::parse_albedo_mode(args.albedo);
@@ -61,22 +260,81 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
     }
     layers = std::get<profiles::LayerStack>(std::move(parsed));
   }
-  if (!model && !args.gaussians && !medium && !albedo && !layers) return 0;
 
+  // --sss-material: parsed and matched before anything changes, so an error leaves the
+  // scene as it was loaded.
+  std::vector<std::pair<SssMaterialSpec, std::vector<std::size_t>>> specs;
+  for (const std::string& text : args.sss_material) {
+    auto spec = parse_sss_material_spec(text);
+    if (auto* e = std::get_if<FieldError>(&spec)) return *e;
+    auto matched = match_target(scene, std::get<SssMaterialSpec>(spec));
+    if (auto* e = std::get_if<FieldError>(&matched)) return *e;
+    specs.emplace_back(std::get<SssMaterialSpec>(std::move(spec)),
+                       std::get<std::vector<std::size_t>>(std::move(matched)));
+  }
+  std::vector<scene::Material> materials = scene.materials;
+  std::vector<bool> by_spec(materials.size(), false);
+  bool newly_enabled = false;
   int changed = 0;
-  for (scene::Material& m : scene.materials) {
-    if (!m.sss.enabled) continue;
+  for (const auto& [spec, matched] : specs)
+    for (std::size_t i : matched) {
+      scene::Material& m = materials[i];
+      if (spec.off) {
+        m.sss = scene::SssMaterial{};
+      } else {
+        auto made = material_from_spec(m, spec, args, model, albedo);
+        if (auto* e = std::get_if<FieldError>(&made)) return *e;
+        newly_enabled = newly_enabled || !m.sss.enabled;
+        m.sss = std::get<scene::SssMaterial>(std::move(made));
+      }
+      changed += by_spec[i] ? 0 : 1;
+      by_spec[i] = true;
+    }
+
+  // The global options: every SSS material the specs left alone.
+  const bool any_global = model || args.gaussians || medium || albedo || layers || args.scale;
+  std::size_t sss_count = 0, left = 0;
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].sss.enabled) {
+      ++sss_count;
+      left += by_spec[i] ? 0 : 1;
+    }
+  if (any_global && (sss_count == 0 || ((medium || layers) && left == 0))) {
+    const MediumArgs& g = args.medium;
+    const std::pair<bool, const char*> given[] = {
+        {layers.has_value(), "--layers"}, {!g.preset.empty(), "--preset"},
+        {!g.sigma_a.empty(), "--sigma-a"}, {!g.sigma_s.empty(), "--sigma-s"},
+        {!g.color.empty(), "--color"}, {!g.mfp.empty(), "--mfp"}, {!g.g.empty(), "--g"},
+        {!g.eta.empty(), "--eta"}, {!g.thickness.empty(), "--thickness"},
+        {model.has_value(), "--model"}, {args.gaussians.has_value(), "--gaussians"},
+        {albedo.has_value(), "--albedo"}, {args.scale.has_value(), "--scale"}};
+    const char* option = "";
+    for (const auto& [on, name] : given)
+      if (on && !*option) option = name;
+    std::string scene_name = scene.name.empty() ? std::string("the scene") : "'" + scene.name + "'";
+    return FieldError{option, sss_count == 0
+        ? "matches no material: " + scene_name + " has no subsurface material (its materials: " +
+              material_list(scene) + "). Give one subsurface scattering with --sss-material "
+              "NAME|INDEX|all=SPEC, e.g. --sss-material 'all=marble'"
+        : "matches no material: every subsurface material of " + scene_name +
+              " is set by --sss-material, whose SPEC gives the medium"};
+  }
+  for (std::size_t i = 0; i < materials.size() && any_global; ++i) {
+    scene::Material& m = materials[i];
+    if (!m.sss.enabled || by_spec[i]) continue;
+    const double scale = args.scale.value_or(m.sss.scale);
     // A stack given, or kept: the layered material with the other overrides applied.
     const bool keep_stack = !m.sss.layers.empty() && !medium && !model;
     if (layers || keep_stack) {
       scene::SssMaterial s = m.sss;
       if (layers) {  // parse_sss_layers_file validated the stack, and s its other fields
-        auto made = scene::make_layered_sss_material(*layers, s.gaussians, s.scale, s.albedo_mode);
+        auto made = scene::make_layered_sss_material(*layers, s.gaussians, scale, s.albedo_mode);
         if (auto* e = std::get_if<FieldError>(&made)) return FieldError{"--layers " + args.layers, e->what()};
         s = std::get<scene::SssMaterial>(std::move(made));
       }
       s.gaussians = args.gaussians.value_or(s.gaussians);
       s.albedo_mode = albedo.value_or(s.albedo_mode);
+      s.scale = scale;
       m.sss = std::move(s);
       ++changed;
       continue;
@@ -92,12 +350,30 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
       source = scene::CoefficientSource{std::get<ResolvedMedium>(resolved).medium};
     }
     auto made = scene::make_sss_material(source, use_model, args.gaussians.value_or(m.sss.gaussians),
-                                         m.sss.scale, albedo.value_or(m.sss.albedo_mode));
+                                         scale, albedo.value_or(m.sss.albedo_mode));
     if (auto* e = std::get_if<FieldError>(&made)) return *e;
     m.sss = std::get<scene::SssMaterial>(made);
     ++changed;
   }
+
+  scene.materials = std::move(materials);
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    const scene::Material& m = scene.materials[i];
+    if (!by_spec[i] || !m.sss.enabled) continue;
+    if (m.metallic > 0.0f)
+      scene.warnings.push_back("material '" + m.name + "' is metallic (" + message_number(m.metallic) +
+                               "): its subsurface light is scaled by 1 - metallic = " +
+                               message_number(1.0 - m.metallic) +
+                               " (set pbrMetallicRoughness.metallicFactor to 0 for a dielectric)");
+  }
+  if (newly_enabled) scene::ensure_sss_atlases(scene, scene::kLoadAtlasOptions);
   return changed;
+}
+
+void add_scatter_scale_warnings(scene::Scene& scene, std::uint32_t height) {
+  for (std::size_t i = 0; i < scene.materials.size(); ++i)
+    if (scene.materials[i].sss.enabled)
+      if (auto w = scene::scatter_scale_warning(scene, i, height)) scene.warnings.push_back(*w);
 }
 
 }  // namespace sss::app

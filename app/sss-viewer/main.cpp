@@ -257,6 +257,7 @@ int viewer_main(int argc, char** argv) {
   scene::add_light_if_missing(scene);
   auto overridden = apply_material_overrides(scene, a.material);
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
+  add_scatter_scale_warnings(scene, std::uint32_t(a.height));
   for (const std::string& w : scene.warnings) std::cerr << "sss-viewer: warning: " << w << '\n';
   if (a.test_host_oom == "load") throw std::bad_alloc();
   // No output may replace a file the scene was loaded from (checked again where a file

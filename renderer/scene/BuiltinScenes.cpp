@@ -65,9 +65,8 @@ std::variant<Scene, LoadError> load_scene(std::string_view scene) {
                                               : load_gltf(std::string(scene));
   // Texture-space SSS (--sss texture) needs usable UVs on every subsurface mesh: the ones
   // without get a generated atlas now (UvAtlas.h; the screen path and the CPU reference
-  // draw the same triangles, only split at chart seams). 12 texels of padding at 1024²
-  // (4 mm on the bunny) leave room for the seam gutters a kernel reaches into.
-  if (auto* s = std::get_if<Scene>(&loaded)) ensure_sss_atlases(*s, {1024, 12});
+  // draw the same triangles, only split at chart seams).
+  if (auto* s = std::get_if<Scene>(&loaded)) ensure_sss_atlases(*s, kLoadAtlasOptions);
   return loaded;
 }
 

@@ -77,6 +77,11 @@ struct AtlasOptions {
   std::uint32_t padding_texels = 4;   // empty texels around each chart (>= 2 between charts)
 };
 
+// What load_scene generates with: 12 texels of padding at 1024² (4 mm on the bunny) leave
+// room for the seam gutters a kernel reaches into. Also used where a material is given
+// subsurface scattering after loading (--sss-material).
+inline constexpr AtlasOptions kLoadAtlasOptions{1024, 12};
+
 struct AtlasChart {
   int axis = 0;                       // 0..5: +x, -x, +y, -y, +z, -z
   std::size_t triangles = 0;

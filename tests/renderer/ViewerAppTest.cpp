@@ -12,6 +12,7 @@
 
 #include "common/CliRun.h"
 #include "common/FrameLessHighlight.h"
+#include "common/TwoBoxesGltf.h"
 
 #ifdef SSS_VIEWER_EXE
 
@@ -146,6 +147,53 @@ TEST(ViewerApp, DocumentedErrors) {
     EXPECT_NE(r.out.find(c.message), std::string::npos) << c.args << "\n" << r.out;
   }
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Issue 20: a user's own glTF, with no extras.sss. The MEDIUM flags were a silent no-op on
+// it (exit 0, the same image); they are now an error that lists the materials, and
+// --sss-material gives the chosen material subsurface scattering: the frame changes where
+// that box is drawn, and only there (the "metal" box keeps its pixels).
+TEST(ViewerApp, SssMaterialGivesAPlainGltfSubsurfaceScattering) {
+  const std::filesystem::path file = temp_path("boxes.glb");
+  sss::testing::write_two_boxes(file, 0.05f);  // 5 cm boxes
+  const std::string plain = temp_path("boxes-plain.exr"), lit = temp_path("boxes-sss.exr");
+  const std::string args = file.string() + " --headless --width 96 --height 54 --out ";
+  const ViewerRun a = run(args + plain);
+  ASSERT_EQ(a.code, 0) << a.out;
+  const ViewerRun silent = run(args + lit + " --preset marble");
+  EXPECT_EQ(silent.code, 2) << silent.out;
+  EXPECT_NE(silent.out.find("--preset: matches no material"), std::string::npos) << silent.out;
+  EXPECT_NE(silent.out.find("0 'plastic', 1 'metal'"), std::string::npos) << silent.out;
+  EXPECT_FALSE(std::filesystem::exists(lit));
+#ifdef SSS_REFERENCE_EXE  // the reference reads the same options
+  const ViewerRun ref = sss::testing::run_shell(std::string(SSS_REFERENCE_EXE) + " " + file.string() +
+                                                " --out " + temp_path("boxes-ref.exr") + " --preset marble");
+  EXPECT_EQ(ref.code, 2) << ref.out;
+  EXPECT_NE(ref.out.find("--preset: matches no material"), std::string::npos) << ref.out;
+#endif
+  const ViewerRun b = run(args + lit + " --sss-material 'plastic=marble;scale=0.1'");
+  ASSERT_EQ(b.code, 0) << b.out;
+  const auto ia = sss::image::read_image(plain), ib = sss::image::read_image(lit);
+  ASSERT_TRUE(std::holds_alternative<sss::image::Image>(ia) && std::holds_alternative<sss::image::Image>(ib));
+  const auto& pa = std::get<sss::image::Image>(ia).rgba;
+  const auto& pb = std::get<sss::image::Image>(ib).rgba;
+  ASSERT_EQ(pa.size(), pb.size());
+  // The plastic box (left of the frame's centre) scatters now; the right half holds the
+  // metal box and the background, drawn as before. Marble at scale 0.1 scatters 0.5 mm
+  // (3ℓ in red) on a 5 cm box: a soft change, but on many pixels.
+  const int w = std::get<sss::image::Image>(ia).width;
+  std::size_t changed_left = 0, changed_right = 0;
+  for (std::size_t i = 0; i < pa.size(); i += 4) {
+    const int x = int((i / 4) % std::size_t(w));
+    const bool differs = std::abs(pa[i] - pb[i]) + std::abs(pa[i + 1] - pb[i + 1]) +
+                             std::abs(pa[i + 2] - pb[i + 2]) > 1e-4f;
+    (x < w / 2 ? changed_left : changed_right) += differs ? 1 : 0;
+  }
+  EXPECT_GT(changed_left, 50u);
+  EXPECT_EQ(changed_right, 0u);
+  std::filesystem::remove(plain);
+  std::filesystem::remove(lit);
+  std::filesystem::remove(file);
 }
 
 }  // namespace

@@ -1,0 +1,71 @@
+#include "ScatterScale.h"
+
+#include "renderer/scene/Material.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace sss::scene {
+
+ScatterScale scatter_scale(const Scene& scene, std::size_t material, std::uint32_t height) {
+  ScatterScale out;
+  if (material >= scene.materials.size() || !scene.materials[material].sss.enabled) return out;
+  const profiles::Medium m = scene.materials[material].sss.effective_medium();
+  out.mfp_min_mm = out.diffusion_min_mm = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < 3; ++c) {
+    const profiles::Coefficients k = m.channel(c);
+    const double mfp = 1.0 / k.sigma_t_reduced();
+    const double diffusion = 1.0 / std::sqrt(3.0 * k.sigma_a * k.sigma_t_reduced());
+    out.mfp_min_mm = std::min(out.mfp_min_mm, mfp);
+    out.mfp_max_mm = std::max(out.mfp_max_mm, mfp);
+    out.diffusion_min_mm = std::min(out.diffusion_min_mm, diffusion);
+    out.diffusion_max_mm = std::max(out.diffusion_max_mm, diffusion);
+  }
+  Bounds b;
+  for (const Instance& inst : scene.instances)
+    if (inst.mesh < scene.meshes.size() && scene.meshes[inst.mesh].material == material)
+      b.extend(scene.meshes[inst.mesh].bounds.transformed(inst.world));
+  if (b.empty()) return out;
+  out.object_mm = double(glm::length(b.extent())) * scene.mm_per_unit;
+  if (height == 0 || scene.cameras.empty()) return out;
+  const Camera& cam = scene.cameras.front();
+  const glm::vec3 eye = cam.position();
+  const glm::vec3 nearest = glm::clamp(eye, b.min, b.max);
+  const double distance = double(glm::length(nearest - eye)) * scene.mm_per_unit;
+  if (cam.projection == Projection::Orthographic)
+    out.pixel_min_mm = 2.0 * double(cam.ymag) * scene.mm_per_unit / double(height);
+  else if (distance > 0.0)
+    out.pixel_min_mm = 2.0 * distance * std::tan(0.5 * double(cam.yfov)) / double(height);
+  return out;
+}
+
+std::optional<std::string> scatter_scale_warning(const Scene& scene, std::size_t material,
+                                                 std::uint32_t height) {
+  const ScatterScale s = scatter_scale(scene, material, height);
+  if (s.object_mm <= 0.0) return std::nullopt;
+  const Material& mat = scene.materials[material];
+  std::ostringstream w;
+  w.precision(3);
+  w << "material '" << mat.name << "' (scale " << mat.sss.scale << "): ";
+  if (s.pixel_min_mm > 0.0 && 3.0 * s.diffusion_max_mm < s.pixel_min_mm) {
+    w << "scatters below one pixel everywhere: 3 diffusion lengths are " << 3.0 * s.diffusion_max_mm
+      << " mm, a pixel covers at least " << s.pixel_min_mm << " mm of the " << s.object_mm
+      << " mm object. Lower its scale (a distance d on the object scatters as d x scale; "
+      << mat.sss.scale * 3.0 * s.diffusion_max_mm / s.pixel_min_mm
+      << " reaches one pixel), or check the units: σ are per mm, mfp in mm";
+    return w.str();
+  }
+  if (s.diffusion_min_mm > s.object_mm) {
+    w << "scatters wider than the object: its shortest diffusion length, " << s.diffusion_min_mm
+      << " mm, is longer than the object's " << s.object_mm
+      << " mm diameter, so light spreads through all of it. Raise its scale (a distance d on the "
+         "object scatters as d x scale), or check the units: σ are per mm, mfp in mm";
+    return w.str();
+  }
+  return std::nullopt;
+}
+
+}  // namespace sss::scene
