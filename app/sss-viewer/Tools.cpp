@@ -14,6 +14,7 @@
 #include "profiles/KernelExport.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>  // the title bar's rect (a click on it opens the window)
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -258,7 +259,16 @@ std::optional<std::string> ViewerTools::draw(renderer::Renderer& r, const LiveSt
   const bool expand = expand_ || show_open_;
   ImGui::SetNextWindowCollapsed(!expand, expand ? ImGuiCond_Always : ImGuiCond_FirstUseEver);
   poll(r, live);  // also while the window is collapsed
-  if (ImGui::Begin("Tools", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+  const bool shown = ImGui::Begin("Tools", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  // A click on the collapsed window's title opens it (ImGui opens it on a double click or
+  // on the arrow only, and users click the title). A drag that moves the window is not
+  // a click.
+  if (!shown && ImGui::IsWindowHovered() && ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
+      ImGui::GetCurrentWindow()->TitleBarRect().Contains(ImGui::GetIO().MousePos) &&
+      ImGui::GetMouseDragDelta(ImGuiMouseButton_Left).x == 0.0f &&
+      ImGui::GetMouseDragDelta(ImGuiMouseButton_Left).y == 0.0f)
+    ImGui::SetWindowCollapsed(false);
+  if (shown) {
     draw_open();
     draw_compare(r, live);
     draw_export(r, live);
@@ -275,7 +285,9 @@ void ViewerTools::draw_open() {
   const bool enter = ImGui::InputText("##path", open_path_, sizeof open_path_,
                                       ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
-  if ((ImGui::Button("Open") || enter) && open_path_[0] != '\0') open_request_ = open_path_;
+  // "##file": the header above is "Open" too, and one ID for both made the header take the
+  // button's click (the button never fired; Enter did). ViewerTools.OpenButton... clicks it.
+  if ((ImGui::Button("Open##file") || enter) && open_path_[0] != '\0') open_request_ = open_path_;
   if (message_.empty()) return;
   if (message_error_) ImGui::PushStyleColor(ImGuiCol_Text, kRed);
   ImGui::TextWrapped("%s", message_.c_str());

@@ -364,6 +364,76 @@ TEST_F(ViewerExport, AFailedOpenOpensTheToolsWindowWithTheError) {
   }
 }
 
+// Issue 20: the Tools window did not open on a click on its title, and its Open button
+// never fired (the "Open" header and the "Open" button had one ImGui ID; Enter worked).
+// Driven as a user drives it, with mouse and keyboard input through ImGuiIO: a click on
+// the title, a click in the path field, typed characters, a click on the button. Widgets
+// are found by hovering (the position where ImGui reports the widget's ID hovered), not by
+// calling the panel's function.
+TEST_F(ViewerExport, ClickingTheTitleOpensToolsAndTheOpenButtonOpensTheTypedFile) {
+  const scene::Scene scene = scene::sphere_scene();
+  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(64, 36));
+  renderer::testing::HeadlessImGui imgui;
+  ImGuiIO& io = imgui.io();
+  ViewerTools tools(ctx());
+  const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 64, 36};
+  std::optional<std::string> request;
+  const auto frame = [&] {
+    io.DeltaTime = 1.0f / 60.0f;
+    ImGui::NewFrame();
+    request = tools.draw(r, live);
+    ImGui::Render();
+    return ImGui::FindWindowByName("Tools");
+  };
+  const auto click = [&](ImVec2 at) {
+    io.MousePos = at;
+    frame();  // hover first, as a real pointer arrives before it presses
+    io.MouseDown[0] = true;
+    frame();
+    io.MouseDown[0] = false;
+    frame();
+  };
+  // Where the mouse hovers `id`: a scan of the window on a 4 px grid, one frame each.
+  const auto find = [&](ImGuiWindow* w, ImGuiID id) -> std::optional<ImVec2> {
+    for (float y = w->Pos.y + 2.0f; y < w->Pos.y + w->Size.y; y += 4.0f)
+      for (float x = w->Pos.x + 2.0f; x < w->Pos.x + w->Size.x; x += 4.0f) {
+        io.MousePos = ImVec2(x, y);
+        frame();
+        if (ImGui::GetCurrentContext()->HoveredId == id) return ImVec2(x, y);
+      }
+    return std::nullopt;
+  };
+
+  frame();  // the window's first frame is drawn open at ImGui's default place
+  ImGuiWindow* window = frame();
+  ASSERT_NE(window, nullptr);
+  ASSERT_TRUE(window->Collapsed);
+  const ImRect title = window->TitleBarRect();
+  click(ImVec2(0.5f * (title.Min.x + title.Max.x), 0.5f * (title.Min.y + title.Max.y)));
+  window = frame();
+  ASSERT_FALSE(window->Collapsed) << "a click on the title opens the Tools window";
+  frame();  // auto-resize settles
+
+  const auto field = find(window, window->GetID("##path"));
+  ASSERT_TRUE(field.has_value()) << "the path field";
+  click(*field);
+  io.AddInputCharactersUTF8("builtin:edge");
+  frame();
+  const auto button = find(window, window->GetID("Open##file"));
+  ASSERT_TRUE(button.has_value()) << "the Open button";
+  io.MousePos = *button;
+  frame();
+  io.MouseDown[0] = true;
+  frame();
+  EXPECT_FALSE(request.has_value()) << "a button fires on release";
+  io.MouseDown[0] = false;
+  frame();
+  ASSERT_TRUE(request.has_value()) << "the Open button did not fire";
+  EXPECT_EQ(*request, "builtin:edge");
+  // The section stayed open: the click went to the button, not to the header.
+  EXPECT_NE(window->StateStorage.GetInt(window->GetID("Open"), 1), 0);
+}
+
 // ---- The Compare panel's error maps and ground truth (driven without ImGui) -----------
 
 class ViewerCompare : public renderer::testing::RenderTest {
