@@ -138,8 +138,10 @@ std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
       return *e;
     }
     out.medium = std::get<Medium>(m);
+    // The coefficients it came to, so that the user sees what was rendered or fitted.
     desc << "color " << rgb_text(ap.color) << ", mfp " << rgb_text(ap.mfp_mm) << " mm via "
-         << profiles::model_name(inversion) << ", g " << g << ", eta " << eta;
+         << profiles::model_name(inversion) << ", g " << g << ", eta " << eta << " = sigma_a "
+         << rgb_text(out.medium.sigma_a) << " sigma_s " << rgb_text(out.medium.sigma_s) << " /mm";
   }
   out.medium.thickness_mm = thickness;
   if (out.medium.is_slab()) desc << ", slab " << thickness << " mm";

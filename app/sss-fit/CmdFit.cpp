@@ -1,3 +1,4 @@
+#include "CliSupport.h"
 #include "CommandSupport.h"
 #include "SvgPlot.h"
 
@@ -8,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <initializer_list>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -21,6 +23,32 @@ constexpr const char* kChannelColor[3] = {"#d62728", "#2ca02c", "#1f77b4"};
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+bool ends_with_any(const std::string& path, std::initializer_list<const char*> extensions) {
+  const std::string ext = lower_extension(path);
+  for (const char* e : extensions)
+    if (ext == e) return true;
+  return false;
+}
+
+// Wrong units make kernels no renderer can use: σ typed in m^-1 (1000 times too dense)
+// gives Gaussians of nanometres (skin1 in m^-1: the narrowest 81 nm wide), an mfp typed in
+// metres the same. In mm^-1 the narrowest Gaussian of every preset's fit is 23 µm (cream)
+// to 230 µm wide (standard deviation, mc-table), and a 10 µm mfp gives 1.5 µm: a narrowest
+// Gaussian under 1 µm, or a widest over a metre, is said.
+void warn_kernel_size(const profiles::GaussianFit& fit) {
+  if (fit.variances_mm2.empty()) return;
+  const auto [lo, hi] = std::minmax_element(fit.variances_mm2.begin(), fit.variances_mm2.end());
+  const double widest = std::sqrt(*hi), narrowest = std::sqrt(*lo);
+  if (narrowest < 1e-3)
+    std::cerr << "sss-fit: warning: the narrowest Gaussian is " << message_number(1e3 * narrowest)
+              << " µm wide (standard deviation), under 1 µm: are σ given in mm^-1 and the mfp "
+                 "in mm? (values in m^-1 are 1000 times too large)\n";
+  if (widest > 1e3)
+    std::cerr << "sss-fit: warning: the widest Gaussian is " << message_number(1e-3 * widest)
+              << " m wide (standard deviation), over a metre: are σ given in mm^-1 and the "
+                 "mfp in mm?\n";
 }
 
 // The error a renderer sees across a straight light edge: max over x of
@@ -133,6 +161,11 @@ int run_fit(const FitArgs& a) {
                        "], got " + std::to_string(a.gaussians));
   if (a.taps != 0 && (a.taps < 3 || a.taps % 2 == 0 || a.taps > 255))
     return usage_error("--taps: must be odd and in [3, 255], got " + std::to_string(a.taps));
+  // The file names say the format: an SVG named .png would not open as one.
+  if (!a.out.empty() && !ends_with_any(a.out, {".json", ".h", ".hpp"}))
+    return usage_error("--out: writes a JSON kernel (.json) or a C header (.h, .hpp), got '" + a.out + "'");
+  if (!a.plot.empty() && !ends_with_any(a.plot, {".svg"}))
+    return usage_error("--plot: writes an SVG plot, name it .svg, got '" + a.plot + "'");
   const auto opt = model_options(a.common);
   const auto src = resolve_source(a.common, opt, /*with_model=*/true);
   if (!src) return kExitUsage;
@@ -147,6 +180,7 @@ int run_fit(const FitArgs& a) {
   const auto fit = profiles::fit_gaussians(target, {a.gaussians});
   const auto t2 = std::chrono::steady_clock::now();
 
+  warn_kernel_size(fit);
   const Rgb edge = edge_error(profile, fit);
   std::optional<profiles::SeparableKernel> separable;
   if (a.taps > 0) separable = profiles::make_separable_kernel(profile, a.taps);

@@ -187,12 +187,19 @@ bool write_output(const std::string& path, const std::string& bytes) {
 
 void progress_bar(const char* what, double fraction) {
   static const bool tty = ::isatty(STDERR_FILENO) != 0;
-  if (!tty) return;
   static std::mutex mutex;
   static int last = -1;
   std::lock_guard lock(mutex);
   const int pct = static_cast<int>(fraction * 100.0 + 0.5);
   if (pct == last) return;
+  if (!tty) {  // a log or a pipe: a line every 10%, no carriage returns
+    if (pct / 10 == last / 10 && last >= 0) return;
+    last = pct;
+    std::fprintf(stderr, "sss-fit: %s %d%%\n", what, pct / 10 * 10);
+    if (pct >= 100) last = -1;
+    std::fflush(stderr);
+    return;
+  }
   last = pct;
   const int filled = pct * 30 / 100;
   std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%", what, filled, "==============================",

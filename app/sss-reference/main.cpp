@@ -455,14 +455,14 @@ int main(int argc, char** argv) {
   if (!folders_exist({&out, &png, &variance, &summary})) return kExitRuntime;
 
   auto loaded = scene::load_scene(scene_name);
-  if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what());
+  if (auto* e = std::get_if<scene::LoadError>(&loaded)) return input_error("sss-reference", e->what());
   scene::Scene s = std::move(std::get<scene::Scene>(loaded));
   scene::add_camera_if_missing(s);
   scene::add_light_if_missing(s);
   auto overridden = apply_material_overrides(s, material);
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
   add_scatter_scale_warnings(s, std::uint32_t(height));
-  for (const std::string& w : s.warnings) std::cerr << "sss-reference: warning: " << w << '\n';
+  print_messages("sss-reference", "warning", s.warnings);
 
   const int used_threads = threads > 0 ? threads : int(std::thread::hardware_concurrency());
   std::signal(SIGINT, on_interrupt);

@@ -43,7 +43,7 @@ inline vk::ContextOptions headless_context_options(const ViewerArgs& a) {
 }
 
 inline void print_warnings(const renderer::Renderer& r) {
-  for (const std::string& w : r.warnings()) std::cerr << "sss-viewer: warning: " << w << '\n';
+  print_messages("sss-viewer", "warning", r.warnings());
 }
 
 // "pass  gpu ms" rows, then the GPU total and the renderer's CPU frame time.

@@ -251,14 +251,15 @@ int viewer_main(int argc, char** argv) {
   options.single_scattering = a.single_scattering == "on";
 
   auto loaded = scene::load_scene(a.scene);
-  if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what());
+  if (auto* e = std::get_if<scene::LoadError>(&loaded)) return input_error("sss-viewer", e->what());
   scene::Scene scene = std::move(std::get<scene::Scene>(loaded));
   scene::add_camera_if_missing(scene);
   scene::add_light_if_missing(scene);
   auto overridden = apply_material_overrides(scene, a.material);
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
   add_scatter_scale_warnings(scene, std::uint32_t(a.height));
-  for (const std::string& w : scene.warnings) std::cerr << "sss-viewer: warning: " << w << '\n';
+  print_messages("sss-viewer", "warning", scene.warnings);
+  if (options.sss == renderer::SssMode::Texture) print_messages("sss-viewer", "note", scene.texture_notes);
   if (a.test_host_oom == "load") throw std::bad_alloc();
   // No output may replace a file the scene was loaded from (checked again where a file
   // is written after another scene was opened).

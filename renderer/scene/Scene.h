@@ -35,6 +35,9 @@ struct Scene {
   std::vector<Light> lights;
   double mm_per_unit = 1000.0;
   std::vector<std::string> warnings;  // what was skipped or repaired, for the user
+  // What only texture-space SSS (--sss texture) is concerned with: a generated UV atlas
+  // and why the file's UVs did not serve. Printed where that mode runs, as notes.
+  std::vector<std::string> texture_notes;
 
   // World-space bounds of every instance (empty box for an empty scene).
   Bounds bounds() const;

@@ -729,7 +729,7 @@ std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options) {
     char detail[96];
     std::snprintf(detail, sizeof detail, "%zu charts, %.0f%% of the texture used", stats.charts,
                   100.0 * stats.utilization);
-    scene.warnings.push_back("mesh " + mesh.name + ": generated a UV atlas (" + check.reason +
+    scene.texture_notes.push_back("mesh " + mesh.name + ": generated a UV atlas (" + check.reason +
                              "; " + detail + ")");
     ++generated;
   }

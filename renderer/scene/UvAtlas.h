@@ -139,7 +139,8 @@ struct UvIslands {
 UvIslands uv_islands(const std::vector<glm::vec2>& uv, const std::vector<std::uint32_t>& indices);
 
 // For every mesh drawn with a subsurface material whose uv0 fails check_uvs and that has
-// no uv_atlas yet: generate_atlas() and a warning "mesh NAME: generated a UV atlas (REASON)".
+// no uv_atlas yet: generate_atlas() and a note in Scene::texture_notes, "mesh NAME:
+// generated a UV atlas (REASON)".
 // Returns how many atlases were generated. Not called on load (see README: "UV atlas").
 std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options = {});
 

@@ -372,3 +372,85 @@ TEST(SssFitLayers, AnErrorLeavesNoOutputFile) {
   for (auto& e : fs::directory_iterator(scratch_dir()))
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
+
+// Issue 20 part 5: the guards a new user meets first.
+namespace {
+
+// "sigma_a a,b,c sigma_s d,e,f" after "=" in the fit's header line.
+std::pair<std::string, std::string> derived_coefficients(const std::string& out) {
+  const auto a = out.find("= sigma_a ");
+  if (a == std::string::npos) return {};
+  std::istringstream in(out.substr(a + 10));
+  std::string sa, word, ss;
+  in >> sa >> word >> ss;
+  return {sa, ss};
+}
+
+}  // namespace
+
+TEST(SssFitGuards, FileNamesMustSayTheFormat) {
+  const fs::path png = scratch_dir() / "k.png", txt = scratch_dir() / "k.txt";
+  const CliRun p = sss_fit("fit --preset marble --plot " + png.string());
+  EXPECT_EQ(p.code, 2);
+  EXPECT_NE(p.err.find("--plot: writes an SVG plot, name it .svg"), std::string::npos) << p.err;
+  EXPECT_FALSE(fs::exists(png));
+  const CliRun t = sss_fit("fit --preset marble --out " + txt.string());
+  EXPECT_EQ(t.code, 2);
+  EXPECT_NE(t.err.find("--out: writes a JSON kernel (.json) or a C header"), std::string::npos) << t.err;
+  EXPECT_FALSE(fs::exists(txt));
+}
+
+// σ typed in m^-1 (skin1's 0.032 mm^-1 as 32) fits nanometre Gaussians: warned. The same
+// medium in mm^-1, and every preset's (23-230 µm narrowest), is not.
+TEST(SssFitGuards, WrongUnitsAreWarnedAbout) {
+  const CliRun m = sss_fit("fit --sigma-a 32,170,480 --sigma-s 740,880,1010");
+  EXPECT_EQ(m.code, 0) << m.err;
+  EXPECT_NE(m.err.find("under 1 µm: are σ given in mm^-1"), std::string::npos) << m.err;
+  const CliRun far = sss_fit("fit --color 0.5 --mfp 2000");
+  EXPECT_EQ(far.code, 0) << far.err;
+  EXPECT_NE(far.err.find("over a metre"), std::string::npos) << far.err;
+  for (const char* preset : {"cream", "skin1", "chicken2"}) {
+    const CliRun ok = sss_fit(std::string("fit --preset ") + preset);
+    EXPECT_EQ(ok.code, 0) << ok.err;
+    EXPECT_EQ(ok.err.find("warning"), std::string::npos) << preset << ": " << ok.err;
+  }
+}
+
+// Artist mode prints the coefficients it derived; fitting those coefficients directly
+// gives back the colour as total reflectance (an independent path: the forward model, not
+// the inversion). The coefficients are printed to 6 significant digits, a relative change
+// of 5e-6 at most, which moves a total reflectance by less than 1e-5; 1e-4 is allowed.
+TEST(SssFitGuards, ArtistModePrintsTheCoefficientsItDerived) {
+  const CliRun a = sss_fit("fit --color 0.8,0.5,0.3 --mfp 1,0.5,0.25");
+  ASSERT_EQ(a.code, 0) << a.err;
+  const auto [sa, ss] = derived_coefficients(a.out);
+  ASSERT_FALSE(sa.empty()) << a.out;
+  const CliRun c = sss_fit("fit --json --sigma-a " + sa + " --sigma-s " + ss);
+  ASSERT_EQ(c.code, 0) << c.err;
+  const auto doc = parse_only_json(c.out);
+  const double color[3] = {0.8, 0.5, 0.3};
+  for (int ch = 0; ch < 3; ++ch)
+    EXPECT_NEAR(doc["total_reflectance"][ch].get<double>(), color[ch], 1e-4) << ch;
+}
+
+TEST(SssFitGuards, TyposGetTheNearestOptionOrCommand) {
+  const CliRun o = sss_fit("fit --preset marble --gaussian 4");
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("did you mean '--gaussians' for '--gaussian'?"), std::string::npos) << o.err;
+  const CliRun c = sss_fit("fitt --preset marble");
+  EXPECT_EQ(c.code, 2);
+  EXPECT_NE(c.err.find("did you mean 'fit' for 'fitt'?"), std::string::npos) << c.err;
+  const CliRun far = sss_fit("fit --preset marble --zzzzzz 1");
+  EXPECT_EQ(far.code, 2);
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;  // nothing near
+}
+
+// Not a terminal (this test's pipe, a CI log): a progress line every 10%.
+TEST(SssFitGuards, MonteCarloShowsProgressInALog) {
+  const fs::path svg = scratch_dir() / "progress.svg";
+  const CliRun r = sss_fit("fit --preset skin1 --plot " + svg.string() + " --plot-mc --photons 20000");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* line : {"sss-fit: Monte Carlo 0%", "sss-fit: Monte Carlo 50%", "sss-fit: Monte Carlo 100%"})
+    EXPECT_NE(r.err.find(line), std::string::npos) << line << "\n" << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos);
+}

@@ -146,6 +146,12 @@ TEST(ViewerApp, DocumentedErrors) {
     EXPECT_EQ(r.code, c.status) << c.args << "\n" << r.out;
     EXPECT_NE(r.out.find(c.message), std::string::npos) << c.args << "\n" << r.out;
   }
+  // A file that does not load names the file; a pointer to --help would not help.
+  const ViewerRun missing = run("/nonexistent/scene.gltf --headless --out " + out);
+  EXPECT_EQ(missing.out.find("--help"), std::string::npos) << missing.out;
+  // A mistyped option gets the nearest one.
+  const ViewerRun typo = run("builtin:sphere --headles --out " + out);
+  EXPECT_NE(typo.out.find("did you mean '--headless'"), std::string::npos) << typo.out;
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 

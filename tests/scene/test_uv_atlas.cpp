@@ -230,13 +230,13 @@ TEST(UvAtlas, EnsureSssAtlasesWarnsAndSkipsUsableUvs) {
   auto loaded = bunny_scene();
   ASSERT_TRUE(std::holds_alternative<Scene>(loaded));
   Scene bunny = std::get<Scene>(std::move(loaded));
-  const std::size_t warnings = bunny.warnings.size();
+  const std::size_t warnings = bunny.texture_notes.size();
   EXPECT_EQ(ensure_sss_atlases(bunny), 1u);
-  ASSERT_EQ(bunny.warnings.size(), warnings + 1);
-  EXPECT_EQ(bunny.warnings.back().rfind("mesh " + bunny.meshes[0].name +
+  ASSERT_EQ(bunny.texture_notes.size(), warnings + 1);
+  EXPECT_EQ(bunny.texture_notes.back().rfind("mesh " + bunny.meshes[0].name +
                                             ": generated a UV atlas (no UVs; ", 0),
             0u)
-      << bunny.warnings.back();
+      << bunny.texture_notes.back();
   EXPECT_FALSE(bunny.meshes[0].uv_atlas.empty());
   EXPECT_EQ(&sss_uvs(bunny.meshes[0]), &bunny.meshes[0].uv_atlas);
   EXPECT_EQ(ensure_sss_atlases(bunny), 0u);  // already has one
