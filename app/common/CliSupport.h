@@ -88,13 +88,12 @@ inline std::string command_line_suggestion(CLI::App& app, int argc, char** argv)
     }
     if (!positional_seen && parsed.empty() && !subcommands.empty() && arg[0] != '-') {
       positional_seen = true;
-      if (std::find(subcommands.begin(), subcommands.end(), arg) == subcommands.end())
-        if (const std::string n = nearest_name(arg, subcommands); !n.empty())
-          return "did you mean '" + n + "' for '" + arg + "'? (commands: " + [&] {
-            std::string all;
-            for (const std::string& c : subcommands) all += (all.empty() ? "" : ", ") + c;
-            return all;
-          }() + ")";
+      if (std::find(subcommands.begin(), subcommands.end(), arg) != subcommands.end()) continue;
+      const std::string n = nearest_name(arg, subcommands);
+      if (n.empty()) continue;
+      std::string all;
+      for (const std::string& c : subcommands) all += (all.empty() ? "" : ", ") + c;
+      return "did you mean '" + n + "' for '" + arg + "'? (commands: " + all + ")";
     }
   }
   return {};

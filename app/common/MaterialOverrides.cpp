@@ -12,9 +12,27 @@
 namespace sss::app {
 
 namespace {
-bool any_medium(const MediumArgs& m) {
-  return !m.preset.empty() || !m.sigma_a.empty() || !m.sigma_s.empty() || !m.color.empty() ||
-         !m.mfp.empty() || !m.g.empty() || !m.eta.empty() || !m.thickness.empty();
+// The first MEDIUM option given, as typed ("--preset"), or nullptr when none is.
+const char* first_medium_option(const MediumArgs& m) {
+  const std::pair<const std::string*, const char*> options[] = {
+      {&m.preset, "--preset"}, {&m.sigma_a, "--sigma-a"}, {&m.sigma_s, "--sigma-s"},
+      {&m.color, "--color"},   {&m.mfp, "--mfp"},         {&m.g, "--g"},
+      {&m.eta, "--eta"},       {&m.thickness, "--thickness"}};
+  for (const auto& [value, name] : options)
+    if (!value->empty()) return name;
+  return nullptr;
+}
+
+bool any_medium(const MediumArgs& m) { return first_medium_option(m) != nullptr; }
+
+// SssMaterial::scale's range, as make_sss_material checks it: checked here first so that
+// the message names the option.
+bool valid_scale(double scale) { return std::isfinite(scale) && scale > 0.0; }
+
+// The model a material is remade under: the given one, else its own, else (a stack, or a
+// material that did not scatter) the default.
+profiles::Model model_for(const scene::SssMaterial& own, std::optional<profiles::Model> given) {
+  return given.value_or(own.enabled && own.layers.empty() ? own.model : profiles::kDefaultModel);
 }
 
 std::string trim(const std::string& s) {
@@ -30,8 +48,7 @@ std::variant<double, FieldError> parse_scale(const std::string& option, const st
   auto v = parse_number(option, text);
   if (auto* e = std::get_if<FieldError>(&v)) return *e;
   const double scale = std::get<double>(v);
-  if (!std::isfinite(scale) || !(scale > 0.0))
-    return FieldError{option, "must be a finite number > 0, got '" + text + "'"};
+  if (!valid_scale(scale)) return FieldError{option, "must be a finite number > 0, got '" + text + "'"};
   return scale;
 }
 
@@ -96,13 +113,12 @@ std::variant<scene::SssMaterial, FieldError> material_from_spec(
       if (auto* e = std::get_if<FieldError>(&made)) return named(*e);
       return std::get<scene::SssMaterial>(std::move(made));
     }
-    const profiles::Model use = model.value_or(m.sss.layers.empty() ? m.sss.model : profiles::kDefaultModel);
-    auto made = scene::make_sss_material(m.sss.source, use, gaussians, scale, albedo_mode);
+    auto made = scene::make_sss_material(m.sss.source, model_for(m.sss, model), gaussians, scale, albedo_mode);
     if (auto* e = std::get_if<FieldError>(&made)) return named(*e);
     return std::get<scene::SssMaterial>(std::move(made));
   }
 
-  const profiles::Model use = model.value_or(had && m.sss.layers.empty() ? m.sss.model : profiles::kDefaultModel);
+  const profiles::Model use = model_for(m.sss, model);
   auto resolved = resolve_medium(spec.medium, use, profiles::ModelOptions{});
   if (auto* e = std::get_if<FieldError>(&resolved)) return named(*e);
   // Keep the source as the user gave it, so that the panel shows it and Export writes it:
@@ -237,7 +253,7 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
   if (args.gaussians && (*args.gaussians < scene::kMinGaussians ||
                          *args.gaussians > scene::kMaxGaussians))
     return FieldError{"--gaussians", "must be in 1..8, got " + std::to_string(*args.gaussians)};
-  if (args.scale && (!std::isfinite(*args.scale) || !(*args.scale > 0.0)))
+  if (args.scale && !valid_scale(*args.scale))
     return FieldError{"--scale", "must be a finite number > 0, got " + message_number(*args.scale)};
   std::optional<scene::AlbedoMode> albedo;
   if (!args.albedo.empty()) {
@@ -300,17 +316,12 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
       left += by_spec[i] ? 0 : 1;
     }
   if (any_global && (sss_count == 0 || ((medium || layers) && left == 0))) {
-    const MediumArgs& g = args.medium;
-    const std::pair<bool, const char*> given[] = {
-        {layers.has_value(), "--layers"}, {!g.preset.empty(), "--preset"},
-        {!g.sigma_a.empty(), "--sigma-a"}, {!g.sigma_s.empty(), "--sigma-s"},
-        {!g.color.empty(), "--color"}, {!g.mfp.empty(), "--mfp"}, {!g.g.empty(), "--g"},
-        {!g.eta.empty(), "--eta"}, {!g.thickness.empty(), "--thickness"},
-        {model.has_value(), "--model"}, {args.gaussians.has_value(), "--gaussians"},
-        {albedo.has_value(), "--albedo"}, {args.scale.has_value(), "--scale"}};
-    const char* option = "";
-    for (const auto& [on, name] : given)
-      if (on && !*option) option = name;
+    const char* option = layers ? "--layers"
+                         : medium ? first_medium_option(args.medium)
+                         : model ? "--model"
+                         : args.gaussians ? "--gaussians"
+                         : albedo ? "--albedo"
+                                  : "--scale";
     std::string scene_name = scene.name.empty() ? std::string("the scene") : "'" + scene.name + "'";
     return FieldError{option, sss_count == 0
         ? "matches no material: " + scene_name + " has no subsurface material (its materials: " +
@@ -340,8 +351,7 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
       continue;
     }
     // A medium or model given to a layered material replaces its stack.
-    const profiles::Model use_model =
-        model.value_or(m.sss.layers.empty() ? m.sss.model : profiles::kDefaultModel);
+    const profiles::Model use_model = model_for(m.sss, model);
     scene::SssSource source = m.sss.source;
     if (medium) {
       profiles::ModelOptions options;

@@ -17,8 +17,8 @@ ScatterScale scatter_scale(const Scene& scene, std::size_t material, std::uint32
   out.mfp_min_mm = out.diffusion_min_mm = std::numeric_limits<double>::infinity();
   for (int c = 0; c < 3; ++c) {
     const profiles::Coefficients k = m.channel(c);
-    const double mfp = 1.0 / k.sigma_t_reduced();
-    const double diffusion = 1.0 / std::sqrt(3.0 * k.sigma_a * k.sigma_t_reduced());
+    const double mfp = k.mfp_reduced();
+    const double diffusion = 1.0 / k.sigma_tr_classical();
     out.mfp_min_mm = std::min(out.mfp_min_mm, mfp);
     out.mfp_max_mm = std::max(out.mfp_max_mm, mfp);
     out.diffusion_min_mm = std::min(out.diffusion_min_mm, diffusion);

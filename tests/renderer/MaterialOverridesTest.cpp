@@ -212,36 +212,34 @@ TEST(ScatterScale, MeanFreePathAgainstObjectAndPixel) {
   const scene::ScatterScale fine = scene::scatter_scale(s, 0, 10000);
   EXPECT_NEAR(fine.pixel_min_mm, k.pixel_min_mm * 360.0 / 10000.0, 1e-9 * k.pixel_min_mm);
 
+  // The boxes' file with one --sss-material, and its scatter-scale warning (empty: none).
+  const auto warning_with = [&](const std::string& spec, scene::ScatterScale* numbers) {
+    scene::Scene with = load(file);
+    a.sss_material = {spec};
+    EXPECT_EQ(error_of(apply(with, a)), "") << spec;
+    if (numbers) *numbers = scene::scatter_scale(with, 0, 360);
+    return scene::scatter_scale_warning(with, 0, 360).value_or("");
+  };
+
   // skin1 typed in m^-1 (the issue's --sigma-a 32,170,480): 1000 times too dense, 3ℓ of
   // 11 µm, far below a pixel. The warning says so and points the scale the right way.
-  scene::Scene metres = load(file);
-  a.sss_material = {"plastic=sigma-a=32,170,480;sigma-s=740,880,1010"};
-  ASSERT_EQ(error_of(apply(metres, a)), "");
-  const scene::ScatterScale m = scene::scatter_scale(metres, 0, 360);
+  scene::ScatterScale m;
+  const std::string w = warning_with("plastic=sigma-a=32,170,480;sigma-s=740,880,1010", &m);
   EXPECT_LT(3.0 * m.diffusion_max_mm, m.pixel_min_mm);
-  const auto w = scene::scatter_scale_warning(metres, 0, 360);
-  ASSERT_TRUE(w.has_value());
-  EXPECT_NE(w->find("below one pixel"), std::string::npos) << *w;
-  EXPECT_NE(w->find("Lower its scale"), std::string::npos) << *w;
+  EXPECT_NE(w.find("below one pixel"), std::string::npos) << w;
+  EXPECT_NE(w.find("Lower its scale"), std::string::npos) << w;
 
   // Scale 1e-4: the diffusion lengths grow 10^4 times, past the 1.7 m box in every channel.
-  scene::Scene wide = load(file);
-  a.sss_material = {"plastic=skin1;scale=1e-4"};
-  ASSERT_EQ(error_of(apply(wide, a)), "");
-  const auto ww = scene::scatter_scale_warning(wide, 0, 360);
-  ASSERT_TRUE(ww.has_value());
-  EXPECT_NE(ww->find("wider than the object"), std::string::npos) << *ww;
-  EXPECT_NE(ww->find("Raise its scale"), std::string::npos) << *ww;
+  const std::string ww = warning_with("plastic=skin1;scale=1e-4", nullptr);
+  EXPECT_NE(ww.find("wider than the object"), std::string::npos) << ww;
+  EXPECT_NE(ww.find("Raise its scale"), std::string::npos) << ww;
 
   // Scale 0.01 (the box scatters like a 1 cm one): a pixel below the scattering and the
   // object wider than it, silent.
-  scene::Scene right = load(file);
-  a.sss_material = {"plastic=skin1;scale=0.01"};
-  ASSERT_EQ(error_of(apply(right, a)), "");
-  const scene::ScatterScale r = scene::scatter_scale(right, 0, 360);
-  ASSERT_GT(3.0 * r.diffusion_max_mm, r.pixel_min_mm);
-  ASSERT_LT(r.diffusion_min_mm, r.object_mm);
-  EXPECT_FALSE(scene::scatter_scale_warning(right, 0, 360).has_value());
+  scene::ScatterScale r;
+  EXPECT_EQ(warning_with("plastic=skin1;scale=0.01", &r), "");
+  EXPECT_GT(3.0 * r.diffusion_max_mm, r.pixel_min_mm);
+  EXPECT_LT(r.diffusion_min_mm, r.object_mm);
 }
 
 // The default scene is not warned about.

@@ -335,33 +335,39 @@ TEST_F(ViewerExport, NoSaveReplacesAFileTheSceneWasLoadedFrom) {
   std::filesystem::remove_all(dir);
 }
 
+// The Tools window of builtin:sphere, drawn frame by frame in a headless ImGui.
+struct ToolsFrames {
+  const scene::Scene scene = scene::sphere_scene();
+  renderer::Renderer r;
+  renderer::testing::HeadlessImGui imgui;
+  ViewerTools tools;  // destroyed before the ImGui context
+  const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 64, 36};
+  std::optional<std::string> request;  // what the last frame's draw() returned
+
+  explicit ToolsFrames(const vk::Context& ctx)
+      : r(ctx, scene, renderer::testing::small_options(64, 36)), tools(ctx) {}
+  ImGuiWindow* frame() {
+    imgui.io().DeltaTime = 1.0f / 60.0f;
+    ImGui::NewFrame();
+    request = tools.draw(r, live);
+    ImGui::Render();
+    return ImGui::FindWindowByName("Tools");
+  }
+};
+
 // A failed open shows in the Tools window, which starts collapsed: the error opens it
 // (and its Open section), so the message is on screen, not only on stderr.
 TEST_F(ViewerExport, AFailedOpenOpensTheToolsWindowWithTheError) {
-  const scene::Scene scene = scene::sphere_scene();
-  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(64, 36));
-  renderer::testing::HeadlessImGui imgui;
-  ImGuiIO& io = imgui.io();
-  {
-    ViewerTools tools(ctx());
-    const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 64, 36};
-    const auto frame = [&] {
-      io.DeltaTime = 1.0f / 60.0f;
-      ImGui::NewFrame();
-      (void)tools.draw(r, live);
-      ImGui::Render();
-      return ImGui::FindWindowByName("Tools");
-    };
-    ImGuiWindow* window = frame();
-    ASSERT_NE(window, nullptr);
-    EXPECT_TRUE(window->Collapsed);  // out of the way until needed
-    const std::string error = "/nonexistent/scene.glb: cannot open file";
-    tools.set_message(error, true);
-    window = frame();
-    EXPECT_FALSE(window->Collapsed);
-    EXPECT_EQ(tools.message(), error);
-    EXPECT_NE(window->StateStorage.GetInt(window->GetID("Open"), 1), 0);  // the section is open
-  }
+  ToolsFrames t(ctx());
+  ImGuiWindow* window = t.frame();
+  ASSERT_NE(window, nullptr);
+  EXPECT_TRUE(window->Collapsed);  // out of the way until needed
+  const std::string error = "/nonexistent/scene.glb: cannot open file";
+  t.tools.set_message(error, true);
+  window = t.frame();
+  EXPECT_FALSE(window->Collapsed);
+  EXPECT_EQ(t.tools.message(), error);
+  EXPECT_NE(window->StateStorage.GetInt(window->GetID("Open"), 1), 0);  // the section is open
 }
 
 // Issue 20: the Tools window did not open on a click on its title, and its Open button
@@ -371,20 +377,10 @@ TEST_F(ViewerExport, AFailedOpenOpensTheToolsWindowWithTheError) {
 // are found by hovering (the position where ImGui reports the widget's ID hovered), not by
 // calling the panel's function.
 TEST_F(ViewerExport, ClickingTheTitleOpensToolsAndTheOpenButtonOpensTheTypedFile) {
-  const scene::Scene scene = scene::sphere_scene();
-  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(64, 36));
-  renderer::testing::HeadlessImGui imgui;
-  ImGuiIO& io = imgui.io();
-  ViewerTools tools(ctx());
-  const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 64, 36};
-  std::optional<std::string> request;
-  const auto frame = [&] {
-    io.DeltaTime = 1.0f / 60.0f;
-    ImGui::NewFrame();
-    request = tools.draw(r, live);
-    ImGui::Render();
-    return ImGui::FindWindowByName("Tools");
-  };
+  ToolsFrames t(ctx());
+  ImGuiIO& io = t.imgui.io();
+  const auto frame = [&] { return t.frame(); };
+  std::optional<std::string>& request = t.request;
   const auto click = [&](ImVec2 at) {
     io.MousePos = at;
     frame();  // hover first, as a real pointer arrives before it presses
