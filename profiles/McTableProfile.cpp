@@ -712,6 +712,18 @@ std::optional<std::string> mc_table_g_warning(double g) {
   return std::nullopt;
 }
 
+std::vector<std::string> mc_table_g_warnings(const Medium& medium) {
+  std::vector<std::string> out;
+  for (int c = 0; c < 3; ++c) {
+    bool said = false;
+    for (int k = 0; k < c; ++k) said |= medium.g[k] == medium.g[c];
+    if (said) continue;
+    if (const auto w = mc_table_g_warning(medium.g[c]))
+      out.push_back(std::string("g[") + "RGB"[c] + "]: " + *w);
+  }
+  return out;
+}
+
 McTableTotal mc_table_total_any_g(const Coefficients& c, bool single_scattering_apart) {
   const McTableGBracket b = mc_table_g_bracket(c.g);
   const McTableTotal lo = mc_table_total(c, *b.lo, single_scattering_apart);

@@ -84,6 +84,9 @@ McTableGBracket mc_table_g_bracket(double g);
 // A one-line warning for a g outside the tabulated [0, 0.95] (what the lookup does
 // instead), or nothing.
 std::optional<std::string> mc_table_g_warning(double g);
+// The same for each channel of a medium, prefixed "g[R]: " etc.; a g shared by several
+// channels is said once (under its first channel).
+std::vector<std::string> mc_table_g_warnings(const Medium& medium);
 // mc_table_total over the g axis (as make_mc_table_profile interpolates it).
 McTableTotal mc_table_total_any_g(const Coefficients& c, bool single_scattering_apart = false);
 // The profile of model mc-table for a medium of any g: a McTableProfile at a node, else

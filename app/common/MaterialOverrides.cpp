@@ -380,10 +380,14 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
   return changed;
 }
 
-void add_scatter_scale_warnings(scene::Scene& scene, std::uint32_t height) {
-  for (std::size_t i = 0; i < scene.materials.size(); ++i)
-    if (scene.materials[i].sss.enabled)
-      if (auto w = scene::scatter_scale_warning(scene, i, height)) scene.warnings.push_back(*w);
+void add_material_warnings(scene::Scene& scene, std::uint32_t height) {
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    const scene::Material& m = scene.materials[i];
+    if (!m.sss.enabled) continue;
+    for (const std::string& w : m.sss.model_warnings())
+      scene.warnings.push_back("material '" + m.name + "': " + w);
+    if (auto w = scene::scatter_scale_warning(scene, i, height)) scene.warnings.push_back(*w);
+  }
 }
 
 }  // namespace sss::app

@@ -63,8 +63,10 @@ void add_material_override_options(CLI::App& app, MaterialOverrideArgs& args);
 std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
                                                        const MaterialOverrideArgs& args);
 
-// scene::scatter_scale_warning for every SSS material, seen by the scene's first camera
-// in an image `height` pixels high, appended to scene.warnings.
-void add_scatter_scale_warnings(scene::Scene& scene, std::uint32_t height);
+// For every SSS material, appended to scene.warnings: its model's warnings
+// (SssMaterial::model_warnings: mc-table outside its tabulated g) and
+// scene::scatter_scale_warning, seen by the scene's first camera in an image `height`
+// pixels high. Each names the material.
+void add_material_warnings(scene::Scene& scene, std::uint32_t height);
 
 }  // namespace sss::app

@@ -48,6 +48,10 @@ bool ProfileSource::has_transmittance() const {
 
 profiles::RgbProfile ProfileSource::make_profile(const profiles::ModelOptions& opt) const {
   if (layers) {
+    // The top layer is looked up under the default model (Layered.h).
+    if (profiles::kDefaultModel == profiles::Model::McTable)
+      for (const std::string& w : profiles::mc_table_g_warnings(layers->front()))
+        std::cerr << "sss-fit: warning: top layer " << w << '\n';
     try {
       return profiles::make_layered_rgb_profile(*layers, opt);
     } catch (const std::invalid_argument& e) {
@@ -58,13 +62,8 @@ profiles::RgbProfile ProfileSource::make_profile(const profiles::ModelOptions& o
   }
   if (model == profiles::Model::McTable) {
     // g outside the tabulated range: the lookup falls back to the similarity relation.
-    // Said once per distinct g (the channels usually share it).
-    std::optional<double> said;
-    for (int c = 0; c < 3; ++c)
-      if (const auto w = profiles::mc_table_g_warning(medium.g[c]); w && said != medium.g[c]) {
-        std::cerr << "sss-fit: warning: g[" << "RGB"[c] << "]: " << *w << '\n';
-        said = medium.g[c];
-      }
+    for (const std::string& w : profiles::mc_table_g_warnings(medium))
+      std::cerr << "sss-fit: warning: " << w << '\n';
   }
   return profiles::RgbProfile(model, medium, opt);
 }

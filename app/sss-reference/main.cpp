@@ -461,7 +461,7 @@ int main(int argc, char** argv) {
   scene::add_light_if_missing(s);
   auto overridden = apply_material_overrides(s, material);
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
-  add_scatter_scale_warnings(s, std::uint32_t(height));
+  add_material_warnings(s, std::uint32_t(height));
   print_messages("sss-reference", "warning", s.warnings);
 
   const int used_threads = threads > 0 ? threads : int(std::thread::hardware_concurrency());

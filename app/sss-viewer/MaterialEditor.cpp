@@ -2,6 +2,7 @@
 
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"
+#include "renderer/scene/ScatterScale.h"
 
 #include <algorithm>
 #include <cmath>
@@ -93,11 +94,21 @@ MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
     } else {
       e.kind = SourceKind::Coefficients;
     }
+    e.object_mm = scene::scatter_scale(scene, i).object_mm;
+    fill_notes(e);
     edits_.push_back(std::move(e));
   }
   // The plots of the scene's own materials: the same refit the renderer made, off the
   // render thread; its upload changes nothing and is not counted as an edit.
   if (!edits_.empty()) submit(Clock::time_point{});
+}
+
+void MaterialEditor::fill_notes(MaterialEdit& e) const {
+  const scene::Material& m = applied_[e.index];
+  const scene::ScatterScale s = scene::scatter_scale(m.sss, e.object_mm);
+  e.scale_note = scene::scatter_scale_readout(s);
+  e.warnings = m.sss.model_warnings();
+  if (auto w = scene::scatter_scale_warning(m, s)) e.warnings.push_back(*w);
 }
 
 void MaterialEditor::fill_coefficients(MaterialEdit& e, const profiles::Medium& m) {
@@ -456,6 +467,7 @@ bool MaterialEditor::update(renderer::Renderer& r) {
       const auto& reflectance = applied_data_->gpu[e.index].reflectance;
       e.total_reflectance = {reflectance.x, reflectance.y, reflectance.z};
     }
+    if (e.index < applied_.size()) fill_notes(e);
   }
   if (result->request.edited != Clock::time_point{}) {
     latency_.fit_ms = result->fit_ms;

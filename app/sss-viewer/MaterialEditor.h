@@ -54,6 +54,13 @@ struct MaterialEdit {
   float artist_eta = 1.3f;
   Rgb total_reflectance{};          // of the material the frame shows (0: not known yet)
   std::string error;                // the last edit's FieldError, shown in red
+  // The material's scale against its object (issue 20): the bounding diameter of what it
+  // is drawn on, mm (0: not drawn), and for the material the frame shows the readout
+  // (scene::scatter_scale_readout) and the warnings (SssMaterial::model_warnings, a
+  // kernel wider than the object).
+  double object_mm = 0.0;
+  std::string scale_note;
+  std::vector<std::string> warnings;
   std::optional<ProfilePlot> plot;  // of the material the frame shows
 };
 
@@ -133,6 +140,7 @@ class MaterialEditor {
  private:
   void fill_coefficients(MaterialEdit& e, const profiles::Medium& m);
   void fill_layers(MaterialEdit& e, const profiles::LayerStack& stack);
+  void fill_notes(MaterialEdit& e) const;  // from applied_[e.index]
   std::optional<SssSpec> spec_from_fields(MaterialEdit& e);
   std::optional<SssSpec> layered_spec(MaterialEdit& e);
   void submit(Clock::time_point edited);

@@ -25,6 +25,7 @@ namespace {
 constexpr float kDegrees = 57.29577951f;
 constexpr float kPanelWidth = 320.0f;  // <= 35% of a 960-pixel-wide window
 const ImVec4 kErrorColor(1.0f, 0.4f, 0.4f, 1.0f);
+const ImVec4 kWarningColor(1.0f, 0.85f, 0.3f, 1.0f);
 const ImU32 kChannelColor[3] = {IM_COL32(255, 90, 80, 255), IM_COL32(90, 220, 90, 255),
                                 IM_COL32(100, 140, 255, 255)};
 
@@ -320,7 +321,7 @@ void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {
     return;
   const RefitLatency& l = editor_.latency();
   if (editor_.fitting())
-    ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "fitting...");
+    ImGui::TextColored(kWarningColor, "fitting...");
   else if (l.edits > 0)
     ImGui::TextDisabled("fit %.0f, upload %.1f, edit->frame %.0f ms", l.fit_ms, l.upload_ms,
                         l.edit_to_frame_ms);
@@ -452,6 +453,17 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
   if (apply) editor_.apply(i);
 
   if (!e.error.empty()) ImGui::TextColored(kErrorColor, "%s", e.error.c_str());
+  if (!e.scale_note.empty()) {
+    ImGui::TextDisabled("%s", e.scale_note.c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("reduced mean free path 1/sigma_t' and diffusion length 1/sigma_tr (min-max "
+                        "over R, G, B, after the scale) against the diameter of what the material "
+                        "is drawn on; (%%): the longest diffusion length as a share of it. A "
+                        "lower scale scatters further");
+  }
+  ImGui::PushTextWrapPos(0.0f);  // a warning is a sentence: wrap it at the panel's edge
+  for (const std::string& w : e.warnings) ImGui::TextColored(kWarningColor, "%s", w.c_str());
+  ImGui::PopTextWrapPos();
   if (e.plot) {
     ImGui::Checkbox("plot error", &plot_error_);
     ImGui::SameLine();

@@ -257,7 +257,7 @@ int viewer_main(int argc, char** argv) {
   scene::add_light_if_missing(scene);
   auto overridden = apply_material_overrides(scene, a.material);
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
-  add_scatter_scale_warnings(scene, std::uint32_t(a.height));
+  add_material_warnings(scene, std::uint32_t(a.height));
   print_messages("sss-viewer", "warning", scene.warnings);
   if (options.sss == renderer::SssMode::Texture) print_messages("sss-viewer", "note", scene.texture_notes);
   if (a.test_host_oom == "load") throw std::bad_alloc();

@@ -1,5 +1,6 @@
 #include "renderer/scene/Material.h"
 
+#include "profiles/McTableProfile.h"
 #include "profiles/Presets.h"
 
 #include <cmath>
@@ -61,6 +62,18 @@ bool SssMaterial::transmits() const {
 profiles::RgbProfile SssMaterial::profile(const profiles::ModelOptions& opt) const {
   if (!layers.empty()) return profiles::make_layered_rgb_profile(effective_layers(), opt);
   return profiles::RgbProfile(model, effective_medium(), opt);
+}
+
+std::vector<std::string> SssMaterial::model_warnings() const {
+  // A stack's top layer is looked up under the layered model's base, the default model
+  // (profile() above); the scale does not change g.
+  const bool layered = !layers.empty();
+  const profiles::Model looked_up = layered ? profiles::kDefaultModel : model;
+  if (looked_up != profiles::Model::McTable) return {};
+  std::vector<std::string> out = profiles::mc_table_g_warnings(layered ? layers.front() : medium);
+  if (layered)
+    for (std::string& w : out) w = "top layer " + w;
+  return out;
 }
 
 std::variant<profiles::Medium, FieldError> resolve_medium(const SssSource& source,

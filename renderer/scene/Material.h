@@ -18,6 +18,7 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 namespace sss::scene {
 
@@ -69,6 +70,10 @@ struct SssMaterial {
   // The material's R(r) (and T(r)): the layered model for a stack, else `model` on the
   // effective medium. Throws std::invalid_argument as RgbProfile does.
   profiles::RgbProfile profile(const profiles::ModelOptions& opt = {}) const;
+  // What the model does with this medium that the user should know, a line each: mc-table
+  // (and a stack, whose top layer it looks up) outside its tabulated g range falls back to
+  // the similarity relation (profiles::mc_table_g_warnings). Empty for other models.
+  std::vector<std::string> model_warnings() const;
 };
 
 // The medium a source describes. Artist sources are inverted through `model`'s total

@@ -6,14 +6,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace sss::scene {
 
-ScatterScale scatter_scale(const Scene& scene, std::size_t material, std::uint32_t height) {
+ScatterScale scatter_scale(const SssMaterial& sss, double object_mm, double pixel_min_mm) {
   ScatterScale out;
-  if (material >= scene.materials.size() || !scene.materials[material].sss.enabled) return out;
-  const profiles::Medium m = scene.materials[material].sss.effective_medium();
+  out.object_mm = object_mm;
+  out.pixel_min_mm = pixel_min_mm;
+  if (!sss.enabled) return out;
+  const profiles::Medium m = sss.effective_medium();
   out.mfp_min_mm = out.diffusion_min_mm = std::numeric_limits<double>::infinity();
   for (int c = 0; c < 3; ++c) {
     const profiles::Coefficients k = m.channel(c);
@@ -24,29 +27,64 @@ ScatterScale scatter_scale(const Scene& scene, std::size_t material, std::uint32
     out.diffusion_min_mm = std::min(out.diffusion_min_mm, diffusion);
     out.diffusion_max_mm = std::max(out.diffusion_max_mm, diffusion);
   }
+  return out;
+}
+
+ScatterScale scatter_scale(const Scene& scene, std::size_t material, std::uint32_t height) {
+  if (material >= scene.materials.size() || !scene.materials[material].sss.enabled) return {};
   Bounds b;
   for (const Instance& inst : scene.instances)
     if (inst.mesh < scene.meshes.size() && scene.meshes[inst.mesh].material == material)
       b.extend(scene.meshes[inst.mesh].bounds.transformed(inst.world));
-  if (b.empty()) return out;
-  out.object_mm = double(glm::length(b.extent())) * scene.mm_per_unit;
-  if (height == 0 || scene.cameras.empty()) return out;
-  const Camera& cam = scene.cameras.front();
-  const glm::vec3 eye = cam.position();
-  const glm::vec3 nearest = glm::clamp(eye, b.min, b.max);
-  const double distance = double(glm::length(nearest - eye)) * scene.mm_per_unit;
-  if (cam.projection == Projection::Orthographic)
-    out.pixel_min_mm = 2.0 * double(cam.ymag) * scene.mm_per_unit / double(height);
-  else if (distance > 0.0)
-    out.pixel_min_mm = 2.0 * distance * std::tan(0.5 * double(cam.yfov)) / double(height);
-  return out;
+  const ScatterScale medium_only = scatter_scale(scene.materials[material].sss, 0.0);
+  if (b.empty()) return medium_only;
+  const double object_mm = double(glm::length(b.extent())) * scene.mm_per_unit;
+  double pixel_mm = 0.0;
+  if (height != 0 && !scene.cameras.empty()) {
+    const Camera& cam = scene.cameras.front();
+    const glm::vec3 eye = cam.position();
+    const glm::vec3 nearest = glm::clamp(eye, b.min, b.max);
+    const double distance = double(glm::length(nearest - eye)) * scene.mm_per_unit;
+    if (cam.projection == Projection::Orthographic)
+      pixel_mm = 2.0 * double(cam.ymag) * scene.mm_per_unit / double(height);
+    else if (distance > 0.0)
+      pixel_mm = 2.0 * distance * std::tan(0.5 * double(cam.yfov)) / double(height);
+  }
+  return scatter_scale(scene.materials[material].sss, object_mm, pixel_mm);
+}
+
+std::string scatter_scale_readout(const ScatterScale& s) {
+  if (s.object_mm <= 0.0 || !(s.mfp_max_mm > 0.0)) return {};
+  std::ostringstream o;
+  // Two significant digits, without an exponent from 100 to 10^6 mm (a metre is "1000").
+  const auto num = [&](double v) {
+    if (v >= 100.0 && v < 1e6) o << std::llround(v);
+    else o << std::setprecision(2) << v;
+  };
+  const auto range = [&](double lo, double hi) {
+    num(lo);
+    if (hi - lo > 0.005 * hi) o << "-", num(hi);
+  };
+  o << "mfp ";
+  range(s.mfp_min_mm, s.mfp_max_mm);
+  o << " mm, diffusion ";
+  range(s.diffusion_min_mm, s.diffusion_max_mm);
+  o << " mm; object ";
+  num(s.object_mm);
+  o << " mm (";
+  num(100.0 * s.diffusion_max_mm / s.object_mm);
+  o << "%)";
+  return o.str();
 }
 
 std::optional<std::string> scatter_scale_warning(const Scene& scene, std::size_t material,
                                                  std::uint32_t height) {
-  const ScatterScale s = scatter_scale(scene, material, height);
-  if (s.object_mm <= 0.0) return std::nullopt;
-  const Material& mat = scene.materials[material];
+  if (material >= scene.materials.size()) return std::nullopt;
+  return scatter_scale_warning(scene.materials[material], scatter_scale(scene, material, height));
+}
+
+std::optional<std::string> scatter_scale_warning(const Material& mat, const ScatterScale& s) {
+  if (s.object_mm <= 0.0 || !mat.sss.enabled) return std::nullopt;
   std::ostringstream w;
   w.precision(3);
   w << "material '" << mat.name << "' (scale " << mat.sss.scale << "): ";

@@ -29,6 +29,14 @@ struct ScatterScale {
 // For an enabled SSS material `material` of `scene`, seen by scene.cameras[0] (if any) in
 // an image `height` pixels high (0: no pixel footprint).
 ScatterScale scatter_scale(const Scene& scene, std::size_t material, std::uint32_t height = 0);
+// The medium's numbers for `sss` with the object's and the pixel's given (the viewer's
+// editor measures the object once and the medium at every edit).
+ScatterScale scatter_scale(const SssMaterial& sss, double object_mm, double pixel_min_mm = 0.0);
+
+// One line for the material panel: the reduced mfp and diffusion lengths (min-max over
+// R, G, B) against the object's diameter, e.g. "mfp 0.52-3.4 mm, diffusion 1.1-6.2 mm;
+// object 95 mm (6.5%)". Empty when the object is not known.
+std::string scatter_scale_readout(const ScatterScale& s);
 
 // A warning when the material's scattering cannot be what the user meant, naming the
 // material and the numbers:
@@ -41,5 +49,6 @@ ScatterScale scatter_scale(const Scene& scene, std::size_t material, std::uint32
 // lower scale scatters further: the opposite of Blender's Subsurface Scale).
 std::optional<std::string> scatter_scale_warning(const Scene& scene, std::size_t material,
                                                  std::uint32_t height);
+std::optional<std::string> scatter_scale_warning(const Material& material, const ScatterScale& s);
 
 }  // namespace sss::scene

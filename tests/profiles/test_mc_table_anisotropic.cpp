@@ -87,6 +87,15 @@ TEST(McTableAnisotropic, GAxisBracketsAndWarnsOutsideItsRange) {
   EXPECT_NE(mc_table_g_warning(0.97)->find("0.95"), std::string::npos);
   ASSERT_TRUE(mc_table_g_warning(-0.2));
   EXPECT_NE(mc_table_g_warning(-0.2)->find("isotropic"), std::string::npos);
+  // Per medium: each channel's g once, named by its channel.
+  Medium m;
+  m.g = {0.97, 0.97, 0.5};
+  EXPECT_EQ(mc_table_g_warnings(m), std::vector<std::string>{"g[R]: " + *mc_table_g_warning(0.97)});
+  m.g = {0.5, -0.1, 0.99};
+  const std::vector<std::string> two = mc_table_g_warnings(m);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(two[0].rfind("g[G]: g -0.1 < 0", 0), 0u) << two[0];
+  EXPECT_EQ(two[1].rfind("g[B]: g 0.99 > 0.95", 0), 0u) << two[1];
   // Continuity at a node: 1e-9 above g = 0.8 the weight of the g = 0.9 layer is
   // dt = 1e-9 / (0.2 ln 2) (d ln(1 - g)/dg = -1/(1 - g) over the node spacing ln 2), so R
   // moves by dt |R_0.9 - R_0.8| (the reduced coefficients, hence both lookups, are the

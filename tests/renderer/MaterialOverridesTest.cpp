@@ -255,5 +255,45 @@ TEST(ScatterScale, TheDefaultScenesAreNotWarnedAbout) {
   }
 }
 
+
+// The panel's line for skin1 on the 1 m box: the numbers of scatter_scale, readable.
+TEST(ScatterScale, ReadoutNamesMfpDiffusionAndObject) {
+  scene::ScatterScale k;
+  k.mfp_min_mm = 0.0524, k.mfp_max_mm = 0.3, k.diffusion_min_mm = 0.7, k.diffusion_max_mm = 3.66;
+  k.object_mm = 1732.05;
+  EXPECT_EQ(scene::scatter_scale_readout(k), "mfp 0.052-0.3 mm, diffusion 0.7-3.7 mm; object 1732 mm (0.21%)");
+  k.mfp_min_mm = k.mfp_max_mm = 2.0;  // one value for a grey medium
+  EXPECT_NE(scene::scatter_scale_readout(k).find("mfp 2 mm,"), std::string::npos);
+  k.object_mm = 0.0;  // not drawn: nothing to compare with
+  EXPECT_EQ(scene::scatter_scale_readout(k), "");
+}
+
+// A medium outside mc-table's tabulated g (issue 18 part 4) is warned about by the viewer
+// and the reference, as sss-fit does, naming the material, once for channels sharing g;
+// not under a model that does not use the table.
+TEST(MaterialWarnings, McTableOutsideItsGRangeIsSaidOnceNamingTheMaterial) {
+  TempDir dir("g_warning");
+  const auto file = dir.path() / "boxes.glb";
+  write_two_boxes(file, 0.05f);
+  const auto warnings_with = [&](const std::string& spec) {
+    scene::Scene s = load(file);
+    app::MaterialOverrideArgs a;
+    a.sss_material = {spec};
+    EXPECT_EQ(error_of(apply(s, a)), "") << spec;
+    s.warnings.clear();
+    app::add_material_warnings(s, 360);
+    std::string all;
+    for (const std::string& w : s.warnings) all += w + "\n";
+    return all;
+  };
+  const std::string medium = "plastic=sigma-a=0.01,0.02,0.03;sigma-s=20,20,20;g=";
+  const std::string w = warnings_with(medium + "0.97");
+  EXPECT_NE(w.find("material 'plastic': g[R]: g 0.97 > 0.95"), std::string::npos) << w;
+  EXPECT_EQ(w.find("g[G]"), std::string::npos) << "one g, said once: " << w;
+  EXPECT_EQ(warnings_with(medium + "0.9"), "");
+  EXPECT_NE(warnings_with(medium + "-0.2").find("isotropic table"), std::string::npos);
+  EXPECT_EQ(warnings_with(medium + "0.97;model=dipole"), "");
+}
+
 }  // namespace
 }  // namespace sss

@@ -151,6 +151,10 @@ TEST_F(ViewerUiTest, PresetChangeRefitsAsyncAndInvalidInputLeavesTheFrame) {
   r.render_frame();
   const image::Image skin = r.read_hdr();
   ASSERT_TRUE(ed.edits()[0].plot.has_value());
+  // The panel's scale line (issue 20): skin1's mfp against the bunny's size.
+  const std::string skin_note = ed.edits()[0].scale_note;
+  EXPECT_NE(skin_note.find("object"), std::string::npos) << skin_note;
+  EXPECT_TRUE(ed.edits()[0].warnings.empty());
 
   // The preset combo's call: queued on the worker, nothing changes until update().
   ASSERT_TRUE(ed.select_preset(0, preset("marble")));
@@ -177,6 +181,9 @@ TEST_F(ViewerUiTest, PresetChangeRefitsAsyncAndInvalidInputLeavesTheFrame) {
   EXPECT_GT(b.mean[2], 1.5 * a.mean[2]);
   EXPECT_GT(b.mean[2] / b.mean[0], 1.2 * a.mean[2] / a.mean[0]);
   EXPECT_LT(b.sharpness, 0.95 * a.sharpness);
+  // The scale line follows the material the frame shows (marble's longer mfp).
+  EXPECT_NE(ed.edits()[0].scale_note, skin_note);
+  EXPECT_NE(ed.edits()[0].scale_note.find("object"), std::string::npos);
 
   // Invalid coefficients: the FieldError shows, nothing is queued, the frame stays.
   MaterialEdit& e = ed.edits()[0];
@@ -213,6 +220,20 @@ TEST_F(ViewerUiTest, PresetChangeRefitsAsyncAndInvalidInputLeavesTheFrame) {
   // The artist colour and mfp came from the marble medium, so the look barely moves.
   const FrameSummary c = summarize(artist), d = summarize(coefficients);
   for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(c.mean[ch], d.mean[ch], 0.02 * d.mean[ch]) << ch;
+
+  // g past mc-table's last layer: the panel says what the lookup does instead (as
+  // sss-fit and the command lines do), and stops saying it when g is back in range.
+  ASSERT_TRUE(ed.select_model(0, model(profiles::Model::McTable)));
+  finish_refit(ed, r);
+  e.g = {0.97f, 0.97f, 0.97f};
+  ASSERT_TRUE(ed.apply(0)) << e.error;
+  finish_refit(ed, r);
+  ASSERT_EQ(e.warnings.size(), 1u);
+  EXPECT_NE(e.warnings[0].find("g 0.97 > 0.95"), std::string::npos) << e.warnings[0];
+  e.g = {0.5f, 0.5f, 0.5f};
+  ASSERT_TRUE(ed.apply(0)) << e.error;
+  finish_refit(ed, r);
+  EXPECT_TRUE(e.warnings.empty());
 }
 
 TEST_F(ViewerUiTest, RefitLatencyOldSyncPathAgainstTheWorker) {
