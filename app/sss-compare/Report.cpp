@@ -80,7 +80,12 @@ nlohmann::ordered_json to_json(const Report& r) {
                       {"value", number(c.value)},
                       {"pass", c.pass}});
   nlohmann::ordered_json heatmap;  // null without --heatmap
-  if (r.heatmap) heatmap = {{"path", *r.heatmap}, {"max", r.heatmap_max}};
+  if (r.heatmap)
+    heatmap = {{"path", *r.heatmap},
+               {"max", r.heatmap_max},
+               {"scale", r.heatmap_scale},
+               {"signed", r.heatmap_signed},
+               {"pixels_above", r.heatmap_above}};
   nlohmann::ordered_json log_ratio;  // null without --log-ratio
   if (r.log_ratio)
     log_ratio = {{"path", *r.log_ratio},
@@ -98,7 +103,9 @@ nlohmann::ordered_json to_json(const Report& r) {
       {"pixels",
        {{"total", m.total_pixels},
         {"compared", m.compared_pixels},
-        {"excluded", m.total_pixels - m.compared_pixels}}},
+        {"excluded", m.total_pixels - m.compared_pixels},
+        {"silhouette", r.silhouette_pixels ? nlohmann::ordered_json(*r.silhouette_pixels)
+                                           : nlohmann::ordered_json()}}},
       {"metrics",
        {{"rmse", number(m.rmse)},
         {"relative_rmse", number(m.relative_rmse)},
@@ -131,8 +138,10 @@ std::string to_table(const Report& r) {
     if (in->tonemapped) out += format(", tonemapped at exposure %g to compare", r.exposure);
     out += '\n';
   }
-  out += format("compared %zu of %zu pixels (%zu without geometry in A or B), %s values, peak %s\n\n",
-                m.compared_pixels, m.total_pixels, m.total_pixels - m.compared_pixels,
+  const std::size_t silhouette = r.silhouette_pixels.value_or(0);
+  out += format("compared %zu of %zu pixels (%zu without geometry in A or B%s), %s values, peak %s\n\n",
+                m.compared_pixels, m.total_pixels, m.total_pixels - m.compared_pixels - silhouette,
+                r.silhouette_pixels ? format(", %zu at a silhouette", silhouette).c_str() : "",
                 image::encoding_name(r.space), g(m.peak).c_str());
 
   auto row = [&](const std::string& label, const std::string& value, const std::string& note,
@@ -162,8 +171,19 @@ std::string to_table(const Report& r) {
   row("SSIM", g(m.ssim), "", "ssim");
   row("summed A / B", format("%.4f %.4f %.4f", m.sum_ratio[0], m.sum_ratio[1], m.sum_ratio[2]),
       "R G B: the bias", nullptr);
-  if (r.heatmap)
-    out += format("\nheat map: %s (error 0 to %s)\n", r.heatmap->c_str(), g(r.heatmap_max).c_str());
+  if (r.heatmap) {
+    const char* why = r.heatmap_scale == "p99"    ? ", the 99th percentile"
+                      : r.heatmap_scale == "max"  ? ", the largest error"
+                      : r.heatmap_scale == "none" ? ", no error"
+                                                  : "";
+    if (r.heatmap_signed)
+      out += format("\nheat map: %s (signed error a-b, -%s to +%s%s; red A above, blue below)\n",
+                    r.heatmap->c_str(), g(r.heatmap_max).c_str(), g(r.heatmap_max).c_str(), why);
+    else
+      out += format("\nheat map: %s (error 0 to %s%s)\n", r.heatmap->c_str(), g(r.heatmap_max).c_str(), why);
+    if (r.heatmap_above > 0)
+      out += format("  %zu pixels above the scale, drawn at its end\n", r.heatmap_above);
+  }
   if (r.log_ratio) {
     const image::LogRatioStats& s = r.log_stats;
     out += format("%slog ratio map: %s (log2(A/B) of the luminance, -%s to +%s stops)\n",

@@ -44,8 +44,13 @@ struct Report {
   image::Metrics metrics;
   Limits limits;
   std::vector<Check> checks;
+  // --exclude-silhouettes: the pixels with geometry in both that it left out.
+  std::optional<std::size_t> silhouette_pixels;
   std::optional<std::string> heatmap;  // the file written, if any
-  double heatmap_max = 0.0;
+  double heatmap_max = 0.0;            // its scale's top (signed: -top to +top)
+  std::string heatmap_scale;           // "given" (--heatmap-max), "p99", "max" or "none"
+  bool heatmap_signed = false;
+  std::size_t heatmap_above = 0;  // compared pixels whose |error| is above the top
   std::optional<std::string> log_ratio;  // the --log-ratio file written, if any
   double log_range = 0.0;                // its range in stops
   image::LogRatioStats log_stats;        // of log2(A/B), with --log-ratio

@@ -66,7 +66,7 @@ struct Args {
   std::string a, b, heatmap, variance, log_ratio;
   double heatmap_max = 0.0;
   double log_range = image::kDefaultLogRange;
-  bool json = false;
+  bool json = false, heatmap_signed = false, exclude_silhouettes = false;
   double tolerance = 0.01, threshold = 0.05, max_abs = 0.0, max_fraction = 0.0, min_ssim = 0.0;
   float exposure = 1.0f;
 };
@@ -92,8 +92,19 @@ int main(int argc, char** argv) {
   auto* heatmap = app.add_option("--heatmap", a.heatmap,
                                  "Write a heat map of the per-pixel error max_c |a-b| (FILE.png)");
   auto* heatmap_max =
-      app.add_option("--heatmap-max", a.heatmap_max, "Top of the heat map's scale (default: max error)")
+      app.add_option("--heatmap-max", a.heatmap_max,
+                     "Top of the heat map's scale (default: the 99th percentile of the compared "
+                     "pixels' errors; the few above it take the top colour)")
           ->needs(heatmap);
+  app.add_flag("--heatmap-signed", a.heatmap_signed,
+               "The heat map shows the signed error a-b of each pixel's worst channel: red where "
+               "A is above the reference, blue below, white equal; its scale runs from -top to "
+               "+top")
+      ->needs(heatmap);
+  app.add_flag("--exclude-silhouettes", a.exclude_silhouettes,
+               "Leave out every pixel next to one without geometry in A or B (the silhouettes, "
+               "where a raster and a ray tracer pick different triangles), as the golden suite's "
+               "tests/golden/REPORT.md does");
   auto* log_ratio = app.add_option(
       "--log-ratio", a.log_ratio,
       "Write a map of the signed log ratio log2(A/B) of each pixel's luminance (FILE.png): "
@@ -157,12 +168,16 @@ int main(int argc, char** argv) {
   if (img[0].width != img[1].width || img[0].height != img[1].height)
     return input_error("images differ in size: " + a.a + " is " + size_text(img[0]) + ", " + a.b +
                        " is " + size_text(img[1]));
+  const std::size_t silhouette = a.exclude_silhouettes ? image::exclude_silhouettes(img[0], img[1]) : 0;
   const std::vector<std::uint8_t> mask = image::geometry_mask(img[0], img[1]);
   const std::size_t compared = image::count_compared(mask);
   if (compared == 0)
     return input_error("no pixel to compare: " + a.a + " has geometry (alpha > 0.5) in " +
                        std::to_string(geometry_pixels(img[0])) + " pixels, " + a.b + " in " +
-                       std::to_string(geometry_pixels(img[1])) + ", and no pixel has it in both");
+                       std::to_string(geometry_pixels(img[1])) + ", and no pixel has it in both" +
+                       (silhouette > 0 ? " away from a silhouette (--exclude-silhouettes left out " +
+                                             std::to_string(silhouette) + ")"
+                                       : std::string()));
   for (int i = 0; i < 2; ++i)
     if (auto bad = image::first_non_finite(img[i], mask))
       return input_error(info[i].path + ": pixel (" + std::to_string(bad->first) + ", " +
@@ -197,6 +212,7 @@ int main(int argc, char** argv) {
   report.b = info[1];
   report.space = space;
   report.exposure = a.exposure;
+  report.silhouette_pixels = a.exclude_silhouettes ? std::optional<std::size_t>(silhouette) : std::nullopt;
   report.limits.tolerance = a.tolerance;
   if (max_abs->count()) report.limits.max_abs = a.max_abs;
   if (max_fraction->count()) report.limits.max_fraction = a.max_fraction;
@@ -211,13 +227,27 @@ int main(int argc, char** argv) {
     report.metrics = image::compare(img[0], img[1], options);
     report.checks = evaluate(report.metrics, report.limits);
     if (heatmap->count()) {
+      const std::vector<float> errors = a.heatmap_signed ? image::signed_pixel_errors(img[0], img[1])
+                                                         : image::pixel_errors(img[0], img[1]);
       double top = a.heatmap_max;
-      if (!heatmap_max->count()) top = report.metrics.max_abs_error > 0.0 ? report.metrics.max_abs_error : 1.0;
-      const image::Image map = image::render_heatmap(image::pixel_errors(img[0], img[1]), mask,
-                                                     img[0].width, img[0].height, top);
+      report.heatmap_scale = "given";
+      if (!heatmap_max->count()) {
+        top = image::robust_scale(errors, mask);
+        report.heatmap_scale = "p99";
+        if (!(top > 0.0)) {  // 99% of the pixels equal: the largest error, or 1 if none
+          top = report.metrics.max_abs_error > 0.0 ? report.metrics.max_abs_error : 1.0;
+          report.heatmap_scale = report.metrics.max_abs_error > 0.0 ? "max" : "none";
+        }
+      }
+      for (std::size_t i = 0; i < errors.size(); ++i)
+        report.heatmap_above += mask[i] && std::fabs(errors[i]) > top;
+      const image::Image map =
+          a.heatmap_signed ? image::render_signed_heatmap(errors, mask, img[0].width, img[0].height, top)
+                           : image::render_heatmap(errors, mask, img[0].width, img[0].height, top);
       image::write_png(a.heatmap, map);
       report.heatmap = a.heatmap;
       report.heatmap_max = top;
+      report.heatmap_signed = a.heatmap_signed;
     }
     if (log_ratio->count()) {
       // In the space the metrics were taken in; display values are linearized inside.

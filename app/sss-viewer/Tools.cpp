@@ -330,16 +330,9 @@ ViewerTools::PairResult compare_pair(const image::Image& a_display, const image:
   out.mask = image::geometry_mask(a_display, b_display);
   out.log2_ratio = image::log2_luminance_ratio(a_hdr, b_hdr, image::Encoding::Linear);
   out.log_stats = image::log_ratio_stats(out.log2_ratio, out.mask);
-  // The absolute map's top: the 99th percentile of the compared pixels' errors, so that
-  // a few silhouette or shadow-edge pixels do not turn the rest of the map dark.
-  std::vector<float> compared;
-  for (std::size_t i = 0; i < out.errors.size(); ++i)
-    if (out.mask[i] != 0) compared.push_back(out.errors[i]);
-  if (!compared.empty()) {
-    const auto nth = compared.begin() + std::ptrdiff_t(0.99 * double(compared.size() - 1));
-    std::nth_element(compared.begin(), nth, compared.end());
-    out.heat_max = std::max(double(*nth), 1e-3);
-  }
+  // The absolute map's top: the 99th percentile of the compared pixels' errors
+  // (image::robust_scale), at least one 8-bit code's worth.
+  out.heat_max = std::max(image::robust_scale(out.errors, out.mask), 1e-3);
   return out;
 }
 

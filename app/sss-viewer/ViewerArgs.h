@@ -26,6 +26,7 @@ struct ViewerArgs {
   std::string mode = "separable";
   MaterialOverrideArgs material;  // --model, --gaussians, --albedo, MEDIUM
   int taps = 17;
+  int shadow_map_size = 1024;  // texels a side (RenderOptions::shadow_map_size)
   float exposure = 1.0f;
   std::string debug_view = "none";  // --debug-view: renderer::parse_debug_view names
   std::string transmission = "on";  // --transmission on | off

@@ -101,6 +101,10 @@ int viewer_main(int argc, char** argv) {
   app.add_option("--mode", a.mode, "separable | gaussians (default separable)");
   add_material_override_options(app, a.material);
   app.add_option("--taps", a.taps, "Separable kernel taps (odd, 3..33; default 17)");
+  app.add_option("--shadow-map-size", a.shadow_map_size,
+                 "Shadow map texels a side, per light (16..8192; default 1024). The golden suite "
+                 "renders at 512 (tests/golden/REPORT.md)")
+      ->check(CLI::Range(16, 8192));
   app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1, in [1e-6, 1e6])");
   app.add_option("--debug-view", a.debug_view, debug_view_help());
   app.add_option("--transmission", a.transmission,
@@ -228,6 +232,7 @@ int viewer_main(int argc, char** argv) {
   if (a.taps < 3 || a.taps > 33 || a.taps % 2 == 0)
     return usage("--taps: expected an odd number in 3..33, got " + std::to_string(a.taps));
   options.separable_taps = a.taps;
+  options.shadow_map_size = std::uint32_t(a.shadow_map_size);
   if (!(a.exposure >= 1e-6 && a.exposure <= 1e6))  // also NaN (CLI::Range would let it through)
     return usage("--exposure: must lie in [1e-06, 1e+06], got " + std::to_string(a.exposure));
   if (std::size_t(a.width) * std::size_t(a.height) > image::kMaxImagePixels)

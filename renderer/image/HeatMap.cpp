@@ -177,11 +177,13 @@ HeatMapLayout scale_bar_layout(int width, int height, double min_value, double m
     l.labels[i] = (signed_labels && v > 0.0 ? "+" : "") + format_tick(v);
     label_w = std::max(label_w, text_width(l.labels[i], s));
   }
-  l.bar_x = width + pad;
-  l.bar_width = 10 * s;
-  l.tick_x = l.bar_x + l.bar_width;
+  // The tick marks sit on the bar's left, between it and the image: on its right, a mark
+  // followed by a label read as a minus sign ("-0", "-4.63" on an unsigned bar).
   l.tick_length = 3 * s;
-  l.label_x = l.tick_x + l.tick_length + s;
+  l.tick_x = width + pad;
+  l.bar_x = l.tick_x + l.tick_length;
+  l.bar_width = 10 * s;
+  l.label_x = l.bar_x + l.bar_width + 2 * s;
   l.width = l.label_x + label_w + pad;
   l.height = std::max(height, 40 * s + 2 * margin);
   l.bar_y = margin;
@@ -197,6 +199,49 @@ Image render_heatmap(const std::vector<float>& error, const std::vector<std::uin
   const HeatMapLayout l = heatmap_layout(width, height, max_value);
   return draw_map(l, error, mask, [&](float e) { return viridis(e / max_value); },
                   [](double t) { return viridis(t); });
+}
+
+double robust_scale(const std::vector<float>& values, const std::vector<std::uint8_t>& mask,
+                    double quantile) {
+  if (values.size() != mask.size())
+    throw std::invalid_argument("heat map scale: the values and the mask differ in size");
+  if (!(quantile >= 0.0 && quantile <= 1.0))
+    throw std::invalid_argument("heat map scale: the quantile must be in [0, 1]");
+  std::vector<float> v;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (mask[i] && std::isfinite(values[i])) v.push_back(std::fabs(values[i]));
+  if (v.empty()) return 0.0;
+  const auto nth = v.begin() + std::ptrdiff_t(quantile * double(v.size() - 1));
+  std::nth_element(v.begin(), nth, v.end());
+  return *nth;
+}
+
+std::vector<float> signed_pixel_errors(const Image& a, const Image& b) {
+  (void)geometry_mask(a, b);  // throws on a size mismatch
+  const std::size_t n = static_cast<std::size_t>(a.width) * a.height;
+  std::vector<float> d(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    float best = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+      const float e = a.rgba[4 * i + c] - b.rgba[4 * i + c];
+      if (std::fabs(e) > std::fabs(best) || std::isnan(e)) best = e;
+      if (std::isnan(best)) break;
+    }
+    d[i] = best;
+  }
+  return d;
+}
+
+Image render_signed_heatmap(const std::vector<float>& difference,
+                            const std::vector<std::uint8_t>& mask, int width, int height,
+                            double max_value) {
+  if (!std::isfinite(max_value) || !(max_value > 0.0))
+    throw std::invalid_argument("heat map: the scale maximum must be finite and > 0");
+  const HeatMapLayout l = scale_bar_layout(width, height, -max_value, max_value, true);
+  return draw_map(
+      l, difference, mask,
+      [&](float d) { return std::isnan(d) ? kLogRatioInvalid : diverging(d / max_value); },
+      [](double t) { return diverging(2.0 * t - 1.0); });
 }
 
 // ---- signed log ratio ----------------------------------------------------------------

@@ -12,17 +12,18 @@
 //
 // Layout (all in pixels, s = the font scale, 1..4 with the image height):
 //
-//   +---------------------+ pad +-----+ tick label
-//   | the error image,    |     | bar |-- 0.02
-//   | pixel (x, y) of the |     |     |
-//   | inputs at (x, y)    |     |     |-- 0.01
-//   +---------------------+     |     |
-//     (black below when the     |     |-- 0
-//      bar is taller)           +-----+
+//   +---------------------+ pad   +-----+   label
+//   | the error image,    |     --| bar |   0.02
+//   | pixel (x, y) of the |       |     |
+//   | inputs at (x, y)    |     --|     |   0.01
+//   +---------------------+       |     |
+//     (black below when the     --|     |   0
+//      bar is taller)      tick   +-----+
 //
 // The bar runs from the scale's maximum at its top row to 0 at its bottom row with five
-// ticks (0, ¼, ½, ¾, 1 of the maximum) labelled in a built-in 5×7 bitmap font. Errors
-// above the maximum take the top colour; pixels outside the mask are dark grey; the
+// ticks (0, ¼, ½, ¾, 1 of the maximum) labelled in a built-in 5×7 bitmap font. The tick
+// marks are on the bar's left, so that no mark stands before a label as a minus sign.
+// Errors above the maximum take the top colour; pixels outside the mask are dark grey; the
 // canvas around is black.
 #pragma once
 
@@ -67,7 +68,7 @@ struct HeatMapLayout {
   int width = 0, height = 0;              // the whole canvas
   int scale = 1;                          // font scale
   int bar_x = 0, bar_y = 0, bar_width = 0, bar_height = 0;
-  int tick_x = 0, tick_length = 0;  // tick marks from tick_x, rightwards
+  int tick_x = 0, tick_length = 0;  // tick marks from tick_x rightwards, up to the bar
   int label_x = 0;                  // labels' left edge
   double min_value = 0.0, max_value = 1.0;  // the bar's bottom and top row
   std::array<double, kHeatMapTicks> tick_values{};
@@ -87,6 +88,25 @@ HeatMapLayout scale_bar_layout(int width, int height, double min_value, double m
 // `error` and `mask` are row-major width×height (mask 0: not compared, drawn grey).
 Image render_heatmap(const std::vector<float>& error, const std::vector<std::uint8_t>& mask,
                      int width, int height, double max_value);
+
+// A robust top for a map's scale: the `quantile` (default the 99th percentile) of |value|
+// over the mask's pixels with a finite value, so that a few silhouette or shadow-edge
+// pixels do not turn the rest of the map dark (they take the top colour); 0 when there is
+// no such pixel. Throws std::invalid_argument if the sizes differ or the quantile is
+// outside [0, 1]. The viewer's Compare panel and `sss-compare --heatmap` use it.
+inline constexpr double kHeatMapQuantile = 0.99;
+double robust_scale(const std::vector<float>& values, const std::vector<std::uint8_t>& mask,
+                    double quantile = kHeatMapQuantile);
+
+// The signed error: per pixel, a_c − b_c of the channel c with the largest |a_c − b_c|
+// (so |d| is pixel_errors()' e; NaN where a value is not finite). d > 0: A above the
+// reference. Throws std::invalid_argument if the sizes differ.
+std::vector<float> signed_pixel_errors(const Image& a, const Image& b);
+// d through the diverging map below (blue: A below B, white: equal, red: A above), from
+// −max_value to +max_value, with a signed colour bar (sss-compare --heatmap-signed).
+Image render_signed_heatmap(const std::vector<float>& difference,
+                            const std::vector<std::uint8_t>& mask, int width, int height,
+                            double max_value);
 
 // ---- Signed log-ratio maps --------------------------------------------------------
 //

@@ -59,6 +59,27 @@ std::size_t count_compared(const std::vector<std::uint8_t>& mask) {
   return static_cast<std::size_t>(std::count(mask.begin(), mask.end(), std::uint8_t{1}));
 }
 
+std::size_t exclude_silhouettes(Image& a, Image& b) {
+  const std::vector<std::uint8_t> geometry = geometry_mask(a, b);
+  const int w = a.width, h = a.height;
+  std::size_t excluded = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!geometry[std::size_t(y) * w + x]) continue;
+      bool edge = false;
+      for (int dy = -1; dy <= 1 && !edge; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;  // the border is not a silhouette
+          if (!geometry[std::size_t(yy) * w + xx]) edge = true;
+        }
+      if (!edge) continue;
+      a.pixel(x, y)[3] = b.pixel(x, y)[3] = 0.0f;
+      ++excluded;
+    }
+  return excluded;
+}
+
 std::optional<std::pair<int, int>> first_non_finite(const Image& img,
                                                     const std::vector<std::uint8_t>& mask) {
   require_mask(img, mask);

@@ -112,6 +112,17 @@ struct Metrics {
 std::vector<std::uint8_t> geometry_mask(const Image& a, const Image& b);
 std::size_t count_compared(const std::vector<std::uint8_t>& mask);
 
+// Leaves the silhouettes out of a comparison: every pixel within one pixel (its 3×3
+// neighbourhood) of a pixel without geometry in A or in B gets alpha 0 in both images, so
+// geometry_mask() and everything built on it (compare(), the maps) skip it. The frame's
+// border is not a silhouette. Why: at a silhouette the rasterizer and a ray tracer may
+// pick different triangles for the pixel centre, and a grazing specular highlight on one
+// of them is a single-pixel spike (up to 4.6 in radiance on builtin:bunny's ear) that says
+// nothing about scattering; the golden suite (tests/golden/REPORT.md) compares this way,
+// and so does `sss-compare --exclude-silhouettes`. Returns how many pixels with geometry
+// in both were left out. Throws std::invalid_argument if the sizes differ.
+std::size_t exclude_silhouettes(Image& a, Image& b);
+
 // The first pixel (x, y) in the mask with a non-finite R, G or B value, if any.
 std::optional<std::pair<int, int>> first_non_finite(const Image& img,
                                                     const std::vector<std::uint8_t>& mask);

@@ -8,6 +8,7 @@
 #ifdef SSS_COMPARE_EXE
 
 #include "common/CliRun.h"
+#include "renderer/image/Image.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -230,7 +231,7 @@ std::pair<int, int> png_size(const std::string& bytes) {
 TEST_F(SssCompare, HelpDocumentsOptionsAndExitCodes) {
   const CliRun r = run("--help");
   EXPECT_EQ(r.code, 0);
-  for (const char* s : {"--heatmap", "--heatmap-max", "--log-ratio", "--log-range", "--json", "--tolerance", "--max-abs",
+  for (const char* s : {"--heatmap", "--heatmap-max", "--heatmap-signed", "--exclude-silhouettes", "--log-ratio", "--log-range", "--json", "--tolerance", "--max-abs",
                         "--max-fraction", "--min-ssim", "--threshold", "--exposure", "3 they do not"})
     EXPECT_TRUE(contains(r.out, s)) << s;
 }
@@ -393,7 +394,12 @@ TEST_F(SssCompare, HeatMapIsWrittenWithItsColourBar) {
   EXPECT_EQ(r.code, 3) << r.err;  // the heat map is written whether or not they agree
   const auto doc = nlohmann::json::parse(r.out);
   EXPECT_EQ(doc["heatmap"]["path"], heat);
-  EXPECT_DOUBLE_EQ(doc["heatmap"]["max"].get<double>(), doc["metrics"]["max_abs_error"].get<double>());
+  // The default scale is the 99th percentile of the errors: at most 1% of the 1200 pixels
+  // above it (ties at the percentile are not above).
+  EXPECT_EQ(doc["heatmap"]["scale"], "p99");
+  EXPECT_LE(doc["heatmap"]["max"].get<double>(), doc["metrics"]["max_abs_error"].get<double>());
+  EXPECT_LE(doc["heatmap"]["pixels_above"].get<int>(), 12);
+  EXPECT_EQ(doc["heatmap"]["signed"], false);
   const auto [w, h] = png_size(slurp(heat));
   EXPECT_GT(w, 40 + 20);  // the image, then the bar and its labels to its right
   EXPECT_GE(h, 30);
@@ -401,6 +407,109 @@ TEST_F(SssCompare, HeatMapIsWrittenWithItsColourBar) {
   const CliRun fixed = run(path("a.png") + " " + path("b.png") + " --heatmap " + heat + " --heatmap-max 0.5");
   EXPECT_EQ(fixed.code, 3);
   EXPECT_TRUE(contains(fixed.out, "heat map: " + heat + " (error 0 to 0.5)")) << fixed.out;
+}
+
+// The case: one bright spike (a silhouette's specular pixel) set the scale, and
+// the rest of the map was the bottom colour. Values exact in binary: B 0.5 everywhere, A
+// 0.625 (error 0.125) but one pixel 1.5 (error 1). The 99th percentile is 0.125, the
+// spike is the one pixel above it, and the map's pixels are mid-map, not black.
+TEST_F(SssCompare, HeatMapScaleIsTheNinetyNinthPercentileNotASpike) {
+  const auto flat = [](float v) {
+    return make(20, 10, [v](int, int) -> std::array<float, 4> { return {v, v, v, 1.0f}; });
+  };
+  Pixels a = flat(0.625f);
+  for (int c = 0; c < 3; ++c) a.at(3, 4)[c] = 1.5f;
+  write_exr(path("a.exr"), a);
+  write_exr(path("b.exr"), flat(0.5f));
+  const std::string heat = path("heat.png");
+  const CliRun r = run(path("a.exr") + " " + path("b.exr") + " --heatmap " + heat + " --json");
+  EXPECT_EQ(r.code, 3) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["metrics"]["max_abs_error"].get<double>(), 1.0);
+  EXPECT_EQ(doc["heatmap"]["max"].get<double>(), 0.125);
+  EXPECT_EQ(doc["heatmap"]["pixels_above"].get<int>(), 1);
+  auto map = sss::image::read_image(heat);
+  ASSERT_TRUE(std::holds_alternative<sss::image::Image>(map));
+  const sss::image::Image& m = std::get<sss::image::Image>(map);
+  // Every pixel at the top of the scale: viridis(1), yellow (R and G high, B low).
+  const float* p = m.pixel(10, 5);
+  EXPECT_GT(p[0], 0.8f);
+  EXPECT_GT(p[1], 0.8f);
+  EXPECT_LT(p[2], 0.3f);
+  const CliRun table = run(path("a.exr") + " " + path("b.exr") + " --heatmap " + heat);
+  EXPECT_TRUE(contains(table.out, "(error 0 to 0.125, the 99th percentile)")) << table.out;
+  EXPECT_TRUE(contains(table.out, "1 pixels above the scale")) << table.out;
+}
+
+// --heatmap-signed: A above B on the left half, below on the right, by 0.125 both ways;
+// the map is red on the left and blue on the right, its scale -0.125..+0.125.
+TEST_F(SssCompare, SignedHeatMapIsRedWhereAIsAboveAndBlueBelow) {
+  const Pixels b = make(20, 10, [](int, int) -> std::array<float, 4> { return {0.5f, 0.5f, 0.5f, 1.0f}; });
+  const Pixels a = make(20, 10, [](int x, int) -> std::array<float, 4> {
+    const float v = x < 10 ? 0.625f : 0.375f;
+    return {v, v, v, 1.0f};
+  });
+  write_exr(path("a.exr"), a);
+  write_exr(path("b.exr"), b);
+  const std::string heat = path("signed.png");
+  const CliRun r = run(path("a.exr") + " " + path("b.exr") + " --heatmap " + heat + " --heatmap-signed --json");
+  EXPECT_EQ(r.code, 3) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["heatmap"]["signed"], true);
+  EXPECT_EQ(doc["heatmap"]["max"].get<double>(), 0.125);
+  auto map = sss::image::read_image(heat);
+  ASSERT_TRUE(std::holds_alternative<sss::image::Image>(map));
+  const sss::image::Image& m = std::get<sss::image::Image>(map);
+  const float* left = m.pixel(2, 5);
+  const float* right = m.pixel(17, 5);
+  EXPECT_GT(left[0], 2.0f * left[2]) << "red where A is above";
+  EXPECT_GT(right[2], 2.0f * right[0]) << "blue where A is below";
+  const CliRun table = run(path("a.exr") + " " + path("b.exr") + " --heatmap " + heat + " --heatmap-signed");
+  EXPECT_TRUE(contains(table.out, "signed error a-b, -0.125 to +0.125")) << table.out;
+  const CliRun alone = run(path("a.exr") + " " + path("b.exr") + " --heatmap-signed");
+  EXPECT_EQ(alone.code, 2) << "--heatmap-signed needs --heatmap";
+}
+
+// --exclude-silhouettes leaves out the ring of geometry next to background, as the golden
+// suite does: a 10x10 square of geometry in a 20x20 frame whose only errors are on its
+// outermost ring (36 pixels) compares equal with it, and not without it. Geometry that
+// reaches the frame's border has no silhouette there.
+TEST_F(SssCompare, ExcludeSilhouettesLeavesOutTheRingNextToBackground) {
+  const auto square = [](float ring) {
+    return make(20, 20, [ring](int x, int y) -> std::array<float, 4> {
+      const bool inside = x >= 5 && x < 15 && y >= 5 && y < 15;
+      const bool edge = inside && (x == 5 || x == 14 || y == 5 || y == 14);
+      const float v = edge ? ring : 0.5f;
+      return {v, v, v, inside ? 1.0f : 0.0f};
+    });
+  };
+  write_exr(path("a.exr"), square(0.75f));
+  write_exr(path("b.exr"), square(0.5f));
+  const CliRun all = run(path("a.exr") + " " + path("b.exr") + " --json");
+  EXPECT_EQ(all.code, 3) << all.err;
+  EXPECT_GT(nlohmann::json::parse(all.out)["metrics"]["relative_rmse"].get<double>(), 0.1);
+  EXPECT_TRUE(nlohmann::json::parse(all.out)["pixels"]["silhouette"].is_null());
+  const CliRun inner = run(path("a.exr") + " " + path("b.exr") + " --exclude-silhouettes --json");
+  EXPECT_EQ(inner.code, 0) << inner.out << inner.err;
+  const auto doc = nlohmann::json::parse(inner.out);
+  EXPECT_EQ(doc["pixels"]["silhouette"].get<int>(), 36);
+  EXPECT_EQ(doc["pixels"]["compared"].get<int>(), 64);
+  EXPECT_EQ(doc["metrics"]["relative_rmse"].get<double>(), 0.0);
+  const CliRun table = run(path("a.exr") + " " + path("b.exr") + " --exclude-silhouettes");
+  EXPECT_TRUE(contains(table.out, "(300 without geometry in A or B, 36 at a silhouette)")) << table.out;
+  // All geometry: the frame's border is not a silhouette.
+  const Pixels full = texture(12, 8);
+  write_exr(path("full.exr"), full);
+  const CliRun whole = run(path("full.exr") + " " + path("full.exr") + " --exclude-silhouettes --json");
+  EXPECT_EQ(nlohmann::json::parse(whole.out)["pixels"]["silhouette"].get<int>(), 0);
+  // Only a silhouette in common: nothing to compare, said with the count.
+  const auto thin = make(20, 20, [](int x, int y) -> std::array<float, 4> {
+    return {0.5f, 0.5f, 0.5f, x == 4 && y >= 5 && y < 15 ? 1.0f : 0.0f};
+  });
+  write_exr(path("thin.exr"), thin);
+  const CliRun none = run(path("thin.exr") + " " + path("thin.exr") + " --exclude-silhouettes");
+  EXPECT_EQ(none.code, 2);
+  EXPECT_TRUE(contains(none.err, "--exclude-silhouettes left out 10")) << none.err;
 }
 
 TEST_F(SssCompare, HeatMapThatCannotBeWrittenIsARuntimeFailure) {

@@ -166,6 +166,12 @@ TEST(HeatMap, RendersErrorsMaskAndColourBar) {
       for (int x = l.label_x; x < l.label_x + text_width(l.labels[i], l.scale); ++x)
         ink += is_text(img.pixel(x, y));
     EXPECT_GT(ink, 4) << l.labels[i];
+    // Between the bar and the label, nothing: a tick mark there read as a minus sign on
+    // an unsigned bar ("-0", "-4.63"; issue 20). The marks are on the bar's other side.
+    EXPECT_LT(l.tick_x + l.tick_length, l.bar_x + 1) << i;
+    for (int x = l.bar_x + l.bar_width; x < l.label_x; ++x)
+      for (int dy = 0; dy < l.scale; ++dy)
+        expect_rgb(img.pixel(x, l.tick_y[i] + dy), kHeatMapBackground, "before a label");
   }
   // Nothing but the canvas, the image, the bar and white ink.
   for (std::size_t i = 3; i < img.rgba.size(); i += 4) ASSERT_EQ(img.rgba[i], 1.0f);
@@ -187,3 +193,43 @@ TEST(HeatMap, SurvivesPngRoundTrip) {
   ASSERT_EQ(b.height, img.height);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(b.pixel(5, 5)[c], viridis(0.5)[c], 0.5f / 255 + 1e-6f);
 }
+
+namespace sss::image {
+namespace {
+
+// The robust top: the 99th percentile of |value| over the mask's finite values, so one
+// spike does not set it (index floor(0.99 (n - 1)) of the sorted values).
+TEST(HeatMapScale, NinetyNinthPercentileOfTheMaskedValues) {
+  std::vector<float> v(200);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = (i % 2 ? -1.0f : 1.0f) * float(i + 1) / 200.0f;
+  std::vector<std::uint8_t> mask(v.size(), 1);
+  v[0] = 1000.0f;  // a spike
+  // |v| sorted: 0.01 .. 1 (199 values) and the spike; floor(0.99 * 199) = 197 -> 0.995.
+  EXPECT_FLOAT_EQ(float(robust_scale(v, mask)), 0.995f);
+  EXPECT_FLOAT_EQ(float(robust_scale(v, mask, 1.0)), 1000.0f);
+  v[5] = std::numeric_limits<float>::quiet_NaN();  // left out, as a masked pixel is
+  mask[7] = 0;
+  EXPECT_GT(robust_scale(v, mask), 0.9);
+  EXPECT_EQ(robust_scale(v, std::vector<std::uint8_t>(v.size(), 0)), 0.0);
+  EXPECT_THROW(robust_scale(v, std::vector<std::uint8_t>(3, 1)), std::invalid_argument);
+  EXPECT_THROW(robust_scale(v, mask, 1.5), std::invalid_argument);
+}
+
+// The signed error keeps the sign of the channel with the largest |a - b|.
+TEST(HeatMapScale, SignedErrorIsTheWorstChannelsDifference) {
+  Image a(2, 1), b(2, 1);
+  const float pa[8] = {0.5f, 0.2f, 0.9f, 1, 0.1f, 0.4f, 0.4f, 1};
+  const float pb[8] = {0.4f, 0.6f, 0.9f, 1, 0.1f, 0.1f, 0.4f, 1};
+  std::copy(pa, pa + 8, a.rgba.begin());
+  std::copy(pb, pb + 8, b.rgba.begin());
+  const std::vector<float> d = signed_pixel_errors(a, b);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_FLOAT_EQ(d[0], 0.2f - 0.6f);  // green, A below
+  EXPECT_FLOAT_EQ(d[1], 0.4f - 0.1f);  // green, A above
+  const std::vector<float> e = pixel_errors(a, b);
+  for (int i = 0; i < 2; ++i) EXPECT_FLOAT_EQ(std::fabs(d[i]), e[i]);
+  EXPECT_THROW(signed_pixel_errors(a, Image(3, 1)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sss::image

@@ -112,30 +112,6 @@ std::string model_of(const scene::Scene& s) {
   return out.empty() ? "none" : out;
 }
 
-// Silhouette pixels (geometry next to background in either image) are left out: there the
-// rasterizer and the ray tracer may pick different triangles for the pixel centre, and a
-// grazing GGX highlight on one of them is a single-pixel spike (measured up to 4.6 in
-// radiance on builtin:bunny's ear) that says nothing about scattering.
-void mask_silhouettes(image::Image& a, image::Image& b) {
-  const int w = a.width, h = a.height;
-  std::vector<std::uint8_t> geometry(std::size_t(w) * h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      geometry[std::size_t(y) * w + x] =
-          a.pixel(x, y)[3] > image::kGeometryAlpha && b.pixel(x, y)[3] > image::kGeometryAlpha;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      bool edge = false;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;  // the frame's border is not a silhouette
-          if (!geometry[std::size_t(yy) * w + xx]) edge = true;
-        }
-      if (edge) a.pixel(x, y)[3] = b.pixel(x, y)[3] = 0.0f;
-    }
-}
-
 // The error budget (DESIGN.md §1), GPU frame minus ground truth split into four links,
 // each the difference of two images that differ in one approximation:
 //   1 model    diffusion reference (exact R, ray-traced shadows) - ground truth
@@ -520,7 +496,9 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
     image::CompareOptions co;
     co.encoding = image::Encoding::Linear;
     image::Image gpu_hdr = f.hdr, ref_hdr = ref.hdr;
-    mask_silhouettes(gpu_hdr, ref_hdr);
+    // Silhouettes left out (image::exclude_silhouettes says why), as sss-compare
+    // --exclude-silhouettes does.
+    image::exclude_silhouettes(gpu_hdr, ref_hdr);
     row.m = image::compare(gpu_hdr, ref_hdr, co);
     if (auto t = truths.find(row.scene); t != truths.end()) {
       const image::Metrics r = against_truth(ref.hdr, t->second, gpu_hdr), g = against_truth(f.hdr, t->second, gpu_hdr);
@@ -668,7 +646,7 @@ TEST_F(ReferenceSuiteTest, SingleScatteringBringsEdgeAndSphereCloserToTheGroundT
     }
     // The suite's pixels: geometry in every image, the GPU frame's silhouettes left out.
     image::Image masked = off[1], other = on[1];
-    mask_silhouettes(masked, other);
+    image::exclude_silhouettes(masked, other);
     for (int k = 0; k < 2; ++k) {
       double d = 0.0, var_d = 0.0, sq_on = 0.0, sq_off = 0.0, signal = 0.0;
       for (std::size_t i = 0; i < truth.rgba.size() / 4; ++i) {
