@@ -2,6 +2,7 @@
 
 #include "CliSupport.h"
 #include "InputFiles.h"
+#include "PanelWindow.h"
 
 #include "renderer/FrameTargets.h"
 #include "renderer/Renderer.h"
@@ -260,18 +261,15 @@ std::optional<std::string> ViewerTools::draw(renderer::Renderer& r, const LiveSt
   ImGui::SetNextWindowCollapsed(!expand, expand ? ImGuiCond_Always : ImGuiCond_FirstUseEver);
   poll(r, live);  // also while the window is collapsed
   const bool shown = ImGui::Begin("Tools", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-  // A click on the collapsed window's title opens it (ImGui opens it on a double click or
-  // on the arrow only, and users click the title). A drag that moves the window is not
-  // a click.
-  if (!shown && ImGui::IsWindowHovered() && ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
-      ImGui::GetCurrentWindow()->TitleBarRect().Contains(ImGui::GetIO().MousePos) &&
-      ImGui::GetMouseDragDelta(ImGuiMouseButton_Left).x == 0.0f &&
-      ImGui::GetMouseDragDelta(ImGuiMouseButton_Left).y == 0.0f)
-    ImGui::SetWindowCollapsed(false);
+  open_on_title_click(shown);
   if (shown) {
+    // Fields leave room on their right for the longest label of the window, which the
+    // default (65% of the width for the field) cut to "spacing (m" and "error bound".
+    ImGui::PushItemWidth(-(ImGui::CalcTextSize("error bound (sr)").x + ImGui::GetStyle().ItemInnerSpacing.x));
     draw_open();
     draw_compare(r, live);
     draw_export(r, live);
+    ImGui::PopItemWidth();
   }
   ImGui::End();
   return open_request_;

@@ -2,6 +2,7 @@
 
 #include "FrameOutput.h"
 #include "InputFiles.h"
+#include "PanelWindow.h"
 
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"
@@ -23,7 +24,7 @@ namespace sss::app {
 namespace {
 
 constexpr float kDegrees = 57.29577951f;
-constexpr float kPanelWidth = 320.0f;  // <= 35% of a 960-pixel-wide window
+constexpr float kPanelWidth = ViewerUi::kPanelWidth;
 const ImVec4 kErrorColor(1.0f, 0.4f, 0.4f, 1.0f);
 const ImVec4 kWarningColor(1.0f, 0.85f, 0.3f, 1.0f);
 const ImU32 kChannelColor[3] = {IM_COL32(255, 90, 80, 255), IM_COL32(90, 220, 90, 255),
@@ -181,7 +182,11 @@ void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, std::max(display.y - 16.0f, 100.0f)),
                            ImGuiCond_FirstUseEver);
-  ImGui::Begin("sss-viewer");
+  // A window narrower than three panels opens with this one collapsed to its title: open,
+  // it covered all but the right edge of the subject at 640x360. A click on the title
+  // opens it.
+  ImGui::SetNextWindowCollapsed(starts_collapsed(display.x), ImGuiCond_FirstUseEver);
+  open_on_title_click(ImGui::Begin("sss-viewer"));
   ImGui::PushItemWidth(-100.0f);  // labels keep 100 px on the right
   ImGui::TextWrapped("drag: orbit, shift/middle drag: pan, wheel: zoom, R: reset view");
   draw_sss(r);
@@ -454,7 +459,9 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
 
   if (!e.error.empty()) ImGui::TextColored(kErrorColor, "%s", e.error.c_str());
   if (!e.scale_note.empty()) {
-    ImGui::TextDisabled("%s", e.scale_note.c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("%s", e.scale_note.c_str());
+    ImGui::PopStyleColor();
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("reduced mean free path 1/sigma_t' and diffusion length 1/sigma_tr (min-max "
                         "over R, G, B, after the scale) against the diameter of what the material "
@@ -515,18 +522,25 @@ bool ViewerUi::set_light(renderer::Renderer& r, std::size_t i, float azimuth_deg
 
 void ViewerUi::draw_light(renderer::Renderer& r) {
   if (lights_.empty() || !ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  auto label = [this](std::size_t i) {
+  auto name = [this](std::size_t i) {
+    const scene::Light& l = lights_[i];
+    return l.name.empty() ? "light " + std::to_string(i) : l.name;
+  };
+  auto label = [&](std::size_t i) {
     const scene::Light& l = lights_[i];
     const char* type = l.type == scene::LightType::Directional ? "directional"
                        : l.type == scene::LightType::Spot      ? "spot"
                                                                 : "point";
-    return (l.name.empty() ? "light " + std::to_string(i) : l.name) + " (" + type + ")";
+    return name(i) + " (" + type + ")";
   };
-  if (ImGui::BeginCombo("light", label(std::size_t(light_)).c_str())) {
+  // The closed combo shows the name alone ("key (behind) (directional)" did not fit and
+  // was cut); the list and the tooltip say the type.
+  if (ImGui::BeginCombo("light", name(std::size_t(light_)).c_str())) {
     for (std::size_t i = 0; i < lights_.size(); ++i)
       if (ImGui::Selectable(label(i).c_str(), int(i) == light_)) select_light(i);
     ImGui::EndCombo();
   }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", label(std::size_t(light_)).c_str());
   const bool point = lights_[std::size_t(light_)].type == scene::LightType::Point;
   ImGui::BeginDisabled(point);  // a point light has no direction
   bool changed = ImGui::SliderFloat("azimuth", &azimuth_deg_, -180.0f, 180.0f, "%.0f deg");

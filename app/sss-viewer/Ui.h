@@ -25,6 +25,11 @@ bool valid_script_edit(const std::string& edit);
 
 class ViewerUi {
  public:
+  static constexpr float kPanelWidth = 320.0f;  // <= 35% of a 960-pixel-wide window
+  // The panel opens collapsed to its title in a window narrower than three panels (640x360:
+  // open, it hid all but the edge of the subject); a click on the title opens it.
+  static bool starts_collapsed(float display_width) { return display_width < 3.0f * kPanelWidth; }
+
   explicit ViewerUi(const scene::Scene& scene, int separable_taps = 17,
                     bool single_scattering = renderer::RenderOptions{}.single_scattering);
 

@@ -430,6 +430,45 @@ TEST_F(ViewerExport, ClickingTheTitleOpensToolsAndTheOpenButtonOpensTheTypedFile
   EXPECT_NE(window->StateStorage.GetInt(window->GetID("Open"), 1), 0);
 }
 
+// Issue 20 part 2: in a 640x360 window the open material panel hid all but the edge of
+// the bunny. A window narrower than three panels opens it collapsed to its title (so the
+// frame shows the subject), and a click on that title opens it, as for Tools; from 960
+// px wide it opens as before.
+TEST_F(ViewerExport, TheMaterialPanelStartsCollapsedInASmallWindowAndItsTitleOpensIt) {
+  const scene::Scene scene = scene::sphere_scene();
+  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(64, 36));
+  for (const ImVec2 display : {ImVec2(640, 360), ImVec2(960, 540)}) {
+    renderer::testing::HeadlessImGui imgui;
+    ImGuiIO& io = imgui.io();
+    io.DisplaySize = display;
+    ViewerUi ui(scene);
+    const auto frame = [&] {
+      io.DeltaTime = 1.0f / 60.0f;
+      ImGui::NewFrame();
+      ui.draw(r, 16.0);
+      ImGui::Render();
+      return ImGui::FindWindowByName("sss-viewer");
+    };
+    ImGuiWindow* panel = frame();
+    ASSERT_NE(panel, nullptr);
+    const bool small = display.x < 3.0f * ViewerUi::kPanelWidth;
+    EXPECT_EQ(ViewerUi::starts_collapsed(display.x), small);
+    EXPECT_EQ(panel->Collapsed, small) << display.x;
+    if (!small) continue;
+    // Collapsed, it is its title bar: the frame below it is free.
+    EXPECT_LE(panel->Pos.y + panel->Size.y, 40.0f);
+    const ImRect title = panel->TitleBarRect();
+    io.MousePos = ImVec2(0.5f * (title.Min.x + title.Max.x), 0.5f * (title.Min.y + title.Max.y));
+    frame();
+    io.MouseDown[0] = true;
+    frame();
+    io.MouseDown[0] = false;
+    frame();
+    panel = frame();
+    EXPECT_FALSE(panel->Collapsed) << "a click on the title opens the panel";
+  }
+}
+
 // ---- The Compare panel's error maps and ground truth (driven without ImGui) -----------
 
 class ViewerCompare : public renderer::testing::RenderTest {
