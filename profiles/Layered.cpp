@@ -38,6 +38,7 @@
 
 #include "profiles/ClassicalDipole.h"
 #include "profiles/Fresnel.h"
+#include "profiles/McTableProfile.h"
 #include "profiles/Multipole.h"
 
 #include <algorithm>
@@ -654,6 +655,13 @@ double LayeredProfile::diffusion_total_transmittance() const { return impl_->exa
 double LayeredProfile::support_radius() const { return impl_->support; }
 double LayeredProfile::inner_radius() const { return impl_->inner; }
 std::size_t LayeredProfile::layer_count() const { return impl_->layers.size(); }
+
+std::vector<std::string> layered_g_warnings(const LayerStack& stack, Model base) {
+  if (stack.empty() || base != Model::McTable) return {};
+  std::vector<std::string> out = mc_table_g_warnings(stack.front());
+  for (std::string& w : out) w = "top layer " + w;
+  return out;
+}
 
 RgbProfile make_layered_rgb_profile(const LayerStack& stack, const ModelOptions& opt,
                                     Model base, LayerCoupling coupling) {

@@ -46,6 +46,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace sss::profiles {
@@ -119,6 +120,12 @@ std::vector<double> hankel_inverse(const std::vector<double>& F, double L);
 
 // The stack as an RgbProfile labelled Model::Layered. Throws std::invalid_argument (the
 // message names the layer and field) for an invalid stack.
+// What the base model's lookup of the stack warns about, a line each prefixed "top layer ":
+// the top layer is the medium `base` is built on (with the diffusion coupling), so under
+// mc-table a top layer whose g is outside the table's range gets mc_table_g_warnings.
+// Empty for other bases and an empty stack.
+std::vector<std::string> layered_g_warnings(const LayerStack& stack, Model base = kDefaultModel);
+
 RgbProfile make_layered_rgb_profile(const LayerStack& stack, const ModelOptions& opt = {},
                                     Model base = kDefaultModel,
                                     LayerCoupling coupling = LayerCoupling::Diffusion);

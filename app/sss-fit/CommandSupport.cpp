@@ -48,10 +48,8 @@ bool ProfileSource::has_transmittance() const {
 
 profiles::RgbProfile ProfileSource::make_profile(const profiles::ModelOptions& opt) const {
   if (layers) {
-    // The top layer is looked up under the default model (Layered.h).
-    if (profiles::kDefaultModel == profiles::Model::McTable)
-      for (const std::string& w : profiles::mc_table_g_warnings(layers->front()))
-        std::cerr << "sss-fit: warning: top layer " << w << '\n';
+    for (const std::string& w : profiles::layered_g_warnings(*layers))
+      std::cerr << "sss-fit: warning: " << w << '\n';
     try {
       return profiles::make_layered_rgb_profile(*layers, opt);
     } catch (const std::invalid_argument& e) {

@@ -98,6 +98,16 @@ Image draw_map(const HeatMapLayout& l, const std::vector<float>& values,
   return img;
 }
 
+// A signed quantity v per pixel through diverging(v / range) (NaN: kLogRatioInvalid), in a
+// layout whose bar runs from -range to +range: the log-ratio map and the signed heat map.
+Image draw_diverging_map(const HeatMapLayout& l, const std::vector<float>& values,
+                         const std::vector<std::uint8_t>& mask) {
+  const double range = l.max_value;
+  return draw_map(
+      l, values, mask, [&](float v) { return std::isnan(v) ? kLogRatioInvalid : diverging(v / range); },
+      [](double t) { return diverging(2.0 * t - 1.0); });
+}
+
 }  // namespace
 
 Rgb viridis(double t) {
@@ -237,11 +247,8 @@ Image render_signed_heatmap(const std::vector<float>& difference,
                             double max_value) {
   if (!std::isfinite(max_value) || !(max_value > 0.0))
     throw std::invalid_argument("heat map: the scale maximum must be finite and > 0");
-  const HeatMapLayout l = scale_bar_layout(width, height, -max_value, max_value, true);
-  return draw_map(
-      l, difference, mask,
-      [&](float d) { return std::isnan(d) ? kLogRatioInvalid : diverging(d / max_value); },
-      [](double t) { return diverging(2.0 * t - 1.0); });
+  return draw_diverging_map(scale_bar_layout(width, height, -max_value, max_value, true), difference,
+                            mask);
 }
 
 // ---- signed log ratio ----------------------------------------------------------------
@@ -337,11 +344,7 @@ HeatMapLayout log_ratio_layout(int width, int height, double range_stops) {
 Image render_log_ratio_map(const std::vector<float>& log2_ratio,
                            const std::vector<std::uint8_t>& mask, int width, int height,
                            double range_stops) {
-  const HeatMapLayout l = log_ratio_layout(width, height, range_stops);
-  return draw_map(
-      l, log2_ratio, mask,
-      [&](float r) { return std::isnan(r) ? kLogRatioInvalid : diverging(r / range_stops); },
-      [](double t) { return diverging(2.0 * t - 1.0); });
+  return draw_diverging_map(log_ratio_layout(width, height, range_stops), log2_ratio, mask);
 }
 
 }  // namespace sss::image

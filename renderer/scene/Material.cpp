@@ -65,15 +65,10 @@ profiles::RgbProfile SssMaterial::profile(const profiles::ModelOptions& opt) con
 }
 
 std::vector<std::string> SssMaterial::model_warnings() const {
-  // A stack's top layer is looked up under the layered model's base, the default model
-  // (profile() above); the scale does not change g.
-  const bool layered = !layers.empty();
-  const profiles::Model looked_up = layered ? profiles::kDefaultModel : model;
-  if (looked_up != profiles::Model::McTable) return {};
-  std::vector<std::string> out = profiles::mc_table_g_warnings(layered ? layers.front() : medium);
-  if (layered)
-    for (std::string& w : out) w = "top layer " + w;
-  return out;
+  // The scale does not change g.
+  if (!layers.empty()) return profiles::layered_g_warnings(layers);
+  if (model != profiles::Model::McTable) return {};
+  return profiles::mc_table_g_warnings(medium);
 }
 
 std::variant<profiles::Medium, FieldError> resolve_medium(const SssSource& source,

@@ -11,6 +11,7 @@
 //  - the file format: a round trip, and damaged or inconsistent files refused with the
 //    field named.
 #include "profiles/McTable.h"
+#include "profiles/Layered.h"
 #include "profiles/McTableProfile.h"
 #include "profiles/Medium.h"
 #include "profiles/MonteCarlo.h"
@@ -96,6 +97,16 @@ TEST(McTableAnisotropic, GAxisBracketsAndWarnsOutsideItsRange) {
   ASSERT_EQ(two.size(), 2u);
   EXPECT_EQ(two[0].rfind("g[G]: g -0.1 < 0", 0), 0u) << two[0];
   EXPECT_EQ(two[1].rfind("g[B]: g 0.99 > 0.95", 0), 0u) << two[1];
+  // A stack: its top layer is what the base model looks up (Layered.h), under mc-table.
+  Medium top = m, base = m;
+  top.g = {0.97, 0.97, 0.97};
+  top.thickness_mm = 1.0;
+  base.g = {0.0, 0.0, 0.0};
+  const LayerStack stack{top, base};
+  EXPECT_EQ(layered_g_warnings(stack),
+            std::vector<std::string>{"top layer g[R]: " + *mc_table_g_warning(0.97)});
+  EXPECT_TRUE(layered_g_warnings(LayerStack{base, top}).empty());
+  EXPECT_TRUE(layered_g_warnings(stack, Model::BetterDipole).empty());
   // Continuity at a node: 1e-9 above g = 0.8 the weight of the g = 0.9 layer is
   // dt = 1e-9 / (0.2 ln 2) (d ln(1 - g)/dg = -1/(1 - g) over the node spacing ln 2), so R
   // moves by dt |R_0.9 - R_0.8| (the reduced coefficients, hence both lookups, are the
