@@ -45,7 +45,7 @@ void DebugViewPass::write_descriptors() {
       .combined_image(6, t.specular, nearest, general)
       .combined_image(7, t.blur_a, nearest, general)
       .combined_image(8, t.accum, nearest, general)
-      .combined_image(9, t.shadow, nearest)
+      .combined_image(9, t.light_depth, nearest)
       .combined_image(10, t.uv_stretch, nearest)
       .storage_image(11, t.display)
       .combined_image(12, t.normal, nearest)

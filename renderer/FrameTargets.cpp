@@ -25,6 +25,9 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
   shadow_desc.view_type = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
   shadow = vk::Image(context, shadow_desc);
   for (std::uint32_t i = 0; i < layers; ++i) shadow_layers.push_back(shadow.create_view(i));
+  shadow_desc.name = "light depth";
+  light_depth = vk::Image(context, shadow_desc);
+  for (std::uint32_t i = 0; i < layers; ++i) light_depth_layers.push_back(light_depth.create_view(i));
 
   const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   depth = make(context, w, h, kDepthFormat,

@@ -38,6 +38,10 @@ struct FrameTargets {
   std::uint32_t width, height;
   vk::Image shadow;  // D32 array, one layer per light
   std::vector<vk::ImageViewHandle> shadow_layers;
+  // The same depths without the shadow pass's slope-scaled bias, for thickness
+  // (shared/thickness.glsl: transmission, the thickness view). D32 array like shadow.
+  vk::Image light_depth;
+  std::vector<vk::ImageViewHandle> light_depth_layers;
   vk::Image depth, normal, albedo;          // G-buffer
   // uv-stretch debug view only: drawn by the G-buffer's second pipeline; like normal and
   // albedo, a colour attachment then SHADER_READ_ONLY_OPTIMAL in every frame.

@@ -38,7 +38,7 @@ void LightingPass::write_descriptors() {
       .storage_image(7, t.irradiance)
       .storage_image(8, t.specular)
       .storage_image(9, t.surface)
-      .combined_image(10, t.shadow, nearest)
+      .combined_image(10, t.light_depth, nearest)
       .update(r_.context);
 }
 

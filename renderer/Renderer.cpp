@@ -311,6 +311,8 @@ void Renderer::record(VkCommandBuffer cmd) {
   std::vector<VkImageMemoryBarrier2> barriers = {
       vk::image_barrier(targets_.shadow, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, before, depth_access),
+      vk::image_barrier(targets_.light_depth, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, before, depth_access),
       vk::image_barrier(targets_.depth, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, before, depth_access),
       vk::image_barrier(targets_.normal, VK_IMAGE_LAYOUT_UNDEFINED,

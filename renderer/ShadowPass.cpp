@@ -1,5 +1,6 @@
 #include "renderer/ShadowPass.h"
 
+#include "renderer/scene/ShadowFrustum.h"
 #include "renderer/vk/Barrier.h"
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Pipeline.h"
@@ -10,6 +11,7 @@
 #include <cstddef>
 
 namespace sss::renderer {
+
 
 namespace {
 vk::DescriptorSetLayoutBuilder bindings() {
@@ -42,27 +44,35 @@ ShadowPass::ShadowPass(const FrameResources& resources, std::vector<bool> shadow
 
 void ShadowPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
   auto scope = timer.scope(cmd, kName);
-  const vk::Image& shadow = r_.targets.shadow;
-  for (std::size_t layer = 0; layer < r_.targets.shadow_layers.size(); ++layer) {
-    const vk::DepthTarget target(r_.targets.shadow_layers[layer].get());
-    vk::begin_rendering(cmd, shadow.extent(), {}, &target);
-    if (layer < shadowed_.size() && shadowed_[layer]) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_,
-                              0, nullptr);
-      vkCmdSetDepthBias(cmd, 0.0f, 0.0f, 1.5f);
-      r_.scene.draw(cmd, layout_.get(), static_cast<int>(layer));
+  // Each light twice: with the slope-scaled bias for the shadow test, and without it for
+  // the thickness lookups (the bias pushes grazing surfaces up to ~20 texels of depth
+  // behind themselves, which read as a too-thin object: issue 20's transmission speckle).
+  const float biases[2] = {scene::kShadowSlopeBias, 0.0f};
+  const std::vector<vk::ImageViewHandle>* layers[2] = {&r_.targets.shadow_layers,
+                                                       &r_.targets.light_depth_layers};
+  for (int map = 0; map < 2; ++map)
+    for (std::size_t layer = 0; layer < layers[map]->size(); ++layer) {
+      const vk::DepthTarget target((*layers[map])[layer].get());
+      vk::begin_rendering(cmd, r_.targets.shadow.extent(), {}, &target);
+      if (layer < shadowed_.size() && shadowed_[layer]) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_,
+                                0, nullptr);
+        vkCmdSetDepthBias(cmd, 0.0f, 0.0f, biases[map]);
+        r_.scene.draw(cmd, layout_.get(), static_cast<int>(layer));
+      }
+      vk::end_rendering(cmd);
     }
-    vk::end_rendering(cmd);
-  }
-  vk::pipeline_barrier(
-      cmd, {vk::image_barrier(shadow, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                              {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
-                                   VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT},
-                              {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT})});
+  std::vector<VkImageMemoryBarrier2> barriers;
+  for (const vk::Image* image : {&r_.targets.shadow, &r_.targets.light_depth})
+    barriers.push_back(vk::image_barrier(*image, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                         {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                                              VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT},
+                                         {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT}));
+  vk::pipeline_barrier(cmd, barriers);
 }
 
 }  // namespace sss::renderer

@@ -1,6 +1,7 @@
 // ShadowPass ("shadow"): one depth layer per light (LightSetup's matrices), slope-scaled
 // depth bias in the rasterizer plus the normal offset and constant bias of the lookup
-// (lighting.comp). Writes targets.shadow; leaves it SHADER_READ_ONLY_OPTIMAL.
+// (lighting.comp). Writes targets.shadow, and the same depths without the bias to
+// targets.light_depth (thickness); leaves both SHADER_READ_ONLY_OPTIMAL.
 #pragma once
 
 #include "renderer/FrameResources.h"
@@ -17,7 +18,7 @@ class ShadowPass {
   static constexpr const char* kName = "shadow";
 
   ShadowPass(const FrameResources& resources, std::vector<bool> shadowed);
-  // Expects targets.shadow in DEPTH_ATTACHMENT_OPTIMAL.
+  // Expects targets.shadow and targets.light_depth in DEPTH_ATTACHMENT_OPTIMAL.
   void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
   // Which layers to draw from now on (LightSetup::shadowed, after the lights changed).
   void set_shadowed(std::vector<bool> shadowed) { shadowed_ = std::move(shadowed); }

@@ -149,7 +149,7 @@ void SssTexturePass::write_lighting(Textures& t) {
       .combined_image(4, t.normal, nearest, general)
       .combined_image(5, t.a, nearest, general)
       .combined_image(6, r_.targets.shadow, r_.samplers.shadow.get())
-      .combined_image(7, r_.targets.shadow, nearest)
+      .combined_image(7, r_.targets.light_depth, nearest)
       .storage_image(8, t.temp)
       .update(r_.context);
 }

@@ -18,7 +18,7 @@ layout(set = 0, binding = 5) uniform sampler2D irradiance_tex;  // rgb E, a surf
 layout(set = 0, binding = 6) uniform sampler2D specular_tex;
 layout(set = 0, binding = 7) uniform sampler2D scattered_tex;    // separable: R * E
 layout(set = 0, binding = 8) uniform sampler2D accumulated_tex;  // gaussians: R * E
-layout(set = 0, binding = 9) uniform sampler2DArray shadow_depth_tex;  // no comparison
+layout(set = 0, binding = 9) uniform sampler2DArray light_depth_tex;  // no comparison
 layout(set = 0, binding = 10) uniform sampler2D uv_stretch_tex;  // mm per u, v; has UVs
 layout(set = 0, binding = 11, rgba8) uniform writeonly image2D display_img;
 layout(set = 0, binding = 12) uniform sampler2D normal_tex;             // single scattering
@@ -99,7 +99,7 @@ void main() {
     float depth = texelFetch(depth_tex, p, 0).r;
     vec4 w = frame.inv_view_proj * vec4(pixel_ndc(vec2(p) + 0.5, frame.viewport), depth, 1.0);
     float t = int(frame.options.x) > 0
-                  ? shadow_thickness(shadow_depth_tex, 0, light_block.lights[0], w.xyz / w.w)
+                  ? shadow_thickness(light_depth_tex, 0, light_block.lights[0], w.xyz / w.w)
                   : -1.0;
     if (t >= 0.0) c = viridis(t * frame.scale.x / debug.view.y);
   } else if (view == 8) {  // single scattering S(1), whatever the switch says

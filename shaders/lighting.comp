@@ -24,7 +24,7 @@ layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D specular_img;
 // For the SSS passes: x distance from the camera plane in mm, y material id (-1: none).
 layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D surface_img;
 // The shadow maps read as depth (no comparison, nearest): thickness for transmission.
-layout(set = 0, binding = 10) uniform sampler2DArray shadow_depth_tex;
+layout(set = 0, binding = 10) uniform sampler2DArray light_depth_tex;
 
 #include "shared/sss.glsl"
 #include "shared/thickness.glsl"

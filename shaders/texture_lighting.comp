@@ -16,7 +16,7 @@ layout(set = 0, binding = 3) uniform sampler2D position_tex;  // world xyz, w is
 layout(set = 0, binding = 4) uniform sampler2D normal_tex;
 layout(set = 0, binding = 5) uniform sampler2D albedo_tex;
 layout(set = 0, binding = 6) uniform sampler2DArrayShadow shadow_tex;
-layout(set = 0, binding = 7) uniform sampler2DArray shadow_depth_tex;
+layout(set = 0, binding = 7) uniform sampler2DArray light_depth_tex;
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D irradiance_img;
 layout(push_constant) uniform Push { TexturePush push; };  // w: the material
 

@@ -6,7 +6,7 @@
 #define SSS_SHADERS_SHADING_GLSL
 
 // Needs: frame (FrameUniforms), light_block (LightBlock), materials (GpuMaterial[]),
-// shadow_tex (sampler2DArrayShadow), shadow_depth_tex (sampler2DArray, nearest: thickness),
+// shadow_tex (sampler2DArrayShadow), light_depth_tex (sampler2DArray, nearest: the unbiased depth for thickness),
 // common.glsl, thickness.glsl.
 
 // Transmission (DESIGN.md §5 step 5; Jimenez, Whelan, Sundstedt & Gutierrez 2010,
@@ -158,8 +158,8 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
     float NdotL = dot(s.N, L);
     if (NdotL <= 0.0) {
       if (transmits && NdotL < 0.0) {
-        float d = shadow_thickness(shadow_depth_tex, i, light, s.P);  // -1: no shadow map
-        if (d > 0.0)
+        float d = shadow_thickness(light_depth_tex, i, light, s.P);  // -1: no shadow map
+        if (d >= 0.0)
           E_back += radiance * -NdotL * entry_fresnel(s.id, -NdotL) *
                     transmittance_total(s.id, d * frame.scale.x);
       }
