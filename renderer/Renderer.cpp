@@ -335,7 +335,8 @@ void Renderer::record(VkCommandBuffer cmd) {
       {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT});
   vk::pipeline_barrier(cmd, {}, {}, {&cleared, 1});
 
-  shadow_->record(cmd, timer_);
+  shadow_->record(cmd, timer_,
+                  options_.transmission || options_.debug_view == DebugView::Thickness);
   if (texture_) texture_->record(cmd, timer_, materials_.data());
   gbuffer_->record(cmd, timer_);
   if (gather_) gather_->record(cmd, timer_);

@@ -12,7 +12,6 @@
 
 namespace sss::renderer {
 
-
 namespace {
 vk::DescriptorSetLayoutBuilder bindings() {
   vk::DescriptorSetLayoutBuilder b;
@@ -42,15 +41,16 @@ ShadowPass::ShadowPass(const FrameResources& resources, std::vector<bool> shadow
   vk::DescriptorWriter(set_).uniform_buffer(0, r_.lights).update(r_.context);
 }
 
-void ShadowPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
+void ShadowPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer, bool light_depth) const {
   auto scope = timer.scope(cmd, kName);
-  // Each light twice: with the slope-scaled bias for the shadow test, and without it for
-  // the thickness lookups (the bias pushes grazing surfaces up to ~20 texels of depth
-  // behind themselves, which read as a too-thin object: issue 20's transmission speckle).
+  // Each light with the slope-scaled bias for the shadow test and, when something reads
+  // thickness, again without it (the bias pushes grazing surfaces up to ~20 texels of
+  // depth behind themselves, which read as a too-thin object: issue 20's transmission
+  // speckle).
   const float biases[2] = {scene::kShadowSlopeBias, 0.0f};
   const std::vector<vk::ImageViewHandle>* layers[2] = {&r_.targets.shadow_layers,
                                                        &r_.targets.light_depth_layers};
-  for (int map = 0; map < 2; ++map)
+  for (int map = 0; map < (light_depth ? 2 : 1); ++map)
     for (std::size_t layer = 0; layer < layers[map]->size(); ++layer) {
       const vk::DepthTarget target((*layers[map])[layer].get());
       vk::begin_rendering(cmd, r_.targets.shadow.extent(), {}, &target);

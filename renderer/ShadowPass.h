@@ -18,8 +18,10 @@ class ShadowPass {
   static constexpr const char* kName = "shadow";
 
   ShadowPass(const FrameResources& resources, std::vector<bool> shadowed);
-  // Expects targets.shadow and targets.light_depth in DEPTH_ATTACHMENT_OPTIMAL.
-  void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  // Expects targets.shadow and targets.light_depth in DEPTH_ATTACHMENT_OPTIMAL. Draws
+  // light_depth only when `light_depth` (transmission or the thickness view reads it);
+  // otherwise it is left undefined, unread.
+  void record(VkCommandBuffer cmd, vk::GpuTimer& timer, bool light_depth) const;
   // Which layers to draw from now on (LightSetup::shadowed, after the lights changed).
   void set_shadowed(std::vector<bool> shadowed) { shadowed_ = std::move(shadowed); }
 
