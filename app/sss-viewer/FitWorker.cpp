@@ -9,6 +9,10 @@ void FitWorker::compute_default(FitRequest& request, FitResult& result) {
   for (std::size_t i = 0; i < request.specs.size() && i < request.materials.size(); ++i) {
     if (!request.specs[i]) continue;
     const SssSpec& s = *request.specs[i];
+    if (!s.enabled) {
+      request.materials[i].sss.enabled = false;
+      continue;
+    }
     auto made = s.layers.empty()
                     ? scene::make_sss_material(s.source, s.model, s.gaussians, s.scale, s.albedo_mode)
                     : scene::make_layered_sss_material(s.layers, s.gaussians, s.scale, s.albedo_mode);

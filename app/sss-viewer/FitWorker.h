@@ -32,6 +32,10 @@ using Clock = std::chrono::steady_clock;
 // An SSS material as the editor describes it, resolved on the worker (an artist colour
 // under pbd inverts the model's total reflectance: tens of ms).
 struct SssSpec {
+  // false: the material becomes an opaque PBR surface again (the viewer's "enable
+  // subsurface" switch); its last medium stays in SssMaterial, disabled, and the other
+  // fields are not used.
+  bool enabled = true;
   scene::SssSource source;
   profiles::Model model = profiles::kDefaultModel;
   int gaussians = scene::kDefaultGaussians;

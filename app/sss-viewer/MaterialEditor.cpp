@@ -67,11 +67,14 @@ MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
       taps_(separable_taps),
       single_scattering_(single_scattering),
       worker_(std::move(compute)) {
+  // Two passes: the SSS materials, then the others (MaterialEditor::edits()).
+  for (const bool with_sss : {true, false})
   for (std::size_t i = 0; i < applied_.size(); ++i) {
     const scene::SssMaterial& s = applied_[i].sss;
-    if (!s.enabled) continue;
+    if (s.enabled != with_sss) continue;
     MaterialEdit e;
     e.index = i;
+    e.enabled = s.enabled;
     e.name = applied_[i].name.empty() ? "material " + std::to_string(i) : applied_[i].name;
     // A stack's model (layered) is not offered: the model it gets if it becomes one medium
     // again (a preset, its layers removed) is the default.
@@ -84,6 +87,9 @@ MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
     if (const auto* p = std::get_if<scene::PresetSource>(&s.source)) {
       e.kind = SourceKind::Preset;
       e.preset = preset_index(p->name);
+      // A material without SSS has the default source (skin1) and no resolved medium.
+      if (!s.enabled && e.preset >= 0 && s.layers.empty())
+        fill_coefficients(e, profiles::preset_medium(profiles::presets()[std::size_t(e.preset)]));
     } else if (const auto* a = std::get_if<scene::ArtistSource>(&s.source)) {
       e.kind = SourceKind::Artist;
       for (int c = 0; c < 3; ++c) {
@@ -100,11 +106,17 @@ MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
   }
   // The plots of the scene's own materials: the same refit the renderer made, off the
   // render thread; its upload changes nothing and is not counted as an edit.
-  if (!edits_.empty()) submit(Clock::time_point{});
+  had_sss_ = !edits_.empty() && edits_.front().enabled;
+  if (had_sss_) submit(Clock::time_point{});
 }
 
 void MaterialEditor::fill_notes(MaterialEdit& e) const {
   const scene::Material& m = applied_[e.index];
+  if (!m.sss.enabled) {  // an opaque surface: nothing scatters
+    e.scale_note.clear();
+    e.warnings.clear();
+    return;
+  }
   const scene::ScatterScale s = scene::scatter_scale(m.sss, e.object_mm);
   e.scale_note = scene::scatter_scale_readout(s);
   e.warnings = m.sss.model_warnings();
@@ -404,10 +416,25 @@ std::optional<SssSpec> MaterialEditor::layered_spec(MaterialEdit& e) {
   return s;
 }
 
+bool MaterialEditor::set_enabled(std::size_t edit, bool on) {
+  MaterialEdit& e = edits_.at(edit);
+  if (e.enabled == on) return true;
+  e.enabled = on;
+  if (apply(edit)) return true;
+  e.enabled = !on;  // the fields did not resolve: the switch stays where it was
+  return false;
+}
+
 bool MaterialEditor::apply(std::size_t edit) {
   const auto edited = Clock::now();
   MaterialEdit& e = edits_.at(edit);
-  std::optional<SssSpec> spec = e.layers.empty() ? spec_from_fields(e) : layered_spec(e);
+  std::optional<SssSpec> spec;
+  if (!e.enabled) {  // the fields are not read: they wait for the switch
+    spec.emplace();
+    spec->enabled = false;
+  } else {
+    spec = e.layers.empty() ? spec_from_fields(e) : layered_spec(e);
+  }
   if (!spec) return false;
   e.error.clear();
   pending_[e.index] = std::move(spec);

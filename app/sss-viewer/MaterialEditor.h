@@ -37,6 +37,10 @@ struct LayerEdit {
 struct MaterialEdit {
   std::size_t index = 0;  // into the scene's materials
   std::string name;
+  // The "enable subsurface" switch (issue 20). Every material of the scene has an edit;
+  // one without SSS starts off, its fields on skin1 at scale 1 (what `--sss-material
+  // NAME=skin1` gives), ready for the switch.
+  bool enabled = true;
   SourceKind kind = SourceKind::Preset;
   int preset = -1;  // into profiles::presets() while kind == Preset
   int model = 0;    // into MaterialEditor::models()
@@ -88,6 +92,8 @@ class MaterialEditor {
   static int preset_index(std::string_view name);
   static int model_index(profiles::Model model);
 
+  // One per material of the scene: those with SSS first (edits()[0] is the one the
+  // scripted edits and --soak change), then the others, each in the scene's order.
   std::vector<MaterialEdit>& edits() { return edits_; }
   const std::vector<MaterialEdit>& edits() const { return edits_; }
 
@@ -98,6 +104,13 @@ class MaterialEditor {
   // Switches the fields: Coefficients from the current medium; Artist from its total
   // reflectance and reduced mfp; Preset selects the last preset (or skin1).
   bool set_source_kind(std::size_t edit, SourceKind kind);
+  // The "enable subsurface" switch. On: the fields are checked and fitted as by apply()
+  // (false, error set and the switch left off, when they are not valid). Off: the
+  // material is drawn as an opaque PBR surface; its fields stay for the next switch on,
+  // and Export writes it with "enabled": false if it had an extras.sss block.
+  bool set_enabled(std::size_t edit, bool on);
+  // Whether the scene had an SSS material when the editor was made (edits()[0] is one).
+  bool had_sss() const { return had_sss_; }
   // The stack (issue 19). add_layer splits layer `at` (the one medium of a material that
   // has no stack, which then becomes a two-layer stack; refused for an artist source) into
   // two identical layers: a finite layer into two halves, when each half stays thicker
@@ -154,6 +167,7 @@ class MaterialEditor {
   RefitLatency latency_;
   Clock::time_point edited_{};  // of the result awaiting its first present
   bool awaiting_present_ = false;
+  bool had_sss_ = false;
   double running_max_frame_ms_ = 0.0;
   FitWorker worker_;  // last: stopped first
 };

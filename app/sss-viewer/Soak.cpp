@@ -236,7 +236,7 @@ int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::Ren
   renderer::Renderer r(context, scene, options);
   print_warnings(r);
   MaterialEditor editor(scene, options.separable_taps, FitWorker::compute_default, options.single_scattering);
-  if (editor.edits().empty())
+  if (!editor.had_sss())
     return usage_error("sss-viewer", "--soak: the scene " + a.scene +
                                          " has no SSS material to change");
   constexpr auto kFitTimeout = std::chrono::minutes(2);

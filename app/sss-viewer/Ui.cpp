@@ -158,7 +158,7 @@ bool valid_script_edit(const std::string& edit) {
 }
 
 bool ViewerUi::script_edit(const std::string& edit) {
-  if (editor_.edits().empty() || !valid_script_edit(edit)) return false;
+  if (!editor_.had_sss() || !valid_script_edit(edit)) return false;
   script_ = edit;
   return true;
 }
@@ -330,11 +330,24 @@ void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {
   else if (l.edits > 0)
     ImGui::TextDisabled("fit %.0f, upload %.1f, edit->frame %.0f ms", l.fit_ms, l.upload_ms,
                         l.edit_to_frame_ms);
+  // Every material of the scene (issue 20): those with SSS open, the others closed, each
+  // with its "enable subsurface" switch.
   for (std::size_t i = 0; i < editor_.edits().size(); ++i) {
     MaterialEdit& e = editor_.edits()[i];
     ImGui::PushID(int(e.index));
-    if (ImGui::TreeNodeEx("material", ImGuiTreeNodeFlags_DefaultOpen, "%s", e.name.c_str())) {
-      draw_material(e, i);
+    const ImGuiTreeNodeFlags open = e.enabled ? ImGuiTreeNodeFlags_DefaultOpen : 0;
+    if (ImGui::TreeNodeEx("material", open, "%s%s", e.name.c_str(), e.enabled ? "" : " (opaque)")) {
+      bool on = e.enabled;
+      if (ImGui::Checkbox("enable subsurface", &on)) editor_.set_enabled(i, on);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s", e.enabled
+            ? "off: an opaque PBR surface; the fields stay for the next switch on"
+            : "scatter light under this surface: skin1 at scale 1 to start, as "
+              "--sss-material NAME=skin1 (texture-space mode needs the material at load)");
+      if (e.enabled)
+        draw_material(e, i);
+      else if (!e.error.empty())
+        ImGui::TextColored(kErrorColor, "%s", e.error.c_str());
       ImGui::TreePop();
     }
     ImGui::PopID();

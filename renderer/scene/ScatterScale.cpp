@@ -31,7 +31,7 @@ ScatterScale scatter_scale(const SssMaterial& sss, double object_mm, double pixe
 }
 
 ScatterScale scatter_scale(const Scene& scene, std::size_t material, std::uint32_t height) {
-  if (material >= scene.materials.size() || !scene.materials[material].sss.enabled) return {};
+  if (material >= scene.materials.size()) return {};
   Bounds b;
   for (const Instance& inst : scene.instances)
     if (inst.mesh < scene.meshes.size() && scene.meshes[inst.mesh].material == material)

@@ -26,8 +26,10 @@ struct ScatterScale {
   double pixel_min_mm = 0.0;
 };
 
-// For an enabled SSS material `material` of `scene`, seen by scene.cameras[0] (if any) in
-// an image `height` pixels high (0: no pixel footprint).
+// For material `material` of `scene`, seen by scene.cameras[0] (if any) in an image
+// `height` pixels high (0: no pixel footprint). A material without SSS gets the object's
+// and the pixel's numbers only (the medium's stay 0): the viewer's panel knows the object
+// before the user enables subsurface scattering on it.
 ScatterScale scatter_scale(const Scene& scene, std::size_t material, std::uint32_t height = 0);
 // The medium's numbers for `sss` with the object's and the pixel's given (the viewer's
 // editor measures the object once and the medium at every edit).

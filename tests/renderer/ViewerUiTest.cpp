@@ -23,6 +23,8 @@
 #include "ViewerRun.h"
 
 #include "renderer/scene/SssExtras.h"
+#include "common/TwoBoxesGltf.h"
+#include "scene/GltfTestWriter.h"
 
 #include <gtest/gtest.h>
 #include "HeadlessImGui.h"
@@ -733,6 +735,154 @@ TEST_F(ViewerUiTest, PanelDrawsNarrowAndUploadsTheRefit) {
     EXPECT_FALSE(ui.set_light(r, ui.lights().size(), 0.0f, 0.0f, 1.0f, white));
     r.render_frame();
   }
+}
+
+// Issue 20 part 1: a user's glTF without extras.sss lists every material in the panel,
+// each with an "enable subsurface" switch. Driven with mouse input through ImGuiIO (the
+// widgets found by hovering, as ViewerToolsTest does): a click on "plastic" opens it, a
+// click on its switch fits skin1 at scale 1 on the worker and the frame changes; Export
+// then writes that material's extras.sss (and nothing for "metal"); a second click makes
+// it opaque again, and the frame is the first one bit for bit (the opaque path is the
+// same code as before the switch).
+TEST_F(ViewerUiTest, TheEnableSubsurfaceSwitchGivesAPlainGltfMaterialSssAndTakesItBack) {
+  scene::testing::TempDir dir("viewer_enable_subsurface");
+  const auto file = dir.path() / "boxes.glb";
+  sss::testing::write_two_boxes(file, 0.05f);  // 5 cm: skin1 spreads over several pixels
+  auto loaded = scene::load_scene(file.string());
+  ASSERT_TRUE(std::holds_alternative<scene::Scene>(loaded));
+  scene::Scene scene = std::get<scene::Scene>(std::move(loaded));
+  scene::add_camera_if_missing(scene);
+  scene::add_light_if_missing(scene);
+  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  Renderer r(ctx(), scene, o);
+  r.render_frame();
+  const image::Image opaque = r.read_hdr();
+
+  renderer::testing::HeadlessImGui imgui;
+  ImGuiIO& io = imgui.io();
+  app::ViewerUi ui(scene, o.separable_taps);
+  ASSERT_EQ(ui.editor().edits().size(), 2u);
+  for (const MaterialEdit& e : ui.editor().edits()) EXPECT_FALSE(e.enabled) << e.name;
+  const MaterialEdit& plastic = ui.editor().edits()[0];
+  ASSERT_EQ(plastic.name, "plastic");
+  EXPECT_GT(plastic.object_mm, 50.0) << "the object is known before the switch";
+
+  // The IDs of plastic's tree node and switch, as Ui.cpp's draw_materials makes them:
+  // window "sss-viewer" / PushID(material index) / "material" (the tree node, which
+  // pushes its label's ID while open) / "enable subsurface".
+  ImGuiID node_id = 0, switch_id = 0;
+  const auto frame = [&] {
+    io.DeltaTime = 1.0f / 60.0f;
+    ImGui::NewFrame();
+    ui.draw(r, 16.0);
+    ImGui::Begin("sss-viewer");  // appends to the panel: only to compute the IDs
+    ImGui::PushID(int(plastic.index));
+    node_id = ImGui::GetID("material");
+    ImGui::PushID("material");
+    switch_id = ImGui::GetID("enable subsurface");
+    ImGui::PopID();
+    ImGui::PopID();
+    ImGui::End();
+    ImGui::Render();
+    return ImGui::FindWindowByName("sss-viewer");
+  };
+  const auto click = [&](ImVec2 at) {
+    io.MousePos = at;
+    frame();
+    io.MouseDown[0] = true;
+    frame();
+    io.MouseDown[0] = false;
+    frame();
+  };
+  // Where the mouse hovers `id`: the panel's left 96 px (tree nodes span the width, the
+  // switch starts one indent in) on a 4 px grid.
+  const auto find = [&](ImGuiWindow* w, const ImGuiID& id) -> std::optional<ImVec2> {
+    for (float y = w->Pos.y + 2.0f; y < w->Pos.y + w->Size.y; y += 4.0f)
+      for (float x = w->Pos.x + 12.0f; x < w->Pos.x + 96.0f; x += 8.0f) {
+        io.MousePos = ImVec2(x, y);
+        frame();
+        if (ImGui::GetCurrentContext()->HoveredId == id) return ImVec2(x, y);
+      }
+    return std::nullopt;
+  };
+  const auto settle = [&] {
+    for (int k = 0; k < 400 && (k < 3 || ui.busy()); ++k) {
+      frame();
+      r.render_frame();
+      ui.frame_presented(16.0);
+      if (ui.editor().fitting()) std::this_thread::sleep_for(5ms);
+    }
+    EXPECT_FALSE(ui.busy());
+  };
+
+  ImGuiWindow* panel = frame();
+  panel = frame();
+  ASSERT_NE(panel, nullptr);
+  ASSERT_FALSE(panel->Collapsed) << "960 px: the panel opens";
+  const auto node = find(panel, node_id);
+  ASSERT_TRUE(node.has_value()) << "plastic's row in the Materials section";
+  click(*node);
+  const auto box = find(panel, switch_id);
+  ASSERT_TRUE(box.has_value()) << "the open row shows the switch";
+  click(*box);
+  settle();
+  const MaterialEdit& on = ui.editor().edits()[0];
+  EXPECT_TRUE(on.enabled);
+  EXPECT_TRUE(on.error.empty()) << on.error;
+  const scene::Material& m = ui.editor().applied()[plastic.index];
+  ASSERT_TRUE(m.sss.enabled);
+  EXPECT_EQ(std::get<scene::PresetSource>(m.sss.source).name, "skin1");
+  EXPECT_EQ(m.sss.scale, 1.0);
+  ASSERT_TRUE(r.materials().profiles[plastic.index]) << "fitted and uploaded";
+  EXPECT_FALSE(on.scale_note.empty()) << "the panel shows mfp against the object";
+  EXPECT_FALSE(ui.editor().applied()[ui.editor().edits()[1].index].sss.enabled) << "metal";
+  r.render_frame();
+  EXPECT_FALSE(bit_identical(r.read_hdr(), opaque)) << "the switch changed nothing on screen";
+
+  // Export writes what was enabled: plastic's block, none for metal.
+  const app::LiveState live{&scene, file.string(), ui.editor().applied(), scene.lights};
+  const std::string out = (dir.path() / "boxes.sss.glb").string();
+  EXPECT_EQ(app::export_materials(live, out, false), "saved " + out);
+  auto back = scene::load_scene(out);
+  ASSERT_TRUE(std::holds_alternative<scene::Scene>(back));
+  const auto& mats = std::get<scene::Scene>(back).materials;
+  ASSERT_EQ(mats.size(), 2u);
+  EXPECT_TRUE(mats[plastic.index].sss.enabled);
+  EXPECT_EQ(mats[plastic.index].sss.medium.sigma_a, m.sss.medium.sigma_a);
+  EXPECT_FALSE(mats[ui.editor().edits()[1].index].sss.enabled);
+
+  // The section's rows moved (the fit's timing line above them): find the switch again.
+  const auto box_on = find(panel, switch_id);
+  ASSERT_TRUE(box_on.has_value());
+  click(*box_on);  // off again
+  settle();
+  EXPECT_FALSE(ui.editor().edits()[0].enabled);
+  EXPECT_FALSE(ui.editor().applied()[plastic.index].sss.enabled);
+  r.render_frame();
+  EXPECT_TRUE(bit_identical(r.read_hdr(), opaque)) << "opaque again, as before the switch";
+}
+
+// The switch refuses fields that do not resolve, and stays off; the frame is untouched.
+TEST(MaterialEditorSwitch, FieldsThatDoNotResolveKeepTheSwitchOff) {
+  scene::Scene scene = scene::sphere_scene();
+  for (scene::Material& m : scene.materials) m.sss = scene::SssMaterial{};
+  MaterialEditor ed(scene, 17);
+  ASSERT_FALSE(ed.edits().empty());
+  EXPECT_FALSE(ed.had_sss());
+  MaterialEdit& e = ed.edits()[0];
+  EXPECT_FALSE(e.enabled);
+  EXPECT_FLOAT_EQ(e.sigma_a[0], float(profiles::preset_medium(*profiles::find_preset("skin1")).sigma_a[0]))
+      << "the fields start on skin1";
+  e.kind = SourceKind::Coefficients;
+  e.sigma_a[1] = -1.0f;
+  EXPECT_FALSE(ed.set_enabled(0, true));
+  EXPECT_FALSE(e.enabled);
+  EXPECT_NE(e.error.find("sigma_a[G]"), std::string::npos) << e.error;
+  EXPECT_FALSE(ed.busy()) << "nothing was queued";
+  e.sigma_a[1] = 0.1f;
+  EXPECT_TRUE(ed.set_enabled(0, true));
+  EXPECT_TRUE(e.enabled);
+  EXPECT_TRUE(ed.wait_idle(120s));
 }
 
 #ifdef SSS_VIEWER_EXE
