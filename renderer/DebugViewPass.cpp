@@ -3,8 +3,6 @@
 #include "shaders/debug_view.comp.h"
 #include "shaders/shared/frame.h"
 
-#include <algorithm>
-#include <numbers>
 
 namespace sss::renderer {
 
@@ -53,17 +51,16 @@ void DebugViewPass::write_descriptors() {
       .update(r_.context);
 }
 
-void DebugViewPass::set_view(DebugView view, float scene_diameter_mm) {
+void DebugViewPass::set_view(DebugView view, const std::array<float, 2>& range) {
   view_ = view;
-  scene_diameter_mm_ = std::max(scene_diameter_mm, 1e-6f);
+  range_ = range;
 }
 
 void DebugViewPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
   auto scope = timer.scope(cmd, kName);
   compute_barrier(cmd);  // after composite's writes to display
   shader::DebugPush push;
-  push.view = {float(static_cast<int>(view_)), scene_diameter_mm_, kKernelRadiusTopLog2,
-               float(std::numbers::pi) * scene_diameter_mm_};
+  push.view = {float(static_cast<int>(view_)), range_[0], range_[1], 0.0f};
   program_.bind(cmd, set_);
   vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
                      &push);

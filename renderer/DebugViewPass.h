@@ -9,26 +9,25 @@
 #include "renderer/RenderOptions.h"
 #include "renderer/vk/GpuTimer.h"
 
+#include <array>
+
 namespace sss::renderer {
 
 class DebugViewPass {
  public:
   static constexpr const char* kName = "debug view";
-  // Heat-map tops: kernel radius 2^6 = 64 pixels; thickness the scene's bounding diameter;
-  // uv stretch pi x that diameter (a UV sphere's u spans its circumference).
-  static constexpr float kKernelRadiusTopLog2 = 6.0f;
-
   explicit DebugViewPass(const FrameResources& resources);
   void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
   void write_descriptors();
-  void set_view(DebugView view, float scene_diameter_mm);
+  // The view and its heat map's [lo, hi] (Renderer::debug_range()), set before each frame.
+  void set_view(DebugView view, const std::array<float, 2>& range);
 
  private:
   const FrameResources& r_;
   ComputeProgram program_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   DebugView view_ = DebugView::None;
-  float scene_diameter_mm_ = 1.0f;
+  std::array<float, 2> range_{0.0f, 1.0f};
 };
 
 }  // namespace sss::renderer

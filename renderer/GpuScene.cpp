@@ -116,6 +116,7 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
     MeshBuffers b;
     b.sss_uvs = sss_uvs;
     b.name = mesh.name;
+    b.bounds = mesh.bounds;
     b.index_count = static_cast<std::uint32_t>(mesh.indices.size());
     b.material = mesh.material;
     if (mesh.material < scene.materials.size()) {

@@ -57,6 +57,10 @@ class GpuScene {
                    int object) const;
 
   const std::vector<scene::Instance>& instances() const { return instances_; }
+  // Instance i's box in world units (its mesh's bounds, transformed).
+  scene::Bounds instance_bounds(std::size_t i) const {
+    return meshes_[instances_[i].mesh].bounds.transformed(instances_[i].world);
+  }
   std::uint32_t mesh_material(std::uint32_t mesh) const { return meshes_[mesh].material; }
   const std::string& mesh_name(std::uint32_t mesh) const { return meshes_[mesh].name; }
   // Whether the mesh's SSS UVs (scene::sss_uvs) can hold an irradiance texture: a
@@ -87,6 +91,7 @@ class GpuScene {
     vk::Buffer gutter;     // GpuVertex x 3 per gutter triangle
     std::uint32_t gutter_vertices = 0;
     std::string name;
+    scene::Bounds bounds;  // the mesh's, local
   };
   void push_constants(VkCommandBuffer cmd, VkPipelineLayout layout, const scene::Instance& instance,
                       int light_index, int object) const;

@@ -1,6 +1,8 @@
 #include "renderer/RenderOptions.h"
 
 #include <charconv>
+#include <cmath>
+#include <sstream>
 #include <system_error>
 
 namespace sss::renderer {
@@ -110,5 +112,36 @@ std::optional<DebugView> parse_debug_view(std::string_view name) {
 }
 
 std::span<const DebugView> all_debug_views() { return kDebugViews; }
+
+bool debug_view_has_range(DebugView view) {
+  return view == DebugView::KernelRadius || view == DebugView::Thickness ||
+         view == DebugView::UvStretch;
+}
+
+std::string_view debug_view_unit(DebugView view) {
+  switch (view) {
+    case DebugView::KernelRadius: return "px";
+    case DebugView::Thickness: return "mm";
+    case DebugView::UvStretch: return "mm per unit of UV";
+    default: return "";
+  }
+}
+
+std::string debug_range_error(DebugView view, const std::array<float, 2>& range) {
+  const auto [lo, hi] = range;
+  if (lo == 0.0f && hi == 0.0f) return {};
+  const auto num = [](float v) {
+    std::ostringstream o;
+    o << v;
+    return o.str();
+  };
+  const std::string given = num(lo) + "," + num(hi);
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
+    return "expected LO,HI with LO < HI (0,0: automatic), got " + given;
+  if (view == DebugView::KernelRadius && !(lo > 0.0f))
+    return "kernel-radius draws log2 pixels: LO must be > 0, got " + given;
+  if (!(lo >= 0.0f)) return "LO must be >= 0, got " + given;
+  return {};
+}
 
 }  // namespace sss::renderer

@@ -2,6 +2,7 @@
 // style). The CLI (app/sss-viewer) and the tests fill it.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -40,6 +41,14 @@ enum class DebugView {
 std::string_view debug_view_name(DebugView view);  // "none" | "irradiance" | ...
 std::optional<DebugView> parse_debug_view(std::string_view name);
 std::span<const DebugView> all_debug_views();  // None first, in enum order
+// Whether `view` draws a value on a heat map that RenderOptions::debug_range sets.
+bool debug_view_has_range(DebugView view);
+// The unit of that heat map: "px" (kernel-radius, log2 scale), "mm" (thickness), "mm per
+// unit of UV" (uv-stretch); "" for the others.
+std::string_view debug_view_unit(DebugView view);
+// "" when `range` can be the heat map's of `view` (both finite, LO < HI, LO >= 0, and LO > 0
+// on kernel-radius's log scale; {0, 0} is the automatic range), else what is wrong.
+std::string debug_range_error(DebugView view, const std::array<float, 2>& range);
 
 // When the texture path recomputes an object's irradiance atlas: every frame, or only
 // when something it depends on changed (lights, materials, the object's texture size,
@@ -70,6 +79,11 @@ struct RenderOptions {
   float exposure = 1.0f;    // display image only (the EXR is linear, unexposed)
   std::uint32_t shadow_map_size = 1024;
   DebugView debug_view = DebugView::None;
+  // --debug-range LO,HI: the debug view's heat map from LO to HI in the view's unit
+  // (kernel-radius: pixels, on a log2 scale; thickness: mm; uv-stretch: mm per unit of UV).
+  // {0, 0}: the view's own range for the frame (Renderer::debug_range(); renderer/README.md
+  // "Debug views"). The other views have no scale and ignore it.
+  std::array<float, 2> debug_range{0.0f, 0.0f};
   // --transmission: light through thin parts of SSS materials, from the shadow maps'
   // thickness (renderer/README.md "Transmission"). Off: reflection only.
   bool transmission = true;

@@ -21,7 +21,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
+#include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
@@ -59,6 +62,8 @@ void check_options(const vk::Context& context, const RenderOptions& o) {
   check_texture(o.texture_size, "texture size");
   for (const TextureObjectOptions& t : o.texture_objects)
     check_texture(t.size, "texture size of object '" + t.name + "'");
+  if (const std::string e = debug_range_error(o.debug_view, o.debug_range); !e.empty())
+    throw std::invalid_argument("debug range: " + e);
 }
 
 const scene::Scene& checked(const vk::Context& context, const scene::Scene& scene,
@@ -210,11 +215,66 @@ void Renderer::update_debug_view() {
     debug_.reset();
   } else {
     if (!debug_) debug_ = std::make_unique<DebugViewPass>(resources_);
-    const double diameter = bounds_.empty() ? 1.0 : 2.0 * double(bounds_.radius()) * mm_per_unit_;
-    debug_->set_view(view, float(diameter));
   }
   gbuffer_->set_uv_stretch(view == DebugView::UvStretch);
   if (separable_) separable_->set_write_scattered(view == DebugView::Scattered);
+}
+
+std::array<float, 2> Renderer::debug_range() const {
+  const DebugView view = options_.debug_view;
+  if (!debug_view_has_range(view)) return {0.0f, 0.0f};
+  if (options_.debug_range != std::array<float, 2>{0.0f, 0.0f}) return options_.debug_range;
+  // The objects the view is about: those drawn with an SSS material (all, if none).
+  const std::vector<scene::Instance>& instances = scene_.instances();
+  const std::vector<scene::Material>& materials = scene_.materials();
+  std::vector<std::size_t> chosen;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const std::uint32_t m = scene_.mesh_material(instances[i].mesh);
+    if (m < materials.size() && materials[m].sss.enabled) chosen.push_back(i);
+  }
+  if (view == DebugView::KernelRadius) {
+    // 1 px (below it the view is magenta) to the largest radius a pixel can show: the
+    // kernel's reach times the camera plane's pixels per mm at the object's nearest depth
+    // (sss.glsl's pixels_per_mm; foreshortening only shortens it). The default 1..64 px
+    // saturated on the bunny, whose skin reaches past 64 px at 960x540.
+    constexpr std::array<float, 2> kFallback{1.0f, 64.0f};  // the camera inside an object
+    const glm::mat4 proj = scene::clip_from_view(camera_, options_.width, options_.height);
+    const double focal_px = 0.5 * std::min(double(options_.width) * double(proj[0][0]),
+                                           double(options_.height) * std::abs(double(proj[1][1])));
+    const glm::mat4 view_from_world = camera_.view();
+    const MaterialData& data = materials_.data();
+    double top = 0.0;
+    for (std::size_t i : chosen) {
+      const std::uint32_t m = scene_.mesh_material(instances[i].mesh);
+      if (m >= data.gpu.size()) continue;
+      double mm_per_px_plane = mm_per_unit_;  // orthographic: one depth for all
+      if (camera_.projection == scene::Projection::Perspective) {
+        const scene::Bounds b = scene_.instance_bounds(i);
+        double z_min = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < 8; ++k) {
+          const glm::vec3 corner((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y,
+                                 (k & 4) ? b.max.z : b.min.z);
+          z_min = std::min(z_min, -double((view_from_world * glm::vec4(corner, 1.0f)).z));
+        }
+        if (!(z_min > 0.0)) return kFallback;
+        mm_per_px_plane = z_min * mm_per_unit_;
+      }
+      top = std::max(top, double(data.gpu[m].kernel.y) * focal_px / mm_per_px_plane);
+    }
+    return {1.0f, float(std::max(2.0, top))};
+  }
+  // Thickness, uv stretch: up to the largest object's bounding diameter (a chord is no
+  // longer), and pi times it for uv stretch (a UV sphere's u spans its circumference). The
+  // scene's diameter, the old top, made a 30 mm sphere in a larger scene one dark colour.
+  if (chosen.empty())
+    for (std::size_t i = 0; i < instances.size(); ++i) chosen.push_back(i);
+  double diameter = 0.0;
+  for (std::size_t i : chosen) {
+    const scene::Bounds b = scene_.instance_bounds(i);
+    if (!b.empty()) diameter = std::max(diameter, 2.0 * double(b.radius()) * mm_per_unit_);
+  }
+  if (!(diameter > 0.0)) diameter = 1.0;
+  return {0.0f, float(view == DebugView::UvStretch ? std::numbers::pi * diameter : diameter)};
 }
 
 void Renderer::set_camera(const scene::Camera& camera) {
@@ -344,7 +404,10 @@ void Renderer::record(VkCommandBuffer cmd) {
   if (separable_) separable_->record(cmd, timer_);
   if (gaussians_) gaussians_->record(cmd, timer_);
   composite_->record(cmd, timer_);
-  if (debug_) debug_->record(cmd, timer_);
+  if (debug_) {
+    debug_->set_view(options_.debug_view, debug_range());  // follows the camera and the fits
+    debug_->record(cmd, timer_);
+  }
 }
 
 void Renderer::render_frame() {

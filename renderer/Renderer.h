@@ -32,6 +32,7 @@
 #include "renderer/vk/Buffer.h"
 #include "renderer/vk/GpuTimer.h"
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -120,6 +121,12 @@ class Renderer {
   image::Image read_atlas(std::size_t object, Atlas which) const;
   const std::vector<std::string>& warnings() const { return warnings_; }
   const RenderOptions& options() const { return options_; }
+  // The debug view's heat-map range for the next frame, in the view's unit: the options'
+  // debug_range when set, else the view's own: kernel-radius 1 px to the largest radius
+  // any SSS pixel can have from this camera; thickness 0 to the largest SSS object's
+  // bounding diameter in mm (every object's if none scatters); uv-stretch 0 to pi x that.
+  // {0, 0} for a view without a heat map.
+  std::array<float, 2> debug_range() const;
   const scene::Camera& camera() const { return camera_; }
 
  private:

@@ -91,7 +91,8 @@ void main() {
                                       texelFetch(irradiance_tex, clamp(p + step, ivec2(0), hi), 0).a, id, z, ppm);
         radius_px = min(radius_px, materials[id].kernel.y * ppm / foreshortening(slope));
       }
-      c = radius_px < 1.0 ? kUndersampled : viridis(log2(radius_px) / debug.view.z);
+      float log_lo = log2(debug.view.y), log_hi = log2(debug.view.z);
+      c = radius_px < 1.0 ? kUndersampled : viridis((log2(radius_px) - log_lo) / (log_hi - log_lo));
     }
   } else if (view == 5) {  // profile / material id
     c = id_colour(id);
@@ -101,7 +102,7 @@ void main() {
     float t = int(frame.options.x) > 0
                   ? shadow_thickness(light_depth_tex, 0, light_block.lights[0], w.xyz / w.w)
                   : -1.0;
-    if (t >= 0.0) c = viridis(t * frame.scale.x / debug.view.y);
+    if (t >= 0.0) c = viridis((t * frame.scale.x - debug.view.y) / (debug.view.z - debug.view.y));
   } else if (view == 8) {  // single scattering S(1), whatever the switch says
     if (scatters) {
       float depth = texelFetch(depth_tex, p, 0).r;
@@ -116,7 +117,7 @@ void main() {
     }
   } else if (view == 7) {  // uv stretch
     vec4 s = texelFetch(uv_stretch_tex, p, 0);
-    if (s.z > 0.5) c = vec3(clamp(s.xy / debug.view.w, 0.0, 1.0), 0.0);
+    if (s.z > 0.5) c = vec3(clamp((s.xy - debug.view.y) / (debug.view.z - debug.view.y), 0.0, 1.0), 0.0);
   }
   imageStore(display_img, p, vec4(c, 1.0));
 }

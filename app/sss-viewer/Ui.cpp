@@ -7,6 +7,7 @@
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"
 #include "renderer/SssTexturePass.h"
+#include "renderer/image/HeatMap.h"
 #include "renderer/image/Image.h"
 #include "renderer/scene/SssLayers.h"
 
@@ -15,7 +16,9 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <stdexcept>
 
@@ -237,6 +240,7 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
       const std::string name(renderer::debug_view_name(v));
       if (ImGui::Selectable(name.c_str(), v == o.debug_view) && v != o.debug_view) {
         o.debug_view = v;
+        o.debug_range = {0.0f, 0.0f};  // each view starts on its own range
         changed = true;
       }
     }
@@ -246,19 +250,22 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Render size while the view moves or a slider is dragged\n"
                       "(1 = always full size); full size 0.3 s after the last change");
-  // The view's scale (renderer/README.md, "Debug views").
+  // The view's scale (renderer/README.md, "Debug views"): a colour bar with the range the
+  // frame uses, and the range to edit.
+  if (renderer::debug_view_has_range(o.debug_view)) changed |= draw_debug_range(r, o);
   const char* legend = nullptr;
   switch (o.debug_view) {
     case renderer::DebugView::KernelRadius:
-      legend = "kernel radius, log2 px: dark blue 1, green ~8, yellow >= 64; magenta < 1 px "
-               "(the screen kernel undersamples the profile)";
+      legend = "kernel radius in px on a log2 scale (automatic: 1 px to the largest radius "
+               "on screen); magenta < 1 px (the screen kernel undersamples the profile)";
       break;
     case renderer::DebugView::Thickness:
-      legend = "mm through the object along light 0: viridis 0 .. the scene's size; grey: no "
-               "shadow map there";
+      legend = "mm through the object along light 0 (automatic: 0 to the largest SSS "
+               "object's size); grey: no shadow map there";
       break;
     case renderer::DebugView::UvStretch:
-      legend = "mm per unit of u (red) and v (green), 0 .. pi x the scene's size; grey: no UVs";
+      legend = "mm per unit of u (red) and v (green), automatic: 0 to pi x the largest SSS "
+               "object's size; grey: no UVs";
       break;
     case renderer::DebugView::ProfileId: legend = "one flat colour per material"; break;
     default: break;
@@ -280,6 +287,62 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
   } catch (const std::invalid_argument& e) {
     error_ = e.what();
   }
+}
+
+bool ViewerUi::draw_debug_range(const renderer::Renderer& r, renderer::RenderOptions& o) {
+  const auto [lo, hi] = r.debug_range();
+  const bool log_scale = o.debug_view == renderer::DebugView::KernelRadius;
+  const std::string unit(renderer::debug_view_unit(o.debug_view));
+  // The bar: viridis from lo to hi (uv-stretch draws red and green on 0..1 of the same
+  // range, as the legend says), with the ends and the middle labelled.
+  const float width = ImGui::GetContentRegionAvail().x, height = 10.0f;
+  const ImVec2 at = ImGui::GetCursorScreenPos();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  constexpr int kSteps = 48;
+  for (int k = 0; k < kSteps; ++k) {
+    const double t = (k + 0.5) / kSteps;
+    image::Rgb c = image::viridis(t);
+    if (o.debug_view == renderer::DebugView::UvStretch) c = {float(t), float(t), 0.0f};
+    const float x0 = at.x + width * float(k) / kSteps, x1 = at.x + width * float(k + 1) / kSteps;
+    draw->AddRectFilled(ImVec2(x0, at.y), ImVec2(x1, at.y + height),
+                        IM_COL32(int(255 * c[0]), int(255 * c[1]), int(255 * c[2]), 255));
+  }
+  ImGui::Dummy(ImVec2(width, height));
+  const double mid = log_scale ? std::sqrt(double(lo) * double(hi)) : 0.5 * (double(lo) + double(hi));
+  char text[3][32];
+  std::snprintf(text[0], sizeof text[0], "%.3g", double(lo));
+  std::snprintf(text[1], sizeof text[1], "%.3g", mid);
+  std::snprintf(text[2], sizeof text[2], "%.3g %s", double(hi), unit.c_str());
+  const float y = ImGui::GetCursorPosY();
+  ImGui::TextUnformatted(text[0]);
+  ImGui::SameLine(0.5f * width - 0.5f * ImGui::CalcTextSize(text[1]).x);
+  ImGui::SetCursorPosY(y);
+  ImGui::TextUnformatted(text[1]);
+  ImGui::SameLine(width - ImGui::CalcTextSize(text[2]).x);
+  ImGui::SetCursorPosY(y);
+  ImGui::TextUnformatted(text[2]);
+
+  bool automatic = o.debug_range == std::array<float, 2>{0.0f, 0.0f};
+  bool changed = false;
+  if (ImGui::Checkbox("automatic range", &automatic)) {
+    o.debug_range = automatic ? std::array<float, 2>{0.0f, 0.0f} : std::array<float, 2>{lo, hi};
+    changed = true;
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("on: the range follows the camera and the materials (--debug-range sets it)");
+  if (!automatic) {
+    float ends[2] = {o.debug_range[0], o.debug_range[1]};
+    const float speed = 0.005f * std::max(ends[1] - ends[0], 1e-3f);
+    if (ImGui::DragFloatRange2("range", &ends[0], &ends[1], speed, log_scale ? 0.01f : 0.0f,
+                               1e6f, "%.3g", "%.3g", ImGuiSliderFlags_AlwaysClamp)) {
+      const std::array<float, 2> edited{ends[0], ends[1]};
+      if (renderer::debug_range_error(o.debug_view, edited).empty()) {
+        o.debug_range = edited;
+        changed = true;
+      }
+    }
+  }
+  return changed;
 }
 
 bool ViewerUi::draw_texture_objects(const renderer::Renderer& r, renderer::RenderOptions& o) {

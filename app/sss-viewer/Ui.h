@@ -72,6 +72,8 @@ class ViewerUi {
   void draw_sss(renderer::Renderer& r);
   // Texture mode: each object's texture size and update policy; true when o changed.
   bool draw_texture_objects(const renderer::Renderer& r, renderer::RenderOptions& o);
+  // The debug view's colour bar, its range, and the range's editor; true if o changed.
+  bool draw_debug_range(const renderer::Renderer& r, renderer::RenderOptions& o);
   void draw_materials(renderer::Renderer& r);
   void draw_material(MaterialEdit& e, std::size_t i);
   // A stack's rows (per layer: its coefficients, thickness, split / up / down / remove) and

@@ -29,6 +29,7 @@ struct ViewerArgs {
   int shadow_map_size = 1024;  // texels a side (RenderOptions::shadow_map_size)
   float exposure = 1.0f;
   std::string debug_view = "none";  // --debug-view: renderer::parse_debug_view names
+  std::vector<double> debug_range;  // --debug-range LO,HI (empty: the view's automatic)
   std::string transmission = "on";  // --transmission on | off
   std::string fresnel = "off";      // --fresnel on | off
   std::string single_scattering = "on";  // --single-scattering on | off

@@ -50,12 +50,13 @@ std::string debug_view_help() {
   return "The PNG / window shows an intermediate instead of the shaded frame (the EXR stays "
          "shaded): " + debug_view_names() + " (default none). irradiance: E/pi, specular, "
          "scattered: diffuse after SSS before albedo (/pi), all tonemapped; kernel-radius: "
-         "viridis on log2 pixels, 1 px (dark blue) .. 64 px (yellow), magenta below 1 px "
-         "(the screen kernel undersamples the profile); profile-id: one colour per material; "
-         "thickness: mm through the object along light 0, viridis 0 .. the scene's bounding "
-         "diameter; uv-stretch: red = mm per unit u, green = mm per unit v, 0 .. pi x the "
-         "bounding diameter, grey without UVs; single-scattering: S(1) alone (tonemapped), "
-         "whether --single-scattering is on or off";
+         "viridis on log2 pixels, 1 px (dark blue) .. the largest radius on screen "
+         "(yellow), magenta below 1 px (the screen kernel undersamples the profile); "
+         "profile-id: one colour per material; thickness: mm through the object along light "
+         "0, viridis 0 .. the largest SSS object's bounding diameter; uv-stretch: red = mm "
+         "per unit u, green = mm per unit v, 0 .. pi x that diameter, grey without UVs; "
+         "single-scattering: S(1) alone (tonemapped), whether --single-scattering is on or "
+         "off. --debug-range sets the heat maps' ends; the stats print the range used";
 }
 
 void write_atlases(const renderer::Renderer& r, const std::string& prefix,
@@ -107,6 +108,12 @@ int viewer_main(int argc, char** argv) {
       ->check(CLI::Range(16, 8192));
   app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1, in [1e-6, 1e6])");
   app.add_option("--debug-view", a.debug_view, debug_view_help());
+  app.add_option("--debug-range", a.debug_range,
+                 "LO,HI: the debug view's heat map from LO to HI in its unit (kernel-radius: "
+                 "pixels, LO > 0; thickness: mm; uv-stretch: mm per unit of UV). Default: the "
+                 "view's automatic range")
+      ->delimiter(',')
+      ->expected(2);
   app.add_option("--transmission", a.transmission,
                  "on | off: light through thin parts of SSS materials, thickness from the "
                  "shadow maps (default on)");
@@ -245,6 +252,15 @@ int viewer_main(int argc, char** argv) {
   if (!debug_view)
     return usage("--debug-view: expected " + debug_view_names() + ", got '" + a.debug_view + "'");
   options.debug_view = *debug_view;
+  if (!a.debug_range.empty()) {
+    if (!renderer::debug_view_has_range(options.debug_view))
+      return usage("--debug-range: the debug view '" + a.debug_view + "' has no heat map "
+                   "(kernel-radius, thickness and uv-stretch have)");
+    options.debug_range = {float(a.debug_range[0]), float(a.debug_range[1])};
+    if (const std::string e = renderer::debug_range_error(options.debug_view, options.debug_range);
+        !e.empty())
+      return usage("--debug-range: " + e);
+  }
   if (a.transmission != "on" && a.transmission != "off")
     return usage("--transmission: expected on or off, got '" + a.transmission + "'");
   options.transmission = a.transmission == "on";
@@ -292,6 +308,12 @@ int viewer_main(int argc, char** argv) {
     else
       write_frame(r, a.out);
     if (!a.atlas_out.empty()) write_atlases(r, a.atlas_out, inputs);
+    if (renderer::debug_view_has_range(options.debug_view)) {  // the PNG's scale
+      const auto [lo, hi] = r.debug_range();
+      std::cout << "debug view " << a.debug_view << ": heat map " << lo << " .. " << hi << ' '
+                << renderer::debug_view_unit(options.debug_view)
+                << (a.debug_range.empty() ? " (automatic; --debug-range sets it)\n" : "\n");
+    }
     if (a.stats) print_stats(r, a.frames, cpu_total);
   } catch (const std::bad_alloc&) {
     std::cerr << "sss-viewer: error: out of host memory (std::bad_alloc)\n";

@@ -114,8 +114,9 @@ struct TexturePush {  // texture-space SSS blur (sss_texture.comp)
 };
 
 struct DebugPush {  // debug view pass (debug_view.comp)
-  vec4 view;  // x DebugView index, y thickness heat-map top in mm, z kernel-radius heat-map
-              // top as log2(pixels), w uv-stretch top in mm per unit of UV
+  vec4 view;  // x DebugView index; y, z the heat map's low and high ends in the view's
+              // unit (Renderer::debug_range(): kernel-radius pixels, thickness mm,
+              // uv-stretch mm per unit of UV); w unused
 };
 
 #ifdef __cplusplus

@@ -25,6 +25,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <set>
 #include <vector>
@@ -210,16 +211,21 @@ TEST_F(DebugViewTest, ScatteredIsTheDiffuseBeforeAlbedo) {
   EXPECT_GT(s.display.pixel(x, n / 2)[0], 10.0f * kCode);
 }
 
-// Kernel radius: range_mm x pixels per mm, on log2 pixels 0..6 (1..64 px). Orthographic
-// builtin:edge spans 2 x half_width mm over n pixels, so the radius is range_mm n / (2 hw)
-// pixels; zooming in 2x doubles it; zoomed out below 1 px it is magenta.
+// Kernel radius: range_mm x pixels per mm, here on a range of 1..64 px given by
+// --debug-range (log2 0..6). Orthographic builtin:edge spans 2 x half_width mm over n
+// pixels, so the radius is range_mm n / (2 hw) pixels; zooming in 2x doubles it; zoomed
+// out below 1 px it is magenta. The automatic range's top is that radius: an orthographic
+// camera has one scale, and the slab faces it (no foreshortening).
 TEST_F(DebugViewTest, KernelRadiusIsTheKernelExtentInPixels) {
   const int n = 48;
   const auto radius_px = [&](double half_width_mm, float* range_mm) {
-    const Frame f = render(lit_slab(half_width_mm), view_options(n, n, DebugView::KernelRadius));
+    RenderOptions o = view_options(n, n, DebugView::KernelRadius);
+    o.debug_range = {1.0f, 64.0f};
+    const Frame f = render(lit_slab(half_width_mm), o);
+    EXPECT_EQ(f.debug_range, o.debug_range);
     *range_mm = f.materials.gpu[0].kernel.y;
     const float t = decode_viridis(f.display.pixel(n / 2, n / 2));
-    return std::exp2(t * DebugViewPass::kKernelRadiusTopLog2);
+    return std::exp2(t * 6.0f);
   };
   float range_mm = 0.0f;
   const float wide = radius_px(20.0, &range_mm);
@@ -229,6 +235,10 @@ TEST_F(DebugViewTest, KernelRadiusIsTheKernelExtentInPixels) {
   EXPECT_NEAR(wide, expected, 0.03f * expected);
   const float zoomed = radius_px(10.0, &range_mm);  // closer: twice the pixels per mm
   EXPECT_NEAR(zoomed / wide, 2.0f, 0.06f);
+  const Frame automatic = render(lit_slab(20.0), view_options(n, n, DebugView::KernelRadius));
+  EXPECT_EQ(automatic.debug_range[0], 1.0f);
+  // float32 projection and kernel: a few ulps.
+  EXPECT_NEAR(automatic.debug_range[1], expected, 1e-5f * expected);
   const Frame far = render(lit_slab(100.0 * expected), view_options(n, n, DebugView::KernelRadius));
   const float* m = far.display.pixel(n / 2, n / 2);
   EXPECT_EQ(m[0], 1.0f);
@@ -266,8 +276,10 @@ TEST_F(DebugViewTest, ProfileIdGivesEachMaterialOneDistinctColour) {
 TEST_F(DebugViewTest, ThicknessIsTheDistanceThroughTheObjectAlongTheLight) {
   const int n = 32;
   scene::Scene top = lit_slab();
-  const float top_mm = diameter_mm(top);
+  const float top_mm = diameter_mm(top);  // the slab is the scene: its diameter
   const Frame lit = render(top, view_options(n, n, DebugView::Thickness));
+  EXPECT_EQ(lit.debug_range[0], 0.0f);
+  EXPECT_NEAR(lit.debug_range[1], top_mm, 1e-6f * top_mm);
   for (int y = 0; y < n; y += 3)
     for (int x = 0; x < n; x += 3)
       EXPECT_LT(decode_viridis(lit.display.pixel(x, y)) * top_mm, 1.5f) << x << "," << y;
@@ -292,6 +304,7 @@ TEST_F(DebugViewTest, UvStretchIsMmOfSurfacePerUnitOfUv) {
   const scene::Scene s = lit_slab();
   const float top = kPi * diameter_mm(s);
   const Frame f = render(s, view_options(n, n, DebugView::UvStretch));
+  EXPECT_NEAR(f.debug_range[1], top, 1e-6f * top);
   for (int y = 1; y < n - 1; y += 3)
     for (int x = 1; x < n - 1; x += 3) {
       EXPECT_NEAR(f.display.pixel(x, y)[0] * top, 200.0f, 2.5f) << x << "," << y;
@@ -310,6 +323,61 @@ TEST_F(DebugViewTest, UvStretchIsMmOfSurfacePerUnitOfUv) {
       for (int c = 0; c < 3; ++c) ASSERT_NEAR(p[c], 0.25f, 0.5f * kCode);
     }
   EXPECT_GT(geometry, 100);
+}
+
+// Issue 20 part 3: the kernel-radius view was solid yellow on the bunny (its top, 64 px,
+// below the skin's reach at 960x540), and the thickness view's top was the scene's size.
+// The automatic ranges: no SSS pixel of the bunny lies above the kernel-radius top (it is
+// an upper bound: the reach at the object's nearest depth, unforeshortened), and the top
+// is within 4x of the largest radius on screen (the nearest depth is the box's corner, the
+// surface there is foreshortened); the view spans at least half of viridis. On
+// builtin:materials the thickness top is one sphere's bounding diameter (a cube's
+// diagonal around the 30 mm sphere: 30 sqrt 3 mm), not the row of spheres.
+TEST_F(DebugViewTest, AutomaticRangesFitTheObjectsOnScreen) {
+  auto loaded = scene::load_scene("builtin:bunny");
+  const scene::Scene bunny = std::get<scene::Scene>(std::move(loaded));
+  const std::uint32_t w = 240, h = 135;
+  const Frame f = render(bunny, view_options(w, h, DebugView::KernelRadius));
+  ASSERT_EQ(f.debug_range[0], 1.0f);
+  const float log_hi = std::log2(f.debug_range[1]);
+  ASSERT_GT(log_hi, 1.0f);
+  float t_min = 1.0f, t_max = 0.0f;
+  int scattering = 0, at_top = 0;
+  for (std::uint32_t y = 0; y < h; ++y)
+    for (std::uint32_t x = 0; x < w; ++x) {
+      const float* p = f.display.pixel(int(x), int(y));
+      const auto code = [&](int c) { return std::lround(p[c] * 255.0f); };
+      if (p[3] == 0.0f || (code(0) == 64 && code(1) == 64 && code(2) == 64)) continue;  // no value
+      if (p[0] == 1.0f && p[1] == 0.0f && p[2] == 1.0f) continue;       // below 1 px
+      const float t = decode_viridis(p);
+      ++scattering;
+      t_min = std::min(t_min, t);
+      t_max = std::max(t_max, t);
+      at_top += t >= 1.0f ? 1 : 0;
+    }
+  ASSERT_GT(scattering, 1000);
+  EXPECT_LT(at_top, scattering / 100) << "the top saturates";
+  EXPECT_GT(t_max, 1.0f - 2.0f / log_hi) << "top within 4x (2 stops) of the largest radius";
+  EXPECT_GT(t_max - t_min, 0.5f) << "the view spans half the map";
+
+  const scene::Scene spheres = scene::materials_scene();
+  const Frame k = render(spheres, view_options(192, 108, DebugView::Thickness));
+  EXPECT_NEAR(k.debug_range[1], 30.0f * std::sqrt(3.0f), 0.5f);
+  EXPECT_LT(k.debug_range[1], 0.5f * diameter_mm(spheres)) << "not the row's size";
+}
+
+TEST(DebugRange, RefusesWhatCannotBeAHeatMap) {
+  using V = DebugView;
+  EXPECT_EQ(debug_range_error(V::Thickness, {0.0f, 0.0f}), "");
+  EXPECT_EQ(debug_range_error(V::Thickness, {0.0f, 5.0f}), "");
+  EXPECT_EQ(debug_range_error(V::KernelRadius, {0.5f, 200.0f}), "");
+  EXPECT_NE(debug_range_error(V::KernelRadius, {0.0f, 64.0f}).find("LO must be > 0"), std::string::npos);
+  EXPECT_NE(debug_range_error(V::Thickness, {5.0f, 5.0f}).find("LO < HI"), std::string::npos);
+  EXPECT_NE(debug_range_error(V::UvStretch, {-1.0f, 5.0f}).find(">= 0"), std::string::npos);
+  EXPECT_NE(debug_range_error(V::Thickness, {0.0f, std::numeric_limits<float>::quiet_NaN()}),
+            "");
+  EXPECT_TRUE(debug_view_has_range(V::Thickness));
+  EXPECT_FALSE(debug_view_has_range(V::ProfileId));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "renderer/image/Image.h"
 #include "renderer/scene/Scene.h"
 
+#include <array>
 #include <cmath>
 
 namespace sss::renderer::testing {
@@ -19,6 +20,7 @@ struct Frame {
   FrameStats stats;
   MaterialData materials;  // the fits and kernels the frame used
   image::Image specular;   // the specular radiance in hdr (Renderer::read_specular)
+  std::array<float, 2> debug_range{};  // Renderer::debug_range() of the frame
 };
 
 class RenderTest : public vk::testing::VulkanTest {
@@ -28,7 +30,7 @@ class RenderTest : public vk::testing::VulkanTest {
     Renderer renderer(ctx(), scene, options);
     for (int i = 0; i < frames; ++i) renderer.render_frame();
     return {renderer.read_hdr(), renderer.read_display(), renderer.stats(), renderer.materials(),
-            renderer.read_specular()};
+            renderer.read_specular(), renderer.debug_range()};
   }
 };
 
