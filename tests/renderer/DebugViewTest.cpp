@@ -336,7 +336,7 @@ TEST_F(DebugViewTest, UvStretchIsMmOfSurfacePerUnitOfUv) {
 TEST_F(DebugViewTest, AutomaticRangesFitTheObjectsOnScreen) {
   auto loaded = scene::load_scene("builtin:bunny");
   const scene::Scene bunny = std::get<scene::Scene>(std::move(loaded));
-  const std::uint32_t w = 240, h = 135;
+  const std::uint32_t w = 480, h = 270;  // the old fixed top, 64 px, saturated here
   const Frame f = render(bunny, view_options(w, h, DebugView::KernelRadius));
   ASSERT_EQ(f.debug_range[0], 1.0f);
   const float log_hi = std::log2(f.debug_range[1]);

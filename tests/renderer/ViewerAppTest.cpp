@@ -140,6 +140,14 @@ TEST(ViewerApp, DocumentedErrors) {
       {"builtin:sphere --headless --out " + out + " --width 0", 2, "width"},
       {"builtin:sphere --headless --out " + out + " --device nonesuch", 2, "nonesuch"},
       {broken_gltf() + " --headless --out " + out, 2, "broken.gltf"},
+      {"builtin:sphere --headless --out " + out + " --debug-view kernel-radius --debug-range 0,5",
+       2, "LO must be > 0"},
+      {"builtin:sphere --headless --out " + out + " --debug-view thickness --debug-range 5,1", 2,
+       "LO < HI"},
+      {"builtin:sphere --headless --out " + out + " --debug-view profile-id --debug-range 0,5", 2,
+       "has no heat map"},
+      {"builtin:sphere --headless --out " + out + " --debug-view thickness --debug-range 5", 2,
+       "--debug-range"},
   };
   for (const Case& c : cases) {
     const ViewerRun r = run(c.args);
