@@ -145,6 +145,61 @@ void draw_profile_plot(const ProfilePlot& p, bool with_error) {
 ViewerUi::ViewerUi(const scene::Scene& scene, int separable_taps, bool single_scattering)
     : editor_(scene, separable_taps, FitWorker::compute_default, single_scattering), lights_(scene.lights) {
   if (!lights_.empty()) select_light(0);
+  std::size_t sss = 0;
+  for (const scene::Material& m : scene.materials) sss += m.sss.enabled ? 1 : 0;
+  show_labels_ = sss > 1;
+  for (const scene::Instance& inst : scene.instances) {
+    if (inst.mesh >= scene.meshes.size()) continue;
+    const std::size_t m = scene.meshes[inst.mesh].material;
+    if (m < scene.materials.size() && scene.materials[m].sss.enabled)
+      labelled_.push_back({scene.meshes[inst.mesh].bounds.transformed(inst.world), m});
+  }
+}
+
+std::vector<ViewerUi::ScreenLabel> ViewerUi::labels(const scene::Camera& camera, ImVec2 display) const {
+  std::vector<ScreenLabel> out;
+  if (!(display.x >= 1.0f && display.y >= 1.0f)) return out;
+  const glm::mat4 clip_from_world =
+      scene::clip_from_view(camera, std::uint32_t(display.x), std::uint32_t(display.y)) * camera.view();
+  for (const LabelledObject& o : labelled_) {
+    // The box's screen rectangle; a corner behind the camera: no label.
+    ImVec2 lo(1e30f, 1e30f), hi(-1e30f, -1e30f);
+    bool behind = false;
+    for (int k = 0; k < 8; ++k) {
+      const glm::vec3 corner((k & 1) ? o.box.max.x : o.box.min.x, (k & 2) ? o.box.max.y : o.box.min.y,
+                             (k & 4) ? o.box.max.z : o.box.min.z);
+      const glm::vec4 c = clip_from_world * glm::vec4(corner, 1.0f);
+      if (!(c.w > 0.0f)) {
+        behind = true;
+        break;
+      }
+      // NDC to pixels: x right, y down (Vulkan clip space, Camera.h).
+      const ImVec2 px(0.5f * (c.x / c.w + 1.0f) * display.x, 0.5f * (c.y / c.w + 1.0f) * display.y);
+      lo = ImVec2(std::min(lo.x, px.x), std::min(lo.y, px.y));
+      hi = ImVec2(std::max(hi.x, px.x), std::max(hi.y, px.y));
+    }
+    if (behind || hi.x < 0.0f || lo.x > display.x || hi.y < 0.0f || lo.y > display.y) continue;
+    const MaterialEdit* edit = nullptr;
+    for (const MaterialEdit& e : editor_.edits())
+      if (e.index == o.material) edit = &e;
+    if (edit == nullptr) continue;
+    const ImVec2 size = ImGui::CalcTextSize(edit->name.c_str());
+    // Under the box's projection; inside the display.
+    const float x = std::clamp(0.5f * (lo.x + hi.x) - 0.5f * size.x, 0.0f, std::max(display.x - size.x, 0.0f));
+    float y = hi.y + 2.0f;
+    // Names wider than the gap between two objects (a small window) step down a line
+    // until they clear the labels placed before them.
+    const auto overlaps = [&](float top) {
+      for (const ScreenLabel& l : out)
+        if (x < l.max.x && l.min.x < x + size.x && top < l.max.y && l.min.y < top + size.y)
+          return true;
+      return false;
+    };
+    for (int step = 0; step < 8 && overlaps(y); ++step) y += size.y + 2.0f;
+    y = std::clamp(y, 0.0f, std::max(display.y - size.y, 0.0f));
+    out.push_back({edit->name, ImVec2(x, y), ImVec2(x + size.x, y + size.y)});
+  }
+  return out;
 }
 
 bool valid_script_edit(const std::string& edit) {
@@ -189,6 +244,14 @@ void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
   // it covered all but the right edge of the subject at 640x360. A click on the title
   // opens it.
   ImGui::SetNextWindowCollapsed(starts_collapsed(display.x), ImGuiCond_FirstUseEver);
+  if (show_labels_) {
+    ImDrawList* back = ImGui::GetBackgroundDrawList();  // over the frame, under the panels
+    for (const ScreenLabel& l : labels(r.camera(), display)) {
+      back->AddRectFilled(ImVec2(l.min.x - 2.0f, l.min.y - 1.0f), ImVec2(l.max.x + 2.0f, l.max.y + 1.0f),
+                          IM_COL32(0, 0, 0, 140), 3.0f);
+      back->AddText(l.min, IM_COL32(235, 235, 235, 255), l.text.c_str());
+    }
+  }
   open_on_title_click(ImGui::Begin("sss-viewer"));
   ImGui::PushItemWidth(-100.0f);  // labels keep 100 px on the right
   ImGui::TextWrapped("drag: orbit, shift/middle drag: pan, wheel: zoom, R: reset view");
@@ -246,6 +309,8 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
     }
     ImGui::EndCombo();
   }
+  ImGui::Checkbox("labels", &show_labels_);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("each SSS object's material name under it");
   ImGui::SliderFloat("moving scale", &interactive_scale_, 0.25f, 1.0f, "%.2f");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Render size while the view moves or a slider is dragged\n"

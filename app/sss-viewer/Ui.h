@@ -10,6 +10,8 @@
 #include "renderer/Renderer.h"
 #include "renderer/scene/Scene.h"
 
+#include <imgui.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -52,6 +54,18 @@ class ViewerUi {
 
   MaterialEditor& editor() { return editor_; }
 
+  // Object labels (issue 20: "label the spheres of builtin:materials"): the name of each
+  // SSS object's material, centred under its projected box, drawn over the frame and under
+  // the panels. On by default when the scene has more than one SSS material; the SSS
+  // panel's "labels" switch. labels() is what draw() draws, for a frame of `display`
+  // pixels seen by `camera`; objects behind the camera or off screen get none.
+  struct ScreenLabel {
+    std::string text;
+    ImVec2 min, max;  // the text's rectangle, display pixels
+  };
+  std::vector<ScreenLabel> labels(const scene::Camera& camera, ImVec2 display) const;
+  bool show_labels() const { return show_labels_; }
+
   // The scene's own files (InputFiles.h): the Screenshot panel refuses to write over them.
   void set_protected_files(std::vector<std::filesystem::path> files) { protected_ = std::move(files); }
   // What the Screenshot panel would write to `path`: nullopt to go ahead, or why not.
@@ -85,6 +99,12 @@ class ViewerUi {
   void select_light(std::size_t i);
 
   MaterialEditor editor_;
+  struct LabelledObject {
+    scene::Bounds box;  // world units
+    std::size_t material = 0;
+  };
+  std::vector<LabelledObject> labelled_;  // the SSS instances
+  bool show_labels_ = false;
   std::vector<scene::Light> lights_;
   int light_ = 0;  // the light the panel edits
   float azimuth_deg_ = 0.0f, elevation_deg_ = 0.0f, intensity_ = 1.0f;

@@ -46,6 +46,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 #include <variant>
@@ -860,6 +861,68 @@ TEST_F(ViewerUiTest, TheEnableSubsurfaceSwitchGivesAPlainGltfMaterialSssAndTakes
   EXPECT_FALSE(ui.editor().applied()[plastic.index].sss.enabled);
   r.render_frame();
   EXPECT_TRUE(bit_identical(r.read_hdr(), opaque)) << "opaque again, as before the switch";
+}
+
+// Issue 20 part 3: builtin:materials showed eleven spheres and no way to tell which is
+// which but the profile-id view. Each sphere gets its material's name under it: one label
+// per SSS material, inside the window, below its sphere's projected centre, none
+// overlapping another, at the sizes the README's screenshots use; a scene with one SSS
+// material (the bunny) starts without them.
+TEST(ViewerLabels, EverySphereOfTheMaterialsSceneIsNamedUnderItWithoutOverlap) {
+  renderer::testing::HeadlessImGui imgui;
+  ImGui::NewFrame();  // CalcTextSize needs the font of a frame
+  scene::Scene spheres = scene::materials_scene();
+  scene::add_camera_if_missing(spheres);
+  const app::ViewerUi ui(spheres);
+  EXPECT_TRUE(ui.show_labels());
+  std::size_t sss = 0;
+  for (const scene::Material& m : spheres.materials) sss += m.sss.enabled ? 1 : 0;
+  for (const ImVec2 display : {ImVec2(640, 360), ImVec2(960, 540), ImVec2(1280, 720)}) {
+    const auto labels = ui.labels(spheres.cameras[0], display);
+    ASSERT_EQ(labels.size(), sss) << display.x;
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      const auto& l = labels[i];
+      names.insert(l.text);
+      EXPECT_GE(l.min.x, 0.0f);
+      EXPECT_GE(l.min.y, 0.0f);
+      EXPECT_LE(l.max.x, display.x);
+      EXPECT_LE(l.max.y, display.y);
+      for (std::size_t k = i + 1; k < labels.size(); ++k) {
+        const auto& o = labels[k];
+        const bool apart = l.max.x <= o.min.x || o.max.x <= l.min.x || l.max.y <= o.min.y ||
+                           o.max.y <= l.min.y;
+        EXPECT_TRUE(apart) << l.text << " overlaps " << o.text << " at " << display.x;
+      }
+    }
+    EXPECT_EQ(names.size(), sss) << "one name per material";
+  }
+  // Under its own sphere: the label of the material drawn by instance 0 is centred below
+  // that sphere's projected centre.
+  const ImVec2 display(960, 540);
+  const scene::Camera& cam = spheres.cameras[0];
+  const glm::mat4 clip = scene::clip_from_view(cam, 960, 540) * cam.view();
+  const scene::Instance& first = spheres.instances[0];
+  const glm::vec4 c = clip * glm::vec4(spheres.meshes[first.mesh].bounds.transformed(first.world).center(), 1.0f);
+  const float cx = 0.5f * (c.x / c.w + 1.0f) * display.x, cy = 0.5f * (c.y / c.w + 1.0f) * display.y;
+  const std::string& name = spheres.materials[spheres.meshes[first.mesh].material].name;
+  // The label centres on the box's screen rectangle, whose middle lies off the projected
+  // centre by perspective: at most (box radius / depth) x the centre's distance from the
+  // middle of the view, in pixels.
+  const scene::Bounds box = spheres.meshes[first.mesh].bounds.transformed(first.world);
+  const float off_axis = box.radius() / c.w * std::fabs(cx - 0.5f * display.x) + 0.5f;
+  bool found = false;
+  for (const auto& l : ui.labels(cam, display))
+    if (l.text == name) {
+      found = true;
+      EXPECT_NEAR(0.5f * (l.min.x + l.max.x), cx, off_axis);
+      EXPECT_GT(l.min.y, cy);
+    }
+  EXPECT_TRUE(found) << name;
+  ImGui::EndFrame();
+
+  const app::ViewerUi bunny_ui(default_scene());
+  EXPECT_FALSE(bunny_ui.show_labels());
 }
 
 // The switch refuses fields that do not resolve, and stays off; the frame is untouched.
