@@ -13,6 +13,9 @@ OrbitCamera::OrbitCamera(const scene::Camera& initial, const scene::Bounds& boun
   const glm::vec3 f = initial_.forward();
   initial_distance_ = std::max(glm::dot(center - initial_.position(), f), 0.1f * radius_);
   initial_target_ = initial_.position() + f * initial_distance_;
+  home_target_ = initial_target_;
+  home_distance_ = initial_distance_;
+  home_xmag_ = initial_.xmag;
   reset();
   changed_ = false;
 }
@@ -21,11 +24,27 @@ void OrbitCamera::reset() {
   const glm::vec3 back = -initial_.forward();
   pitch_ = std::asin(std::clamp(back.y, -1.0f, 1.0f));
   yaw_ = std::atan2(back.x, back.z);
-  xmag_ = initial_.xmag;
-  target_ = initial_target_;
-  distance_ = initial_distance_;
-  changed_ = changed_ || moved_;
-  moved_ = false;
+  xmag_ = home_xmag_;
+  target_ = home_target_;
+  distance_ = home_distance_;
+  changed_ = changed_ || moved_ || home_moved_;
+  moved_ = home_moved_;
+}
+
+void OrbitCamera::frame_free_area(float covered, float viewport_width, float viewport_height) {
+  if (!(covered > 0.0f && covered < viewport_width)) return;
+  reset();
+  const float widen = viewport_width / (viewport_width - covered);
+  distance_ *= widen;  // the target's depth: the scene's centre
+  xmag_ *= widen;
+  moved_ = true;
+  // The view's middle moves right by covered / 2 pixels: the subject with it.
+  pan(0.5f * covered, 0.0f, viewport_width, viewport_height);
+  home_target_ = target_;
+  home_distance_ = distance_;
+  home_xmag_ = xmag_;
+  home_moved_ = true;
+  changed_ = true;
 }
 
 glm::vec3 OrbitCamera::eye() const {

@@ -253,6 +253,7 @@ void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
     }
   }
   open_on_title_click(ImGui::Begin("sss-viewer"));
+  panel_right_ = ImGui::IsWindowCollapsed() ? 0.0f : ImGui::GetWindowPos().x + ImGui::GetWindowWidth();
   ImGui::PushItemWidth(-100.0f);  // labels keep 100 px on the right
   ImGui::TextWrapped("drag: orbit, shift/middle drag: pan, wheel: zoom, R: reset view");
   draw_sss(r);

@@ -53,6 +53,9 @@ class ViewerUi {
   void print_stats(std::FILE* out) const;
 
   MaterialEditor& editor() { return editor_; }
+  // The right edge of the open panel in display pixels after the last draw(); 0 while it
+  // is collapsed to its title (the window frames the subject beside it, OrbitCamera).
+  float panel_right() const { return panel_right_; }
 
   // Object labels (issue 20: "label the spheres of builtin:materials"): the name of each
   // SSS object's material, centred under its projected box, drawn over the frame and under
@@ -105,6 +108,7 @@ class ViewerUi {
   };
   std::vector<LabelledObject> labelled_;  // the SSS instances
   bool show_labels_ = false;
+  float panel_right_ = 0.0f;
   std::vector<scene::Light> lights_;
   int light_ = 0;  // the light the panel edits
   float azimuth_deg_ = 0.0f, elevation_deg_ = 0.0f, intensity_ = 1.0f;

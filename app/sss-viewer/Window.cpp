@@ -210,6 +210,7 @@ struct Session {
   std::unique_ptr<OrbitCamera> camera;
   std::unique_ptr<ViewerUi> ui;
   std::vector<std::filesystem::path> inputs;  // its files: never written over
+  bool framed = false;  // the camera's home is set beside the panel (first frame)
 };
 
 std::unique_ptr<Session> make_session(const vk::Context& ctx, scene::Scene scene, std::string source,
@@ -254,6 +255,17 @@ std::unique_ptr<Session> open_scene(const vk::Context& ctx, const std::string& p
   }
 }
 
+}  // namespace
+
+WindowSize fit_window_to_screen(int width, int height, int screen_w, int screen_h) {
+  if (screen_w <= 0 || screen_h <= 0 || width <= 0 || height <= 0) return {width, height};
+  const double room = 0.95;  // the title bar and the window's border
+  const double k = std::min({1.0, room * screen_w / width, room * screen_h / height});
+  return {std::max(1, int(std::floor(width * k))), std::max(1, int(std::floor(height * k)))};
+}
+
+namespace {
+
 int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options) {
   Glfw glfw;
   if (!glfw.ok) return no_display();
@@ -265,7 +277,20 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
   const std::string title = window_title(scene, a.scene);
   WindowHandle win;
-  win.window = glfwCreateWindow(a.width, a.height, title.c_str(), nullptr, nullptr);
+  // A window larger than the screen opens smaller (its frame follows the framebuffer);
+  // --screenshot keeps the size asked for, which is the saved image's.
+  WindowSize open_size{a.width, a.height};
+  if (a.screenshot.empty())
+    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor()) {
+      int x = 0, y = 0, w = 0, h = 0;
+      glfwGetMonitorWorkarea(monitor, &x, &y, &w, &h);
+      open_size = fit_window_to_screen(a.width, a.height, w, h);
+      if (open_size.width != a.width || open_size.height != a.height)
+        std::cerr << "sss-viewer: note: " << a.width << "x" << a.height << " does not fit the "
+                  << w << "x" << h << " screen: the window opens at " << open_size.width << "x"
+                  << open_size.height << '\n';
+    }
+  win.window = glfwCreateWindow(open_size.width, open_size.height, title.c_str(), nullptr, nullptr);
   if (win.window == nullptr) return no_display();
   GLFWwindow* window = win.window;
 
@@ -449,6 +474,13 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     // change (or read back) the renderer's resources.
     vk::wait_for_fence(ctx, fence.get());
     ui.draw(r, frame_ms);
+    if (!session->framed) {
+      // The first frame of a scene: with the panel open, the subject moves into the part
+      // of the window it leaves free. --screenshot keeps the scene's camera, so that it
+      // stays the headless frame.
+      session->framed = true;
+      if (!screenshot) camera.frame_free_area(ui.panel_right(), float(fb.width), float(fb.height));
+    }
     LiveState live{&session->scene, session->source, ui.editor().applied(), ui.lights(),
                    fb.width, fb.height, &session->inputs};
     if (!a.test_compare.empty() && frames == 2 && !tools.reference_running() && !tools.metrics()) {

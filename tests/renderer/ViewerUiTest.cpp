@@ -14,7 +14,9 @@
 #include "MaterialEditor.h"
 #include "ProfilePlot.h"
 #include "Tools.h"
+#include "OrbitCamera.h"
 #include "Ui.h"
+#include "Window.h"
 
 #include "profiles/Presets.h"
 #include "profiles/SeparableKernel.h"
@@ -923,6 +925,66 @@ TEST(ViewerLabels, EverySphereOfTheMaterialsSceneIsNamedUnderItWithoutOverlap) {
 
   const app::ViewerUi bunny_ui(default_scene());
   EXPECT_FALSE(bunny_ui.show_labels());
+}
+
+// Issue 20 part 2: the open panel (a third of a 960x540 window) hid the bunny's back-lit
+// ear. The window's home view backs off by W / (W - covered) and pans by covered / 2, so
+// that the scene's centre projects to the middle of the free part, and what spanned the
+// whole width (the scene camera's view) spans the free part; R returns there. Checked by
+// projecting the bunny's bounding box: its centre within a pixel of the free part's
+// middle, its whole box inside the free part (it was inside the window before), and a
+// reset after an orbit comes back to the framed camera exactly.
+TEST(ViewerFraming, TheHomeViewCentresTheSubjectInTheAreaThePanelLeavesFree) {
+  const scene::Scene bunny = default_scene();
+  const scene::Bounds b = bunny.bounds();
+  const float w = 960.0f, h = 540.0f, covered = 336.0f;
+  const auto project = [&](const scene::Camera& cam, const glm::vec3& p) {
+    const glm::vec4 c = scene::clip_from_view(cam, 960, 540) * cam.view() * glm::vec4(p, 1.0f);
+    return glm::vec2(0.5f * (c.x / c.w + 1.0f) * w, 0.5f * (c.y / c.w + 1.0f) * h);
+  };
+  const auto box_x = [&](const scene::Camera& cam) {
+    glm::vec2 x(1e30f, -1e30f);
+    for (int k = 0; k < 8; ++k) {
+      const glm::vec3 corner((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y,
+                             (k & 4) ? b.max.z : b.min.z);
+      const float px = project(cam, corner).x;
+      x = glm::vec2(std::min(x.x, px), std::max(x.y, px));
+    }
+    return x;
+  };
+  app::OrbitCamera camera(bunny.cameras[0], b);
+  const glm::vec2 before = box_x(camera.camera());
+  ASSERT_GT(before.x, 0.0f);
+  ASSERT_LT(before.y, w);
+  ASSERT_LT(before.x, covered) << "the panel covered part of the bunny";
+  camera.frame_free_area(covered, w, h);
+  EXPECT_TRUE(camera.take_changed());
+  const scene::Camera framed = camera.camera();
+  EXPECT_NEAR(project(framed, b.center()).x, covered + 0.5f * (w - covered), 1.0f);
+  const glm::vec2 after = box_x(framed);
+  EXPECT_GE(after.x, covered) << "the box starts right of the panel";
+  EXPECT_LE(after.y, w);
+  camera.orbit(40.0f, 10.0f);
+  camera.reset();
+  EXPECT_EQ(camera.camera().world, framed.world);
+  // A collapsed panel (0) or a covered width of the whole window changes nothing.
+  app::OrbitCamera same(bunny.cameras[0], b);
+  same.frame_free_area(0.0f, w, h);
+  same.frame_free_area(w, w, h);
+  EXPECT_FALSE(same.take_changed());
+  EXPECT_EQ(same.camera().world, bunny.cameras[0].world);
+}
+
+TEST(ViewerFraming, AWindowLargerThanTheScreenOpensSmallerWithItsAspect) {
+  const app::WindowSize fits = app::fit_window_to_screen(1280, 720, 1920, 1080);
+  EXPECT_EQ(fits.width, 1280);
+  EXPECT_EQ(fits.height, 720);
+  const app::WindowSize big = app::fit_window_to_screen(3840, 2160, 1920, 1040);
+  EXPECT_LE(big.width, 1920 * 0.95);
+  EXPECT_LE(big.height, 1040 * 0.95);
+  EXPECT_NEAR(double(big.width) / big.height, 16.0 / 9.0, 0.01);
+  const app::WindowSize unknown = app::fit_window_to_screen(3840, 2160, 0, 0);
+  EXPECT_EQ(unknown.width, 3840);
 }
 
 // The switch refuses fields that do not resolve, and stays off; the frame is untouched.
