@@ -43,24 +43,27 @@ shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32
   return u;
 }
 
+std::optional<ScreenRect> projected_rect(const glm::mat4& view_proj, const scene::Bounds& bounds,
+                                         std::uint32_t width, std::uint32_t height) {
+  if (bounds.empty()) return std::nullopt;
+  ScreenRect r{1e30, 1e30, -1e30, -1e30};
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec4 clip = view_proj * glm::vec4(bounds.corner(i), 1.0f);
+    if (!(clip.w > 1e-6f)) return std::nullopt;  // behind the camera plane (perspective)
+    const double px = (double(clip.x) / clip.w + 1.0) * 0.5 * width;
+    const double py = (double(clip.y) / clip.w + 1.0) * 0.5 * height;
+    r.x0 = std::min(r.x0, px), r.x1 = std::max(r.x1, px);
+    r.y0 = std::min(r.y0, py), r.y1 = std::max(r.y1, py);
+  }
+  return r;
+}
+
 PixelRect geometry_rect(const CameraSetup& camera, const scene::Bounds& bounds,
                         std::uint32_t width, std::uint32_t height) {
   const PixelRect full{0, 0, width, height};
-  if (bounds.empty()) return full;
-  const glm::mat4 view_proj = camera.proj * camera.view;
-  double x_min = 1e30, y_min = 1e30, x_max = -1e30, y_max = -1e30;
-  for (int i = 0; i < 8; ++i) {
-    const glm::vec3 corner((i & 1) ? bounds.max.x : bounds.min.x,
-                           (i & 2) ? bounds.max.y : bounds.min.y,
-                           (i & 4) ? bounds.max.z : bounds.min.z);
-    const glm::vec4 clip = view_proj * glm::vec4(corner, 1.0f);
-    if (!(clip.w > 1e-6f)) return full;  // behind the camera plane (perspective)
-    // pixel = (ndc + 1) / 2 x size, as pixel_ndc() in common.glsl inverts it
-    const double px = (double(clip.x) / clip.w + 1.0) * 0.5 * width;
-    const double py = (double(clip.y) / clip.w + 1.0) * 0.5 * height;
-    x_min = std::min(x_min, px), x_max = std::max(x_max, px);
-    y_min = std::min(y_min, py), y_max = std::max(y_max, py);
-  }
+  const std::optional<ScreenRect> box = projected_rect(camera.proj * camera.view, bounds, width, height);
+  if (!box) return full;
+  const double x_min = box->x0, y_min = box->y0, x_max = box->x1, y_max = box->y1;
   const auto clamp_to = [](double v, std::uint32_t size) {
     return static_cast<std::uint32_t>(std::clamp(v, 0.0, double(size)));
   };

@@ -9,6 +9,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cstdint>
+#include <optional>
 
 namespace sss::renderer {
 
@@ -29,6 +30,17 @@ shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32
                                           std::uint32_t height, double mm_per_unit,
                                           float exposure, std::uint32_t light_count,
                                           int sss_mode);
+
+// The screen rectangle of `bounds`' eight corners under `view_proj` (Vulkan clip space) in
+// an image of width x height, in pixels (x right, y down; pixel = (ndc + 1) / 2 x size, as
+// pixel_ndc() in common.glsl inverts it), not clamped. nullopt when a corner is behind the
+// camera plane (perspective) or the bounds are empty. geometry_rect and the viewer's
+// object labels use it.
+struct ScreenRect {
+  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+};
+std::optional<ScreenRect> projected_rect(const glm::mat4& view_proj, const scene::Bounds& bounds,
+                                         std::uint32_t width, std::uint32_t height);
 
 // The pixels the screen passes must cover: the projection of `bounds`' eight corners,
 // grown by 2 pixels (so that the rect's border pixels are background: taps clamped to the

@@ -23,7 +23,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -249,13 +248,8 @@ std::array<float, 2> Renderer::debug_range() const {
       if (m >= data.gpu.size()) continue;
       double mm_per_px_plane = mm_per_unit_;  // orthographic: one depth for all
       if (camera_.projection == scene::Projection::Perspective) {
-        const scene::Bounds b = scene_.instance_bounds(i);
-        double z_min = std::numeric_limits<double>::infinity();
-        for (int k = 0; k < 8; ++k) {
-          const glm::vec3 corner((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y,
-                                 (k & 4) ? b.max.z : b.min.z);
-          z_min = std::min(z_min, -double((view_from_world * glm::vec4(corner, 1.0f)).z));
-        }
+        // The nearest depth: view space looks down -z, so the box's largest z.
+        const double z_min = -double(scene_.instance_bounds(i).transformed(view_from_world).max.z);
         if (!(z_min > 0.0)) return kFallback;
         mm_per_px_plane = z_min * mm_per_unit_;
       }

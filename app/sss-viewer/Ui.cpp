@@ -6,6 +6,7 @@
 
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"
+#include "renderer/CameraSetup.h"
 #include "renderer/SssTexturePass.h"
 #include "renderer/image/HeatMap.h"
 #include "renderer/image/Image.h"
@@ -159,26 +160,14 @@ ViewerUi::ViewerUi(const scene::Scene& scene, int separable_taps, bool single_sc
 std::vector<ViewerUi::ScreenLabel> ViewerUi::labels(const scene::Camera& camera, ImVec2 display) const {
   std::vector<ScreenLabel> out;
   if (!(display.x >= 1.0f && display.y >= 1.0f)) return out;
-  const glm::mat4 clip_from_world =
-      scene::clip_from_view(camera, std::uint32_t(display.x), std::uint32_t(display.y)) * camera.view();
+  const std::uint32_t w = std::uint32_t(display.x), h = std::uint32_t(display.y);
+  const glm::mat4 clip_from_world = scene::clip_from_view(camera, w, h) * camera.view();
   for (const LabelledObject& o : labelled_) {
     // The box's screen rectangle; a corner behind the camera: no label.
-    ImVec2 lo(1e30f, 1e30f), hi(-1e30f, -1e30f);
-    bool behind = false;
-    for (int k = 0; k < 8; ++k) {
-      const glm::vec3 corner((k & 1) ? o.box.max.x : o.box.min.x, (k & 2) ? o.box.max.y : o.box.min.y,
-                             (k & 4) ? o.box.max.z : o.box.min.z);
-      const glm::vec4 c = clip_from_world * glm::vec4(corner, 1.0f);
-      if (!(c.w > 0.0f)) {
-        behind = true;
-        break;
-      }
-      // NDC to pixels: x right, y down (Vulkan clip space, Camera.h).
-      const ImVec2 px(0.5f * (c.x / c.w + 1.0f) * display.x, 0.5f * (c.y / c.w + 1.0f) * display.y);
-      lo = ImVec2(std::min(lo.x, px.x), std::min(lo.y, px.y));
-      hi = ImVec2(std::max(hi.x, px.x), std::max(hi.y, px.y));
-    }
-    if (behind || hi.x < 0.0f || lo.x > display.x || hi.y < 0.0f || lo.y > display.y) continue;
+    const std::optional<renderer::ScreenRect> rect = renderer::projected_rect(clip_from_world, o.box, w, h);
+    if (!rect || rect->x1 < 0.0 || rect->x0 > display.x || rect->y1 < 0.0 || rect->y0 > display.y)
+      continue;
+    const ImVec2 lo(float(rect->x0), float(rect->y0)), hi(float(rect->x1), float(rect->y1));
     const MaterialEdit* edit = nullptr;
     for (const MaterialEdit& e : editor_.edits())
       if (e.index == o.material) edit = &e;

@@ -56,7 +56,8 @@ std::string debug_view_help() {
          "0, viridis 0 .. the largest SSS object's bounding diameter; uv-stretch: red = mm "
          "per unit u, green = mm per unit v, 0 .. pi x that diameter, grey without UVs; "
          "single-scattering: S(1) alone (tonemapped), whether --single-scattering is on or "
-         "off. --debug-range sets the heat maps' ends; the stats print the range used";
+         "off. --debug-range sets the heat maps' ends; the headless viewer prints the range it "
+         "drew with";
 }
 
 void write_atlases(const renderer::Renderer& r, const std::string& prefix,

@@ -23,6 +23,10 @@ struct Bounds {
   // The box around the eight transformed corners (exact for translations and axis
   // permutations, conservative under rotation).
   Bounds transformed(const glm::mat4& m) const;
+  // Corner i of 8: bit 0 picks max.x, bit 1 max.y, bit 2 max.z.
+  glm::vec3 corner(int i) const {
+    return {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
+  }
 };
 
 }  // namespace sss::scene

@@ -237,8 +237,10 @@ TEST_F(DebugViewTest, KernelRadiusIsTheKernelExtentInPixels) {
   EXPECT_NEAR(zoomed / wide, 2.0f, 0.06f);
   const Frame automatic = render(lit_slab(20.0), view_options(n, n, DebugView::KernelRadius));
   EXPECT_EQ(automatic.debug_range[0], 1.0f);
-  // float32 projection and kernel: a few ulps.
-  EXPECT_NEAR(automatic.debug_range[1], expected, 1e-5f * expected);
+  // Both sides from the same float32 kernel reach: the projection's 1/xmag, the test's
+  // product and quotient, and the range's conversion to float round once each, half an
+  // ulp (6e-8) apiece: 4 x 6e-8 < 1e-6 relative.
+  EXPECT_NEAR(automatic.debug_range[1], expected, 1e-6f * expected);
   const Frame far = render(lit_slab(100.0 * expected), view_options(n, n, DebugView::KernelRadius));
   const float* m = far.display.pixel(n / 2, n / 2);
   EXPECT_EQ(m[0], 1.0f);
@@ -362,7 +364,11 @@ TEST_F(DebugViewTest, AutomaticRangesFitTheObjectsOnScreen) {
 
   const scene::Scene spheres = scene::materials_scene();
   const Frame k = render(spheres, view_options(192, 108, DebugView::Thickness));
-  EXPECT_NEAR(k.debug_range[1], 30.0f * std::sqrt(3.0f), 0.5f);
+  // make_uv_sphere(15 mm, 48, 24): 7.5-degree facets, whose vertices reach at least
+  // R cos(3.75 deg) along each axis, so the box diagonal is 30 sqrt 3 mm within
+  // 30 sqrt 3 (1 - cos 3.75 deg) = 0.11 mm.
+  const float diagonal = 30.0f * std::sqrt(3.0f);
+  EXPECT_NEAR(k.debug_range[1], diagonal, diagonal * (1.0f - std::cos(3.75f * kPi / 180.0f)));
   EXPECT_LT(k.debug_range[1], 0.5f * diameter_mm(spheres)) << "not the row's size";
 }
 

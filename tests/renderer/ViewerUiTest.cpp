@@ -20,6 +20,7 @@
 
 #include "profiles/Presets.h"
 #include "profiles/SeparableKernel.h"
+#include "renderer/CameraSetup.h"
 #include "renderer/scene/BuiltinScenes.h"
 
 #include "ViewerRun.h"
@@ -943,14 +944,9 @@ TEST(ViewerFraming, TheHomeViewCentresTheSubjectInTheAreaThePanelLeavesFree) {
     return glm::vec2(0.5f * (c.x / c.w + 1.0f) * w, 0.5f * (c.y / c.w + 1.0f) * h);
   };
   const auto box_x = [&](const scene::Camera& cam) {
-    glm::vec2 x(1e30f, -1e30f);
-    for (int k = 0; k < 8; ++k) {
-      const glm::vec3 corner((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y,
-                             (k & 4) ? b.max.z : b.min.z);
-      const float px = project(cam, corner).x;
-      x = glm::vec2(std::min(x.x, px), std::max(x.y, px));
-    }
-    return x;
+    const auto r = renderer::projected_rect(scene::clip_from_view(cam, 960, 540) * cam.view(), b, 960, 540);
+    EXPECT_TRUE(r.has_value()) << "the bunny is in front of the camera";
+    return r ? glm::vec2(float(r->x0), float(r->x1)) : glm::vec2(0.0f);
   };
   app::OrbitCamera camera(bunny.cameras[0], b);
   const glm::vec2 before = box_x(camera.camera());
