@@ -49,6 +49,8 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
   hdr = make(context, w, h, kHdrFormat, kComputeUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "hdr");
   display = make(context, w, h, kDisplayFormat, kComputeUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                  "display");
+  display_source = make(context, w, h, kDisplayFormat,
+                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "display source");
 }
 
 std::vector<const vk::Image*> FrameTargets::compute_targets() const {

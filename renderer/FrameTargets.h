@@ -53,6 +53,10 @@ struct FrameTargets {
   vk::Image blur_temp, blur_a, blur_b, accum;
   vk::Image sss_line;  // SSS separable: the horizontal pass's result (kKeyedFormat)
   vk::Image hdr, display;                   // composite
+  // The display image as composite left it, read by the anti-aliasing pass (a copy, so
+  // no pixel reads a neighbour the pass already wrote). Not a compute target: the pass
+  // takes it from UNDEFINED to TRANSFER_DST_OPTIMAL to SHADER_READ_ONLY_OPTIMAL.
+  vk::Image display_source;
 
   // The compute targets (GENERAL layout), for the frame's initial transition.
   std::vector<const vk::Image*> compute_targets() const;

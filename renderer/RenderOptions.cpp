@@ -90,6 +90,14 @@ constexpr DebugView kDebugViews[] = {DebugView::None,         DebugView::Irradia
                                      DebugView::SingleScattering};
 }  // namespace
 
+std::string_view antialias_name(Antialias aa) { return aa == Antialias::Fxaa ? "fxaa" : "off"; }
+
+std::optional<Antialias> parse_antialias(std::string_view name) {
+  for (Antialias a : {Antialias::Off, Antialias::Fxaa})
+    if (antialias_name(a) == name) return a;
+  return std::nullopt;
+}
+
 std::string_view debug_view_name(DebugView view) {
   switch (view) {
     case DebugView::None: return "none";

@@ -25,6 +25,13 @@ std::optional<SssMode> parse_sss_mode(std::string_view name);
 std::string_view sss_kind_name(SssKind kind);  // "separable" | "gaussians"
 std::optional<SssKind> parse_sss_kind(std::string_view name);
 
+// --aa: anti-aliasing of the display image (the PNG and the window): none, or FXAA, a
+// post-process over the tonemapped frame (renderer/README.md "Anti-aliasing"). The HDR
+// image (the EXR, the compare suite, the references' counterpart) is never filtered.
+enum class Antialias { Off, Fxaa };
+std::string_view antialias_name(Antialias aa);  // "off" | "fxaa"
+std::optional<Antialias> parse_antialias(std::string_view name);
+
 // --debug-view: what the display image shows instead of the shaded frame (the HDR image
 // stays the shaded frame). renderer/README.md "Debug views" says what each one maps.
 enum class DebugView {
@@ -78,6 +85,9 @@ struct RenderOptions {
   int separable_taps = 17;  // odd, 3 .. SSS_MAX_TAPS
   float exposure = 1.0f;    // display image only (the EXR is linear, unexposed)
   std::uint32_t shadow_map_size = 1024;
+  // Off by default here and headless, where the PNG is what the golden suite compares pixel
+  // by pixel; the window turns it on (sss-viewer --aa).
+  Antialias antialias = Antialias::Off;
   DebugView debug_view = DebugView::None;
   // --debug-range LO,HI: the debug view's heat map from LO to HI in the view's unit
   // (kernel-radius: pixels, on a log2 scale; thickness: mm; uv-stretch: mm per unit of UV).

@@ -1,5 +1,6 @@
 #include "renderer/Renderer.h"
 
+#include "renderer/AntialiasPass.h"
 #include "renderer/CameraSetup.h"
 #include "renderer/CompositePass.h"
 #include "renderer/DebugViewPass.h"
@@ -178,6 +179,7 @@ void Renderer::recreate_targets(std::uint32_t width, std::uint32_t height,
   if (gaussians_) gaussians_->write_descriptors();
   composite_->write_descriptors();
   if (debug_) debug_->write_descriptors();
+  if (antialias_) antialias_->write_descriptors();
   if (texture_) texture_->write_descriptors();  // the shadow maps
 }
 
@@ -215,6 +217,11 @@ void Renderer::update_debug_view() {
   } else {
     if (!debug_) debug_ = std::make_unique<DebugViewPass>(resources_);
   }
+  // A debug view is data (its colour bar maps values to colours): no anti-aliasing there.
+  if (options_.antialias != Antialias::Fxaa || view != DebugView::None)
+    antialias_.reset();
+  else if (!antialias_)
+    antialias_ = std::make_unique<AntialiasPass>(resources_);
   gbuffer_->set_uv_stretch(view == DebugView::UvStretch);
   if (separable_) separable_->set_write_scattered(view == DebugView::Scattered);
 }
@@ -398,6 +405,7 @@ void Renderer::record(VkCommandBuffer cmd) {
   if (separable_) separable_->record(cmd, timer_);
   if (gaussians_) gaussians_->record(cmd, timer_);
   composite_->record(cmd, timer_);
+  if (antialias_) antialias_->record(cmd, timer_);
   if (debug_) {
     debug_->set_view(options_.debug_view, debug_range());  // follows the camera and the fits
     debug_->record(cmd, timer_);
@@ -459,7 +467,11 @@ image::Image Renderer::read_atlas(std::size_t object, Atlas which) const {
 }
 
 image::Image Renderer::read_hdr() const { return read(targets_.hdr); }
-image::Image Renderer::read_display() const { return read(targets_.display); }
+image::Image Renderer::read_display() const {
+  image::Image display = read(targets_.display);
+  image::unpremultiply(display);  // only anti-aliased silhouettes have 0 < alpha < 1
+  return display;
+}
 image::Image Renderer::read_specular() const { return read(targets_.specular); }
 
 }  // namespace sss::renderer

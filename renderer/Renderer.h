@@ -49,6 +49,7 @@ class LightingPass;
 class SssSeparablePass;
 class SssGaussiansPass;
 class CompositePass;
+class AntialiasPass;
 class DebugViewPass;
 class SssTexturePass;
 class TextureGatherPass;
@@ -101,7 +102,8 @@ class Renderer {
   const FrameStats& stats() const { return stats_; }
 
   // The last frame: linear radiance L (rgb; alpha 1 on geometry, 0 on background) and
-  // the display image (tonemapped, sRGB-encoded, codes / 255).
+  // the display image (tonemapped, sRGB-encoded, codes / 255; straight alpha, which is 0
+  // or 1 except at anti-aliased silhouettes, where it is the coverage).
   image::Image read_hdr() const;
   image::Image read_display() const;
   // The last frame's specular radiance towards the eye (rgb, linear), the part of read_hdr()
@@ -169,6 +171,7 @@ class Renderer {
   std::unique_ptr<SssGaussiansPass> gaussians_;
   std::unique_ptr<CompositePass> composite_;
   std::unique_ptr<DebugViewPass> debug_;  // only while options_.debug_view != None
+  std::unique_ptr<AntialiasPass> antialias_;  // only with Antialias::Fxaa and no debug view
   std::unique_ptr<SssTexturePass> texture_;     // only in SssMode::Texture
   std::unique_ptr<TextureGatherPass> gather_;   // with texture_
   vk::CommandPoolHandle pool_;

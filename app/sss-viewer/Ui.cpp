@@ -287,6 +287,14 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
   changed |= ImGui::Checkbox("transmission", &o.transmission);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("--transmission: light through thin parts, thickness from the shadow maps");
+  bool fxaa = o.antialias == renderer::Antialias::Fxaa;
+  if (ImGui::Checkbox("anti-aliasing", &fxaa)) {
+    o.antialias = fxaa ? renderer::Antialias::Fxaa : renderer::Antialias::Off;
+    changed = true;
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("--aa fxaa: FXAA over the displayed frame (not in debug views; the EXR\n"
+                      "is never filtered)");
   const std::string view_label(renderer::debug_view_name(o.debug_view));
   if (ImGui::BeginCombo("debug view", view_label.c_str())) {
     for (const renderer::DebugView v : renderer::all_debug_views()) {

@@ -28,6 +28,7 @@ struct ViewerArgs {
   int taps = 17;
   int shadow_map_size = 1024;  // texels a side (RenderOptions::shadow_map_size)
   float exposure = 1.0f;
+  std::string aa = "auto";  // --aa auto (window: fxaa, headless: off) | off | fxaa
   std::string debug_view = "none";  // --debug-view: renderer::parse_debug_view names
   std::vector<double> debug_range;  // --debug-range LO,HI (empty: the view's automatic)
   std::string transmission = "on";  // --transmission on | off

@@ -108,6 +108,10 @@ int viewer_main(int argc, char** argv) {
                  "renders at 512 (tests/golden/REPORT.md)")
       ->check(CLI::Range(16, 8192));
   app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1, in [1e-6, 1e6])");
+  app.add_option("--aa", a.aa,
+                 "auto | off | fxaa: anti-aliasing of the displayed frame and the PNG, FXAA over "
+                 "the tonemapped image (the EXR is never filtered). auto (default): fxaa in the "
+                 "window, off headless, where the PNG is the frame the golden suite compares");
   app.add_option("--debug-view", a.debug_view, debug_view_help());
   app.add_option("--debug-range", a.debug_range,
                  "LO,HI: the debug view's heat map from LO to HI in its unit (kernel-radius: "
@@ -249,6 +253,13 @@ int viewer_main(int argc, char** argv) {
   options.width = static_cast<std::uint32_t>(a.width);
   options.height = static_cast<std::uint32_t>(a.height);
   options.exposure = a.exposure;
+  if (a.aa == "auto") {
+    options.antialias = a.headless ? renderer::Antialias::Off : renderer::Antialias::Fxaa;
+  } else if (const auto aa = renderer::parse_antialias(a.aa)) {
+    options.antialias = *aa;
+  } else {
+    return usage("--aa: expected auto, off or fxaa, got '" + a.aa + "'");
+  }
   const auto debug_view = renderer::parse_debug_view(a.debug_view);
   if (!debug_view)
     return usage("--debug-view: expected " + debug_view_names() + ", got '" + a.debug_view + "'");

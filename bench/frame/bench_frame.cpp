@@ -6,7 +6,7 @@
 // (contention only adds time), the median says how noisy the run was.
 //   bench_frame [SCENE] [--width W] [--height H] [--frames N] [--warmup N]
 //               [--sss off|screen|texture] [--mode separable|gaussians] [--taps N]
-//               [--transmission on|off] [--single-scattering on|off] [--look-away] [--texture-size N]
+//               [--transmission on|off] [--single-scattering on|off] [--aa off|fxaa] [--look-away] [--texture-size N]
 //               [--texture-update every-frame|on-change] [--objects N] [--out FILE.png]
 // --objects N: N copies of the scene's instances side by side along x (one bounding
 // diameter apart), the camera moved back along its view to frame them all (issue 6: the
@@ -36,7 +36,7 @@ int usage(const char* message) {
   std::fprintf(stderr,
                "bench_frame: %s\nusage: bench_frame [SCENE] [--width W] [--height H] "
                "[--frames N] [--warmup N] [--sss off|screen|texture] [--mode separable|gaussians] "
-               "[--taps N] [--transmission on|off] [--single-scattering on|off] [--look-away] [--texture-size N] "
+               "[--taps N] [--transmission on|off] [--single-scattering on|off] [--aa off|fxaa] [--look-away] [--texture-size N] "
                "[--texture-update every-frame|on-change] [--objects N]\n",
                message);
   return 2;
@@ -115,6 +115,10 @@ int main(int argc, char** argv) {
       const std::string v = value();
       if (v != "on" && v != "off") return usage("--single-scattering: expected on or off");
       options.single_scattering = v == "on";
+    } else if (arg == "--aa") {
+      const auto aa = renderer::parse_antialias(value());
+      if (!aa) return usage("--aa: expected off or fxaa");
+      options.antialias = *aa;
     } else if (arg == "--mode") {
       const auto kind = renderer::parse_sss_kind(value());
       if (!kind) return usage("--mode: expected separable or gaussians");

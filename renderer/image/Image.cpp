@@ -185,6 +185,15 @@ Image subtract_rgb(const Image& a, const Image& b) {
   return out;
 }
 
+void unpremultiply(Image& image) {
+  for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
+    const float a = image.rgba[i + 3];
+    if (!(a > 0.0f && a < 1.0f)) continue;
+    for (std::size_t c = 0; c < 3; ++c)
+      image.rgba[i + c] = std::round(std::min(image.rgba[i + c] / a, 1.0f) * 255.0f) / 255.0f;
+  }
+}
+
 std::variant<Image, ImageError> read_image(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   if (!f) return ImageError{path, "cannot open the file"};

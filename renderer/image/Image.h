@@ -66,4 +66,10 @@ Image encode_srgb(const Image& linear);
 // error budget's scattered light). Throws std::invalid_argument when the sizes differ.
 Image subtract_rgb(const Image& a, const Image& b);
 
+// Premultiplied to straight alpha in place, for 8-bit codes / 255: R, G, B divided by
+// alpha where 0 < alpha < 1, at most 1, and rounded to the nearest code (so the image is
+// what a PNG of it holds); pixels with alpha 0 or 1 are unchanged. The anti-aliased display
+// image is premultiplied (the frame over black, alpha its coverage); a PNG is straight.
+void unpremultiply(Image& image);
+
 }  // namespace sss::image

@@ -148,6 +148,8 @@ TEST(ViewerApp, DocumentedErrors) {
        "has no heat map"},
       {"builtin:sphere --headless --out " + out + " --debug-view thickness --debug-range 5", 2,
        "--debug-range"},
+      {"builtin:sphere --headless --out " + out + " --aa smaa", 2,
+       "--aa: expected auto, off or fxaa, got 'smaa'"},
   };
   for (const Case& c : cases) {
     const ViewerRun r = run(c.args);

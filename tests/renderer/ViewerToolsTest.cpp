@@ -62,7 +62,7 @@ float max_code_difference(const std::string& a_path, const std::string& b_path) 
 
 std::string headless(const std::string& scene, const std::string& png) {
   const CliRun h = run_shell(std::string(SSS_VIEWER_EXE) + " " + scene +
-                             " --headless --width 192 --height 108 --out " + png);
+                             " --headless --aa fxaa --width 192 --height 108 --out " + png);
   return h.code == 0 ? std::string() : h.out;
 }
 
