@@ -56,6 +56,9 @@ std::string_view debug_view_unit(DebugView view);
 // "" when `range` can be the heat map's of `view` (both finite, LO < HI, LO >= 0, and LO > 0
 // on kernel-radius's log scale; {0, 0} is the automatic range), else what is wrong.
 std::string debug_range_error(DebugView view, const std::array<float, 2>& range);
+// "" when `colour` can be RenderOptions::background (each finite and in [0, 1]), else what
+// is wrong.
+std::string background_error(const std::array<float, 3>& colour);
 
 // When the texture path recomputes an object's irradiance atlas: every frame, or only
 // when something it depends on changed (lights, materials, the object's texture size,
@@ -88,6 +91,12 @@ struct RenderOptions {
   // Off by default here and headless, where the PNG is what the golden suite compares pixel
   // by pixel; the window turns it on (sss-viewer --aa).
   Antialias antialias = Antialias::Off;
+  // --background R,G,B: the display image's colour behind the geometry, as sRGB codes in
+  // [0, 1], opaque (alpha 1 there, so the PNG is opaque). None: black with alpha 0 (the
+  // PNG is transparent there, which the compare suite uses as its mask). The HDR image
+  // keeps 0 behind the geometry either way. The window sets a grey (sss-viewer
+  // --background), so a cube's unlit face does not vanish into the background.
+  std::optional<std::array<float, 3>> background;
   DebugView debug_view = DebugView::None;
   // --debug-range LO,HI: the debug view's heat map from LO to HI in the view's unit
   // (kernel-radius: pixels, on a log2 scale; thickness: mm; uv-stretch: mm per unit of UV).

@@ -64,6 +64,9 @@ void check_options(const vk::Context& context, const RenderOptions& o) {
     check_texture(t.size, "texture size of object '" + t.name + "'");
   if (const std::string e = debug_range_error(o.debug_view, o.debug_range); !e.empty())
     throw std::invalid_argument("debug range: " + e);
+  if (o.background)
+    if (const std::string e = background_error(*o.background); !e.empty())
+      throw std::invalid_argument("background: " + e);
 }
 
 const scene::Scene& checked(const vk::Context& context, const scene::Scene& scene,
@@ -386,11 +389,20 @@ void Renderer::record(VkCommandBuffer cmd) {
     barriers.push_back(vk::image_barrier(*image, VK_IMAGE_LAYOUT_UNDEFINED,
                                          VK_IMAGE_LAYOUT_GENERAL, before, compute_access));
   vk::pipeline_barrier(cmd, barriers);
-  // The screen passes write only rect_: the rest of the output is background (zero).
+  // The screen passes write only rect_: the rest of the output is background (zero, or
+  // the display's opaque background colour, given as sRGB codes).
   const VkClearColorValue zero{};
+  VkClearColorValue background{};
+  if (options_.background) {
+    const auto& c = *options_.background;
+    background.float32[0] = c[0];
+    background.float32[1] = c[1];
+    background.float32[2] = c[2];
+    background.float32[3] = 1.0f;
+  }
   const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  for (const vk::Image* image : {&targets_.hdr, &targets_.display})
-    vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+  vkCmdClearColorImage(cmd, targets_.hdr.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+  vkCmdClearColorImage(cmd, targets_.display.handle(), VK_IMAGE_LAYOUT_GENERAL, &background, 1, &all);
   const VkMemoryBarrier2 cleared = vk::memory_barrier(
       {VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT},
       {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT});

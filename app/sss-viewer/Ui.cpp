@@ -295,6 +295,13 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("--aa fxaa: FXAA over the displayed frame (not in debug views; the EXR\n"
                       "is never filtered)");
+  std::array<float, 3> background = o.background.value_or(std::array<float, 3>{});
+  if (ImGui::ColorEdit3("background", background.data(), ImGuiColorEditFlags_NoInputs)) {
+    o.background = background;
+    changed = true;
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("--background R,G,B: the colour behind the geometry (sRGB, opaque)");
   const std::string view_label(renderer::debug_view_name(o.debug_view));
   if (ImGui::BeginCombo("debug view", view_label.c_str())) {
     for (const renderer::DebugView v : renderer::all_debug_views()) {

@@ -8,11 +8,16 @@
 #include "renderer/RenderOptions.h"
 #include "renderer/scene/Scene.h"
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace sss::app {
+
+// The window's background (sRGB codes): a dark grey like a DCC viewport's, so that an
+// unlit face (black) stands out from it.
+inline constexpr std::array<float, 3> kWindowBackground{0.22f, 0.22f, 0.22f};
 
 struct ViewerArgs {
   std::string scene = "builtin:bunny";
@@ -28,6 +33,8 @@ struct ViewerArgs {
   int taps = 17;
   int shadow_map_size = 1024;  // texels a side (RenderOptions::shadow_map_size)
   float exposure = 1.0f;
+  // --background auto (window: kWindowBackground, headless: none) | none | R,G,B (sRGB)
+  std::string background = "auto";
   std::string aa = "auto";  // --aa auto (window: fxaa, headless: off) | off | fxaa
   std::string debug_view = "none";  // --debug-view: renderer::parse_debug_view names
   std::vector<double> debug_range;  // --debug-range LO,HI (empty: the view's automatic)

@@ -112,6 +112,11 @@ int viewer_main(int argc, char** argv) {
                  "auto | off | fxaa: anti-aliasing of the displayed frame and the PNG, FXAA over "
                  "the tonemapped image (the EXR is never filtered). auto (default): fxaa in the "
                  "window, off headless, where the PNG is the frame the golden suite compares");
+  app.add_option("--background", a.background,
+                 "auto | none | R,G,B: the colour behind the geometry in the displayed frame and "
+                 "the PNG, sRGB in [0, 1], opaque (the EXR keeps 0 there). none: black, and the "
+                 "PNG is transparent there. auto (default): a dark grey in the window, none "
+                 "headless");
   app.add_option("--debug-view", a.debug_view, debug_view_help());
   app.add_option("--debug-range", a.debug_range,
                  "LO,HI: the debug view's heat map from LO to HI in its unit (kernel-radius: "
@@ -259,6 +264,16 @@ int viewer_main(int argc, char** argv) {
     options.antialias = *aa;
   } else {
     return usage("--aa: expected auto, off or fxaa, got '" + a.aa + "'");
+  }
+  if (a.background == "auto") {
+    if (!a.headless) options.background = kWindowBackground;
+  } else if (a.background != "none") {
+    auto rgb = parse_rgb("--background", a.background);
+    if (auto* e = std::get_if<FieldError>(&rgb)) return usage(e->what());
+    const Rgb& c = std::get<Rgb>(rgb);
+    options.background = std::array<float, 3>{float(c[0]), float(c[1]), float(c[2])};
+    if (const std::string e = renderer::background_error(*options.background); !e.empty())
+      return usage("--background: " + e);
   }
   const auto debug_view = renderer::parse_debug_view(a.debug_view);
   if (!debug_view)

@@ -1,5 +1,6 @@
-// Anti-aliasing (issue 20 part 3, renderer/README.md "Anti-aliasing"): FXAA over the
-// display image, on in the window by default.
+// The display image beyond the shading (issue 20 part 3): anti-aliasing (renderer/README.md
+// "Anti-aliasing"), FXAA over the display image, on in the window by default, and the
+// background colour.
 //
 // What a user cares about: silhouettes are no longer staircases, and nothing else moves.
 // The staircase is measured on coverage, which a 4x4-supersampled render gives exactly
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <array>
 #include <cstdio>
 #include <string>
 
@@ -124,6 +126,37 @@ TEST_F(RenderTest, AntialiasingLeavesDebugViewsAlone) {
   o.antialias = Antialias::Fxaa;
   const Frame aa = render(scene, o);
   EXPECT_EQ(off.display.rgba, aa.display.rgba);
+}
+
+// --background (issue 20 part 3: "the background and the unlit faces are both black, and a
+// cube's dark face disappears"): the display's pixels without geometry take the colour,
+// given as sRGB codes, opaque; a UNORM clear stores the nearest code, so they must be
+// round(255 c) / 255 exactly. Every pixel with geometry keeps its value bit for bit, and
+// the HDR image (EXR) is unchanged, background included.
+TEST_F(RenderTest, BackgroundColourFillsOnlyWhereThereIsNoGeometry) {
+  const scene::Scene scene = builtin("builtin:sphere");
+  RenderOptions o = small_options(160, 90, SssMode::Screen);
+  const Frame plain = render(scene, o);
+  const std::array<float, 3> colour{0.25f, 0.5f, 0.75f};
+  o.background = colour;
+  const Frame grey = render(scene, o);
+  ASSERT_EQ(plain.hdr.rgba, grey.hdr.rgba);
+  int background = 0, geometry = 0;
+  for (int y = 0; y < 90; ++y)
+    for (int x = 0; x < 160; ++x) {
+      const float* p = plain.display.pixel(x, y);
+      const float* g = grey.display.pixel(x, y);
+      if (p[3] == 0.0f) {
+        ++background;
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(g[c], std::round(255.0f * colour[c]) / 255.0f) << x << "," << y;
+        ASSERT_EQ(g[3], 1.0f);
+      } else {
+        ++geometry;
+        for (int c = 0; c < 4; ++c) ASSERT_EQ(g[c], p[c]) << x << "," << y;
+      }
+    }
+  EXPECT_GT(background, 1000);
+  EXPECT_GT(geometry, 1000);
 }
 
 }  // namespace sss::renderer::testing

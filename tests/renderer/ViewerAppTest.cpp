@@ -150,6 +150,11 @@ TEST(ViewerApp, DocumentedErrors) {
        "--debug-range"},
       {"builtin:sphere --headless --out " + out + " --aa smaa", 2,
        "--aa: expected auto, off or fxaa, got 'smaa'"},
+      {"builtin:sphere --headless --out " + out + " --background 0.5,0.5", 2,
+       "--background: expected R,G,B or one number, got '0.5,0.5'"},
+      {"builtin:sphere --headless --out " + out + " --background 0,1.5,0", 2,
+       "--background: each of R, G, B must lie in [0, 1] (sRGB), got 1.5"},
+      {"builtin:sphere --headless --out " + out + " --background grey", 2, "--background"},
   };
   for (const Case& c : cases) {
     const ViewerRun r = run(c.args);

@@ -62,7 +62,7 @@ float max_code_difference(const std::string& a_path, const std::string& b_path) 
 
 std::string headless(const std::string& scene, const std::string& png) {
   const CliRun h = run_shell(std::string(SSS_VIEWER_EXE) + " " + scene +
-                             " --headless --aa fxaa --width 192 --height 108 --out " + png);
+                             " --headless --aa fxaa --background 0.22 --width 192 --height 108 --out " + png);
   return h.code == 0 ? std::string() : h.out;
 }
 
@@ -114,8 +114,10 @@ TEST(ViewerTools, CompareGivesTheNumbersOfSssCompare) {
   if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
   const std::string shot = temp_path("cmp.png"), ref = temp_path("cmp_ref.png");
   std::filesystem::remove(shot);
+  // The frame as the suite renders it: no anti-aliasing, no background (the window's
+  // defaults blend the silhouettes with the grey; README "Tools").
   const CliRun w = run_windowed("builtin:sphere --width 160 --height 90 --frames 3 --stats "
-                                "--test-compare split --screenshot " + shot);
+                                "--aa off --background none --test-compare split --screenshot " + shot);
   ASSERT_EQ(w.code, 0) << w.out;
   EXPECT_FALSE(has_validation_message(w.out)) << w.out;
   const std::string key = "compare: relative RMSE ";

@@ -1017,7 +1017,8 @@ TEST(ViewerWindowEdit, ScriptedPresetEditReachesTheScreenshot) {
   auto run = [](const std::string& args) {
     return sss::testing::run_shell("SSS_VALIDATION=1 xvfb-run -a -s \"-screen 0 640x480x24\" " +
                                    std::string(SSS_VIEWER_EXE) +
-                                   " builtin:bunny --width 160 --height 90 --frames 3 " + args);
+                                   " builtin:bunny --width 160 --height 90 --frames 3 "
+                                   "--background none " + args);  // the mean is over the bunny
   };
   const auto a = run("--screenshot " + plain);
   ASSERT_EQ(a.code, 0) << a.out;

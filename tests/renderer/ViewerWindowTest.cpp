@@ -42,11 +42,12 @@ float max_code_difference(const std::string& a_path, const std::string& b_path) 
 }
 
 // The headless frame of `scene_args` at w x h (validation on), as a PNG path, with the
-// window's default anti-aliasing (--aa auto is fxaa in the window, off headless).
+// window's default anti-aliasing and background (--aa auto and --background auto are fxaa
+// and grey in the window, off and none headless).
 std::string headless_png(const std::string& scene_args, int w, int h) {
   const std::string png = temp_path("headless_" + std::to_string(w) + "x" + std::to_string(h) + ".png");
   const CommandRun r = run_shell("SSS_VALIDATION=1 " + std::string(SSS_VIEWER_EXE) + " " + scene_args +
-                                 " --headless --aa fxaa --width " + std::to_string(w) +
+                                 " --headless --aa fxaa --background 0.22 --width " + std::to_string(w) +
                                  " --height " + std::to_string(h) + " --out " + png);
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_FALSE(has_validation_message(r.out)) << r.out;
@@ -57,13 +58,14 @@ TEST(ViewerWindow, ScreenshotMatchesTheHeadlessFrame) {
   if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed";
   const std::string window_png = temp_path("window.png"), headless_png = temp_path("headless.png");
   std::filesystem::remove(window_png);
-  // The window anti-aliases by default (--aa auto), so the headless frame asks for it.
+  // The window anti-aliases and draws a grey background by default (--aa auto,
+  // --background auto: kWindowBackground), so the headless frame asks for both.
   const CommandRun w = run_windowed("builtin:sphere --width 320 --height 180 --frames 5 --screenshot " +
                              window_png);
   ASSERT_EQ(w.code, 0) << w.out;
   EXPECT_FALSE(has_validation_message(w.out)) << w.out;
   const CommandRun h = run_shell("SSS_VALIDATION=1 " + std::string(SSS_VIEWER_EXE) +
-                            " builtin:sphere --headless --aa fxaa --width 320 --height 180 --out " +
+                            " builtin:sphere --headless --aa fxaa --background 0.22 --width 320 --height 180 --out " +
                             headless_png);
   ASSERT_EQ(h.code, 0) << h.out;
   EXPECT_FALSE(has_validation_message(h.out)) << h.out;
