@@ -5,6 +5,7 @@
 //   shadow -> sss texture -> gbuffer -> sss texture gather -> lighting -> composite
 //     (--sss texture: the objects' atlases are updated before the G-buffer, and the
 //     lookup draw fills `accum`, which the composite reads)
+//   ... -> composite -> [antialias (RenderOptions::antialias) | debug view]
 //
 // Headless and windowed use are the same Renderer (the window only presents `display`).
 // render_frame() records one command buffer, submits it and waits for its fence, so
