@@ -1,5 +1,7 @@
 #include "renderer/RenderOptions.h"
 
+#include "profiles/Medium.h"
+
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -90,18 +92,10 @@ constexpr DebugView kDebugViews[] = {DebugView::None,         DebugView::Irradia
                                      DebugView::SingleScattering};
 }  // namespace
 
-namespace {
-std::string number_text(float v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-}  // namespace
-
 std::string background_error(const std::array<float, 3>& colour) {
   for (const float c : colour)
     if (!(c >= 0.0f && c <= 1.0f))
-      return "each of R, G, B must lie in [0, 1] (sRGB), got " + number_text(c);
+      return "each of R, G, B must lie in [0, 1] (sRGB), got " + message_number(c);
   return "";
 }
 

@@ -210,10 +210,10 @@ void Renderer::update_sss_pass() {
   }
   if (gather_) gather_->set_objects(*texture_);
   collect_warnings();
-  update_debug_view();
+  update_display_passes();
 }
 
-void Renderer::update_debug_view() {
+void Renderer::update_display_passes() {
   const DebugView view = options_.debug_view;
   if (view == DebugView::None) {
     debug_.reset();
@@ -393,13 +393,7 @@ void Renderer::record(VkCommandBuffer cmd) {
   // the display's opaque background colour, given as sRGB codes).
   const VkClearColorValue zero{};
   VkClearColorValue background{};
-  if (options_.background) {
-    const auto& c = *options_.background;
-    background.float32[0] = c[0];
-    background.float32[1] = c[1];
-    background.float32[2] = c[2];
-    background.float32[3] = 1.0f;
-  }
+  if (const auto& c = options_.background) background = {{(*c)[0], (*c)[1], (*c)[2], 1.0f}};
   const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
   vkCmdClearColorImage(cmd, targets_.hdr.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
   vkCmdClearColorImage(cmd, targets_.display.handle(), VK_IMAGE_LAYOUT_GENERAL, &background, 1, &all);

@@ -144,8 +144,9 @@ class Renderer {
                         std::uint32_t shadow_size);
   // separable_ / gaussians_ for options_ and the material table.
   void update_sss_pass();
-  // debug_ and what the view needs from the other passes, for options_.debug_view.
-  void update_debug_view();
+  // debug_ and what the view needs from the other passes, for options_.debug_view, and
+  // antialias_ (options_.antialias, never under a debug view).
+  void update_display_passes();
   // warnings_: the lights', the scene's and the texture path's.
   void collect_warnings();
 

@@ -19,10 +19,10 @@
 //  4. Single-pixel features (a 1-px highlight, a thin wire) have no long edge: they blend
 //     by how much the pixel stands out of its 3x3 low-pass, kSubpixel at most.
 //  5. The result is a bilinear tap of the source moved by the larger of the two blends
-//     across the edge, alpha included. The background is rgba 0, so at a silhouette the
-//     result is the frame over black (what the window shows) with alpha its coverage:
-//     premultiplied. The PNG writer divides it out (app FrameOutput.h write_frame); where
-//     nothing is blended, alpha stays 0 or 1.
+//     across the edge, alpha included. Without RenderOptions::background the background
+//     is rgba 0, so at a silhouette the result is the frame over black (what the window
+//     shows) with alpha its coverage: premultiplied, which Renderer::read_display() divides
+//     out; with one, alpha is 1 everywhere and the silhouette blends with that colour.
 //
 // Reads `source` (a copy of display made just before, so no pixel reads a neighbour this
 // pass already wrote) and writes `display_img`.
