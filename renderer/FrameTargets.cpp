@@ -45,6 +45,7 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
   accum = make(context, w, h, kLightingFormat, kComputeUsage | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
                "sss accum");
   sss_line = make(context, w, h, kKeyedFormat, kComputeUsage, "sss line");
+  sss_prefix = make(context, w, h, kKeyedFormat, kComputeUsage, "sss prefix");
   // Cleared each frame outside the screen passes' rect (Renderer::record).
   hdr = make(context, w, h, kHdrFormat, kComputeUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "hdr");
   display = make(context, w, h, kDisplayFormat, kComputeUsage | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
@@ -54,8 +55,8 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
 }
 
 std::vector<const vk::Image*> FrameTargets::compute_targets() const {
-  return {&irradiance, &specular, &surface, &blur_temp, &blur_a, &blur_b, &accum, &sss_line, &hdr,
-          &display};
+  return {&irradiance, &specular, &surface, &blur_temp, &blur_a, &blur_b, &accum, &sss_line, &sss_prefix,
+          &hdr, &display};
 }
 
 }  // namespace sss::renderer

@@ -52,6 +52,9 @@ struct FrameTargets {
   // GENERAL, TextureGatherPass).
   vk::Image blur_temp, blur_a, blur_b, accum;
   vk::Image sss_line;  // SSS separable: the horizontal pass's result (kKeyedFormat)
+  // SSS separable: running sums of the pass's input along its lines, rgb the value's sum
+  // over the run so far, alpha the run's first pixel (sss_prefix.comp; rgba32f).
+  vk::Image sss_prefix;
   vk::Image hdr, display;                   // composite
   // The display image as composite left it, read by the anti-aliasing pass (a copy, so
   // no pixel reads a neighbour the pass already wrote). Not a compute target: the pass

@@ -1,8 +1,10 @@
 // SssSeparablePass ("sss separable"): Jimenez et al. 2015. Each SSS material's 1D kernel
 // (profiles::make_separable_kernel: offsets in mm, RGB weights summing to 1) is applied
 // horizontally to the irradiance (-> sss_line), then vertically, with the kernel's mm
-// turned into pixels from the depth and the projection and follow-surface fallback: one
-// bilinear fetch per tap of value + surface key (rgba32f, sss.glsl). The vertical half
+// turned into pixels from the depth and the projection and follow-surface fallback. Each
+// 1D pass first takes running sums of its input along its lines (sss_prefix.comp ->
+// sss_prefix), so a tap reads the input's mean over its whole cell rather than one point
+// (sss_separable.comp). The vertical half
 // also composites the pixels it scattered (x total reflectance x albedo / pi + specular
 // -> hdr, display; composite.glsl), so that the scattered result never goes through an
 // image; CompositePass does every other pixel.
@@ -29,8 +31,11 @@ class SssSeparablePass {
  private:
   const FrameResources& r_;
   ComputeProgram program_;
+  ComputeProgram prefix_program_;  // sss_prefix.comp: the running sums each 1D pass reads
   VkDescriptorSet horizontal_ = VK_NULL_HANDLE;
   VkDescriptorSet vertical_ = VK_NULL_HANDLE;
+  VkDescriptorSet prefix_horizontal_ = VK_NULL_HANDLE;
+  VkDescriptorSet prefix_vertical_ = VK_NULL_HANDLE;
   bool write_scattered_ = false;
 };
 

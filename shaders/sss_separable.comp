@@ -7,11 +7,17 @@
 // hdr, display); composite.comp does the other pixels.
 //
 // The input is rgba32f: rgb the value, alpha the surface key (sss.glsl: depth in mm +
-// material id x stride), so a tap reads its two texels once each (value and what follow
-// surface needs): the key difference from the centre's, over the kernel's range, lerps a
-// texel toward the centre value, and a texel of another material or the background (key
-// difference > any range) is the centre value. (One bilinear fetch per tap would halve
-// the fetches, but lavapipe does not filter rgba32f.)
+// material id x stride), so a texel read once carries the value and what follow surface
+// needs: the key difference from the centre's tangent plane, over the kernel's range,
+// lerps a value toward the centre's, and a texel of another material or the background
+// (key difference > any range) is the centre value.
+//
+// Each tap stands for its cell of the kernel (profiles::SeparableKernel) and takes the
+// input's mean over the cell, from sss_prefix.comp's running sums at the cell's two ends,
+// wherever the cell is at least a pixel wide and lies on one run of surface; elsewhere it
+// is the bilinear point sample at the tap. The point sample alone made a light edge a
+// staircase of 17 steps, up to tens of pixels apart at the bunny's scale, which the
+// vertical pass drew out into streaks.
 #include "shared/frame.h"
 #include "shared/common.glsl"
 
@@ -27,10 +33,44 @@ layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D hdr_img;   // ve
 layout(set = 0, binding = 7, rgba8) uniform writeonly image2D display_img;
 // The scattered debug view only (blur.direction.z = 1): R * E of the pixels it scattered.
 layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D scattered_img;
+// sss_prefix.comp's running sums of input_tex along the pass's lines: rgb the sum over
+// the run up to and including the pixel, alpha the run's first pixel.
+layout(set = 0, binding = 9) uniform sampler2D prefix_tex;  // texelFetch
 layout(push_constant) uniform Push { BlurPush blur; };
 
 #include "shared/sss.glsl"
 #include "shared/composite.glsl"
+
+// Along the pass's line: a pixel's coordinate (the prefix pass's run starts are in it).
+float line_coord(ivec2 q) { return float(blur.direction.y > 0.5 ? q.y : q.x); }
+
+// A cell boundary c pixels from p along the line, in the pixel m = round(c) whose
+// footprint [m - 1/2, m + 1/2) holds it: the input integrated over the run from the run's
+// start to c (the input is constant over each pixel, so the inclusive sum at m less the
+// part of m's value beyond c), m's surface key, and the run's first pixel.
+struct CellEdge {
+  float c;
+  int m;
+  bool inside;  // m lies in the geometry's rect
+  vec3 sum;
+  float key;
+  float run_start;
+};
+
+CellEdge cell_edge(ivec2 p, ivec2 step, ivec2 lo, ivec2 hi, float c) {
+  CellEdge e;
+  e.c = c;
+  e.m = int(floor(c + 0.5));
+  ivec2 q = p + step * e.m;
+  e.inside = all(greaterThanEqual(q, lo)) && all(lessThanEqual(q, hi));
+  q = clamp(q, lo, hi);
+  vec4 prefix = texelFetch(prefix_tex, q, 0);
+  vec4 value = texelFetch(input_tex, q, 0);
+  e.sum = prefix.rgb - value.rgb * (float(e.m) + 0.5 - c);
+  e.key = value.a;
+  e.run_start = prefix.a;
+  return e;
+}
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy) + ivec2(frame.rect.xy);  // the geometry's rect
@@ -58,21 +98,57 @@ void main() {
   float inv_width = 1.0 / materials[id].kernel.y;
   int taps = int(materials[id].kernel.x);
   vec3 sum = vec3(0.0);
+  // The cell boundaries: midpoints between neighbouring taps (profiles::SeparableKernel:
+  // tap i's weight is the marginal integrated over its cell); the outermost cells, which
+  // reach to infinity there, end as far beyond their tap as they begin before it.
+  vec4 tap = materials[id].taps[0];
+  vec4 next = materials[id].taps[1];
+  CellEdge lower = cell_edge(p, step, lo, hi, (1.5 * tap.w - 0.5 * next.w) * ppm);
+  float previous_offset = tap.w;
   for (int i = 0; i < taps; ++i) {
-    vec4 tap = materials[id].taps[i];
-    // Linear interpolation along dir between the two texels around the tap (the tap sits
-    // on the pixel row or column, so this is the bilinear sample), each replaced first by
-    // follow surface: lerped toward the centre by its key's distance from the centre's
-    // tangent plane over the range (sss.glsl), the centre value itself on another
-    // material or the background.
-    float t = tap.w * ppm;  // in pixels from p
-    float f = floor(t);
-    vec4 s0 = texelFetch(input_tex, clamp(p + step * int(f), lo, hi), 0);
-    vec4 s1 = texelFetch(input_tex, clamp(p + step * int(f + 1.0), lo, hi), 0);
-    float plane0 = center.a + key_per_px * f, plane1 = center.a + key_per_px * (f + 1.0);
-    vec3 v0 = mix(s0.rgb, center.rgb, clamp(abs(s0.a - plane0) * inv_width, 0.0, 1.0));
-    vec3 v1 = mix(s1.rgb, center.rgb, clamp(abs(s1.a - plane1) * inv_width, 0.0, 1.0));
-    sum += tap.rgb * mix(v0, v1, t - f);
+    // next: tap i + 1, or for the last tap the mirror of tap i - 1 about it.
+    if (i > 0) tap = next;
+    next = i + 1 < taps ? materials[id].taps[i + 1] : vec4(0.0, 0.0, 0.0, 2.0 * tap.w - previous_offset);
+    previous_offset = tap.w;
+    CellEdge upper = cell_edge(p, step, lo, hi, 0.5 * (tap.w + next.w) * ppm);
+    float width_px = upper.c - lower.c;
+    bool one_run = lower.inside && upper.inside && width_px >= 1.0 &&
+                   upper.run_start <= line_coord(p + step * lower.m);
+    vec3 value;
+    if (one_run) {
+      // The cell's mean: the run's sums at its two ends, over its width. A tap whose cell
+      // spans many pixels thus weighs all of them, and a light edge crossing the cell moves
+      // the tap's value continuously instead of in one step: the 17-tap kernel's response
+      // to an edge is M interpolated linearly between the cell boundaries, where the point
+      // sample gave a staircase (the vertical streaks in the bunny's shadow).
+      // Follow surface as for a point tap, with the mean of the two end pixels' distances
+      // from the centre's tangent plane (0 on a plane, however tilted).
+      if (key_material(upper.key) != id) {
+        value = center.rgb;
+      } else {
+        vec3 mean = (upper.sum - lower.sum) / width_px;
+        float off_plane = 0.5 * (abs(lower.key - (center.a + key_per_px * float(lower.m))) +
+                                 abs(upper.key - (center.a + key_per_px * float(upper.m))));
+        value = mix(mean, center.rgb, clamp(off_plane * inv_width, 0.0, 1.0));
+      }
+    } else {
+      // Linear interpolation along dir between the two texels around the tap (the tap
+      // sits on the pixel row or column, so this is the bilinear sample), each replaced
+      // first by follow surface: lerped toward the centre by its key's distance from the
+      // centre's tangent plane over the range (sss.glsl), the centre value itself on
+      // another material or the background. Cells under a pixel wide (no staircase at
+      // that spacing) and cells across an occluding edge or a material's border.
+      float t = tap.w * ppm;  // in pixels from p
+      float f = floor(t);
+      vec4 s0 = texelFetch(input_tex, clamp(p + step * int(f), lo, hi), 0);
+      vec4 s1 = texelFetch(input_tex, clamp(p + step * int(f + 1.0), lo, hi), 0);
+      float plane0 = center.a + key_per_px * f, plane1 = center.a + key_per_px * (f + 1.0);
+      vec3 v0 = mix(s0.rgb, center.rgb, clamp(abs(s0.a - plane0) * inv_width, 0.0, 1.0));
+      vec3 v1 = mix(s1.rgb, center.rgb, clamp(abs(s1.a - plane1) * inv_width, 0.0, 1.0));
+      value = mix(v0, v1, t - f);
+    }
+    sum += tap.rgb * value;
+    lower = upper;
   }
   if (!vertical) {
     imageStore(line_img, p, vec4(sum, center.a));

@@ -64,7 +64,7 @@ TEST(CompareDocs, TheReadmeSphereExamplePasses) {
 // today. Tolerance: REPORT.md's rounding to 0.01 percentage points (±0.005 points, 5e-5),
 // and nothing else: the two paths run the same code on the same scene, so any larger
 // difference means the report or the documented command lines no longer say what the
-// frame is (measured: 21.95% against the report's 21.95%, after the thickness fix of issue 20).
+// frame is (measured: 21.80% against the report's 21.80%, after the separable cell averages of issue 20).
 TEST(CompareDocs, TheCommandLinesReproduceTheReportsBunnyRow) {
   std::ifstream report(std::string(SSS_SOURCE_DIR) + "/tests/golden/REPORT.md");
   ASSERT_TRUE(report) << "tests/golden/REPORT.md";

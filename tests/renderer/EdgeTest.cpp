@@ -12,12 +12,15 @@
 //    mode's exact edge response over [x - h/2, x + h/2]; for a monotone response it lies
 //    between its values at x + h/2 and x - h/2 ("pixel ramp").
 //  * separable: the kernel is built from the exact profile and is exact at its cell
-//    boundaries (SeparableKernel.h): convolving a step with the taps gives M at the cell
-//    boundary next to x, a staircase. So pi L(x) lies in [M(b_hi), M(b_lo)] where
-//    [b_lo, b_hi] is the union of the cells met by [x - h/2, x + h/2] (tap
-//    discretization). Tolerance: M(b_lo) - M(b_hi) + eps.
-//    Implementation check, tighter: the same discrete convolution evaluated on the CPU
-//    (float kernel, bilinear ramp), |GPU - CPU| <= eps.
+//    boundaries (SeparableKernel.h). Taps whose cell is at least a pixel wide take the
+//    step's mean over the cell (sss_separable.comp), so pi L(x) is M interpolated
+//    linearly between the boundaries (with point taps it was the staircase M at the
+//    boundary next to x); either way it lies in [M(b_hi), M(b_lo)] where [b_lo, b_hi] is
+//    the union of the cells met by [x - h/2, x + h/2] (tap discretization). Tolerance:
+//    M(b_lo) - M(b_hi) + eps. Implementation check, tighter: the same discrete
+//    convolution evaluated on the CPU (float kernel, cell means and bilinear ramps),
+//    |GPU - CPU| <= eps. And no staircase: the bound on each pixel-to-pixel step that
+//    check_separable derives.
 //  * gaussians: each Gaussian is blurred exactly up to sampling (4 sigma reach, normalised
 //    weights, sub-pixel Gaussians are at most a pixel wide), so pi L is the fit's edge
 //    response M_fit (closed form, EdgeResponse.h) averaged over the pixel. Tolerance
@@ -175,6 +178,17 @@ std::vector<double> cell_boundaries(const profiles::SeparableKernel& k) {
   return b;
 }
 
+// Tap i's cell as the GPU bounds it (sss_separable.comp: cell_boundary), in mm: between
+// the midpoints to its neighbours, the outermost mirrored about their taps (the cells'
+// weights hold the tails beyond them).
+std::pair<double, double> tap_cell(const profiles::SeparableKernel& k, std::size_t i) {
+  const auto o = [&](std::size_t j) { return double(float(k.offsets_mm[j])); };
+  const std::size_t n = k.offsets_mm.size();
+  const double lo = i == 0 ? 1.5 * o(0) - 0.5 * o(1) : 0.5 * (o(i - 1) + o(i));
+  const double hi = i + 1 == n ? 1.5 * o(n - 1) - 0.5 * o(n - 2) : 0.5 * (o(i) + o(i + 1));
+  return {lo, hi};
+}
+
 // cos_tilt < 1: the slab seen at that tilt (render_edge's tilt_deg): pixel x shows surface
 // x = pixel_center_mm(x) / cos_tilt and spans kPixelMm / cos_tilt of it, and the renderer
 // must scatter over those surface mm, as on the untilted slab (foreshortening, sss.glsl).
@@ -202,17 +216,50 @@ void check_separable(const std::string& preset, const EdgeRun& run, double cos_t
       EXPECT_LE(err, tol) << preset << " x=" << xc << " mm channel " << c << " M=" << M[c]
                           << " rendered=" << run.pi_L[x][c];
       worst_ratio = std::max(worst_ratio, err / tol);
-      // The same discrete convolution on the CPU: taps on the bilinear ramp of the step.
+      // The same discrete convolution on the CPU (sss_separable.comp): a tap whose cell is
+      // at least a pixel wide and lies in the frame takes the step's mean over the cell
+      // (the irradiance is constant over each pixel, and the edge lies between two
+      // pixels), any other the bilinear ramp of the step at the tap.
       double cpu = 0.0;
       for (std::size_t i = 0; i < k.offsets_mm.size(); ++i) {
         const double y = xc + float(k.offsets_mm[i]);
-        cpu += float(k.weights[i][c]) * std::clamp(0.5 - y / h, 0.0, 1.0);
+        const auto [lo, hi] = tap_cell(k, i);
+        const auto pixel_of = [&](double edge) { return x + int(std::floor(edge / h + 0.5)); };
+        const bool mean = (hi - lo) >= h && pixel_of(lo) >= 0 && pixel_of(hi) < kWidth;
+        const double value =
+            mean ? std::clamp(-(xc + lo) / (hi - lo), 0.0, 1.0) : std::clamp(0.5 - y / h, 0.0, 1.0);
+        cpu += float(k.weights[i][c]) * value;
       }
       cpu *= float(T[c]);
       EXPECT_NEAR(run.pi_L[x][c], cpu, eps) << preset << " implementation at x=" << xc;
       worst_impl = std::max(worst_impl, std::fabs(run.pi_L[x][c] - cpu) / T[c]);
     }
   }
+  // No staircase (issue 20, "separable streaks"): moving one pixel, a tap that takes the
+  // step's mean over its cell changes by at most h / (cell width) of its weight, and only
+  // while the edge lies in the cell swept over that pixel; a point tap changes by its
+  // whole weight in the one pixel where it crosses the edge. So the response's step from
+  // pixel x to x + 1 is at most the sum over the taps whose swept cell holds the edge of
+  // w_i min(1, h / width_i), plus the rounding of both pixels. The point-sampled kernel
+  // broke this wherever a wide cell's tap crossed the edge (by its width in pixels, 3 to
+  // 13 here): the steps the vertical pass drew out into streaks.
+  double worst_step = 0.0;
+  for (int x = 0; x + 1 < kWidth; ++x) {
+    const double xc = pixel_center_mm(x) / cos_tilt;
+    for (int c = 0; c < 3; ++c) {
+      double bound = 2.0 * kSeparableEps * T[c];
+      for (std::size_t i = 0; i < k.offsets_mm.size(); ++i) {
+        const auto [lo, hi] = tap_cell(k, i);
+        // The tap reads [xc + lo, xc + hi] at x and the same shifted by h at x + 1.
+        if (xc + lo > 0.0 || xc + h + hi < 0.0) continue;
+        bound += float(k.weights[i][c]) * T[c] * std::min(1.0, h / (hi - lo));
+      }
+      const double step = std::fabs(run.pi_L[x + 1][c] - run.pi_L[x][c]);
+      EXPECT_LE(step, bound) << preset << " staircase between x=" << xc << " and the next pixel, channel " << c;
+      worst_step = std::max(worst_step, step / bound);
+    }
+  }
+  std::printf("[ separable %s ] worst pixel step / its bound %.3f\n", preset.c_str(), worst_step);
   if (cos_tilt < 1.0) {
     std::printf("[ separable %s, tilted (cos %.3f) ] worst err/tol %.3f, worst |GPU-CPU|/T %.2e\n", preset.c_str(),
                 cos_tilt, worst_ratio, worst_impl);
