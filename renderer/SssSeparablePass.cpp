@@ -1,9 +1,6 @@
 #include "renderer/SssSeparablePass.h"
 
 #include "shaders/shared/frame.h"
-#include "renderer/vk/Pipeline.h"
-#include "shaders/shared/config.h"
-#include "shaders/sss_prefix.comp.h"
 #include "shaders/sss_separable.comp.h"
 
 namespace sss::renderer {
@@ -25,27 +22,15 @@ vk::DescriptorSetLayoutBuilder bindings() {
   return b;
 }
 
-vk::DescriptorSetLayoutBuilder prefix_bindings() {
-  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
-      .add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)
-      .add(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
-  return b;
-}
 }  // namespace
 
 SssSeparablePass::SssSeparablePass(const FrameResources& resources)
     : r_(resources),
       program_(r_.context, bindings(), sss_spv_sss_separable_comp, sizeof(shader::BlurPush), 2,
                kName),
-      prefix_program_(r_.context, prefix_bindings(), sss_spv_sss_prefix_comp,
-                      sizeof(shader::BlurPush), 2, "sss prefix") {
+      prefix_(resources, 2) {
   horizontal_ = program_.allocate();
   vertical_ = program_.allocate();
-  prefix_horizontal_ = prefix_program_.allocate();
-  prefix_vertical_ = prefix_program_.allocate();
   write_descriptors();
 }
 
@@ -65,15 +50,11 @@ void SssSeparablePass::write_descriptors() {
         .storage_image(8, t.blur_a)
         .combined_image(9, t.sss_prefix, nearest, VK_IMAGE_LAYOUT_GENERAL)
         .update(r_.context);
-    vk::DescriptorWriter(set == horizontal_ ? prefix_horizontal_ : prefix_vertical_)
-        .uniform_buffer(0, r_.frame_uniforms)
-        .storage_buffer(1, r_.materials)
-        .combined_image(2, in, nearest, VK_IMAGE_LAYOUT_GENERAL)
-        .storage_image(3, t.sss_prefix)
-        .update(r_.context);
   };
   write(horizontal_, t.irradiance);
   write(vertical_, t.sss_line);
+  const vk::Image* inputs[] = {&t.irradiance, &t.sss_line};
+  prefix_.write_descriptors(inputs);
 }
 
 void SssSeparablePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
@@ -82,14 +63,8 @@ void SssSeparablePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
     shader::BlurPush push;
     push.direction = pass == 0 ? shader::vec4{1, 0, 0, 1}
                                : shader::vec4{0, 1, write_scattered_ ? 1.0f : 0.0f, 0};
-    // The running sums along this pass's lines (one invocation per row or column), then
-    // the blur that reads them.
-    prefix_program_.bind(cmd, pass == 0 ? prefix_horizontal_ : prefix_vertical_);
-    vkCmdPushConstants(cmd, prefix_program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                       sizeof(push), &push);
-    const uint32_t lines = pass == 0 ? r_.rect.height() : r_.rect.width();
-    vkCmdDispatch(cmd, vk::group_count(lines, shader::kWorkgroup1D), 1, 1);
-    compute_barrier(cmd);
+    // The running sums along this pass's lines, then the blur that reads them.
+    prefix_.record(cmd, pass == 0 ? r_.targets.irradiance : r_.targets.sss_line, pass == 1);
     program_.bind(cmd, pass == 0 ? horizontal_ : vertical_);
     vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
                        &push);

@@ -2,8 +2,7 @@
 // (profiles::make_separable_kernel: offsets in mm, RGB weights summing to 1) is applied
 // horizontally to the irradiance (-> sss_line), then vertically, with the kernel's mm
 // turned into pixels from the depth and the projection and follow-surface fallback. Each
-// 1D pass first takes running sums of its input along its lines (sss_prefix.comp ->
-// sss_prefix), so a tap reads the input's mean over its whole cell rather than one point
+// 1D pass first takes running sums of its input along its lines (LinePrefix), so a tap reads the input's mean over its whole cell rather than one point
 // (sss_separable.comp). The vertical half
 // also composites the pixels it scattered (x total reflectance x albedo / pi + specular
 // -> hdr, display; composite.glsl), so that the scattered result never goes through an
@@ -12,6 +11,7 @@
 
 #include "renderer/ComputeProgram.h"
 #include "renderer/FrameResources.h"
+#include "renderer/LinePrefix.h"
 #include "renderer/vk/GpuTimer.h"
 
 namespace sss::renderer {
@@ -31,11 +31,9 @@ class SssSeparablePass {
  private:
   const FrameResources& r_;
   ComputeProgram program_;
-  ComputeProgram prefix_program_;  // sss_prefix.comp: the running sums each 1D pass reads
+  LinePrefix prefix_;  // the running sums each 1D pass reads
   VkDescriptorSet horizontal_ = VK_NULL_HANDLE;
   VkDescriptorSet vertical_ = VK_NULL_HANDLE;
-  VkDescriptorSet prefix_horizontal_ = VK_NULL_HANDLE;
-  VkDescriptorSet prefix_vertical_ = VK_NULL_HANDLE;
   bool write_scattered_ = false;
 };
 

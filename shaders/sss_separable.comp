@@ -40,37 +40,7 @@ layout(push_constant) uniform Push { BlurPush blur; };
 
 #include "shared/sss.glsl"
 #include "shared/composite.glsl"
-
-// Along the pass's line: a pixel's coordinate (the prefix pass's run starts are in it).
-float line_coord(ivec2 q) { return float(blur.direction.y > 0.5 ? q.y : q.x); }
-
-// A cell boundary c pixels from p along the line, in the pixel m = round(c) whose
-// footprint [m - 1/2, m + 1/2) holds it: the input integrated over the run from the run's
-// start to c (the input is constant over each pixel, so the inclusive sum at m less the
-// part of m's value beyond c), m's surface key, and the run's first pixel.
-struct CellEdge {
-  float c;
-  int m;
-  bool inside;  // m lies in the geometry's rect
-  vec3 sum;
-  float key;
-  float run_start;
-};
-
-CellEdge cell_edge(ivec2 p, ivec2 step, ivec2 lo, ivec2 hi, float c) {
-  CellEdge e;
-  e.c = c;
-  e.m = int(floor(c + 0.5));
-  ivec2 q = p + step * e.m;
-  e.inside = all(greaterThanEqual(q, lo)) && all(lessThanEqual(q, hi));
-  q = clamp(q, lo, hi);
-  vec4 prefix = texelFetch(prefix_tex, q, 0);
-  vec4 value = texelFetch(input_tex, q, 0);
-  e.sum = prefix.rgb - value.rgb * (float(e.m) + 0.5 - c);
-  e.key = value.a;
-  e.run_start = prefix.a;
-  return e;
-}
+#include "shared/cell_mean.glsl"
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy) + ivec2(frame.rect.xy);  // the geometry's rect
@@ -111,11 +81,8 @@ void main() {
     next = i + 1 < taps ? materials[id].taps[i + 1] : vec4(0.0, 0.0, 0.0, 2.0 * tap.w - previous_offset);
     previous_offset = tap.w;
     CellEdge upper = cell_edge(p, step, lo, hi, 0.5 * (tap.w + next.w) * ppm);
-    float width_px = upper.c - lower.c;
-    bool one_run = lower.inside && upper.inside && width_px >= 1.0 &&
-                   upper.run_start <= line_coord(p + step * lower.m);
     vec3 value;
-    if (one_run) {
+    if (one_run(lower, upper)) {
       // The cell's mean: the run's sums at its two ends, over its width. A tap whose cell
       // spans many pixels thus weighs all of them, and a light edge crossing the cell moves
       // the tap's value continuously instead of in one step: the 17-tap kernel's response
@@ -123,13 +90,12 @@ void main() {
       // sample gave a staircase (the vertical streaks in the bunny's shadow).
       // Follow surface as for a point tap, with the mean of the two end pixels' distances
       // from the centre's tangent plane (0 on a plane, however tilted).
-      if (key_material(upper.key) != id) {
+      if (key_material(upper.texel.a) != id) {
         value = center.rgb;
       } else {
-        vec3 mean = (upper.sum - lower.sum) / width_px;
-        float off_plane = 0.5 * (abs(lower.key - (center.a + key_per_px * float(lower.m))) +
-                                 abs(upper.key - (center.a + key_per_px * float(upper.m))));
-        value = mix(mean, center.rgb, clamp(off_plane * inv_width, 0.0, 1.0));
+        float off_plane = 0.5 * (abs(lower.texel.a - (center.a + key_per_px * float(lower.m))) +
+                                 abs(upper.texel.a - (center.a + key_per_px * float(upper.m))));
+        value = mix(cell_mean(lower, upper), center.rgb, clamp(off_plane * inv_width, 0.0, 1.0));
       }
     } else {
       // Linear interpolation along dir between the two texels around the tap (the tap

@@ -298,6 +298,52 @@ void check_gaussians(const std::string& preset, const EdgeRun& run, double cos_t
       worst_ratio = std::max(worst_ratio, err / tol);
     }
   }
+  // No staircase (issue 20 asked whether the gaussians mode has the separable one). Blur
+  // step g is a convex combination of shifted copies of its input, so its response to
+  // the unit step moves from one pixel to the next by at most its input's largest move,
+  // and by at most what one pixel's move can shift into it, the largest normalised tap
+  // weight d_j (1 over the sum of the weights, laid out as shared/gaussian_blur.glsl lays
+  // them out for sigma in pixels, stride included). So B_g steps by at most
+  // d*_g = min over j <= g of d_j, and pi L = sum w_g B_g by at most sum w_g d*_g, plus
+  // both pixels' rounding. A wide Gaussian's strided taps would break this only if its
+  // input were sharper than its stride; the narrower steps before it blur the edge over
+  // more than that. Strided cell means (the separable pass's fix) were tried here and
+  // changed no pixel of the bunny or of a 10x-scaled edge by 1%.
+  // Step g reaches (half taps x stride + stride / 2) pixels each way, so B_g is flat, and
+  // adds nothing, beyond the sum of the reaches up to g from the edge: the bound at a pair
+  // of pixels counts only the Gaussians that reach it (far from the edge, the wide ones
+  // alone, whose strided point taps made the staircase).
+  double worst_step = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> term, reach;  // w_g d*_g, and the chained reach in pixels
+    double chain = 1.0, previous_v = 0.0, total_reach = 0.0;
+    for (std::size_t g = 0; g < fit.variances_mm2.size(); ++g) {
+      const double sigma = std::sqrt(std::max(fit.variances_mm2[g] - previous_v, 0.0)) / h;
+      previous_v = fit.variances_mm2[g];
+      if (sigma > 0.05) {
+        const int half = std::min(int(std::ceil(4.0 * sigma)), 12);
+        const int stride = std::max(1, int(std::ceil(4.0 * sigma / 12.0)));
+        double sum = 0.0;
+        for (int k = -half; k <= half; ++k)
+          sum += std::exp(-double(k * stride) * (k * stride) / (2.0 * sigma * sigma));
+        chain = std::min(chain, 1.0 / sum);  // the centre tap weighs most
+        total_reach += half * stride + 0.5 * stride;
+      }
+      term.push_back(fit.weights[g][c] * chain);
+      reach.push_back(total_reach);
+    }
+    for (int x = 0; x + 1 < kWidth; ++x) {
+      // Pixels x and x + 1 lie this many pixels from the edge (their centres, the nearer).
+      const double distance = std::min(std::fabs(pixel_center_mm(x)), std::fabs(pixel_center_mm(x + 1))) / kPixelMm;
+      double bound = 2.0 * gaussians_eps(fit) * T[c];
+      for (std::size_t g = 0; g < term.size(); ++g)
+        if (reach[g] + 0.5 >= distance) bound += term[g];
+      const double step = std::fabs(run.pi_L[x + 1][c] - run.pi_L[x][c]);
+      EXPECT_LE(step, bound) << preset << " staircase after x=" << pixel_center_mm(x) / cos_tilt << " channel " << c;
+      worst_step = std::max(worst_step, step / bound);
+    }
+  }
+  std::printf("[ gaussians %s ] worst pixel step / its bound %.3f\n", preset.c_str(), worst_step);
   if (cos_tilt < 1.0) {
     std::printf("[ gaussians %s, tilted (cos %.3f) ] worst err/tol %.3f, worst |GPU-fit|/T %.2e\n", preset.c_str(),
                 cos_tilt, worst_ratio, worst_fit_gap);

@@ -1,0 +1,61 @@
+#include "renderer/LinePrefix.h"
+
+#include "renderer/vk/Pipeline.h"
+#include "shaders/shared/config.h"
+#include "shaders/shared/frame.h"
+#include "shaders/sss_prefix.comp.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace sss::renderer {
+
+namespace {
+vk::DescriptorSetLayoutBuilder bindings() {
+  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+  vk::DescriptorSetLayoutBuilder b;
+  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
+      .add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)
+      .add(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
+      .add(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
+      .add(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
+  return b;
+}
+}  // namespace
+
+LinePrefix::LinePrefix(const FrameResources& resources, int max_inputs)
+    : r_(resources),
+      program_(r_.context, bindings(), sss_spv_sss_prefix_comp, sizeof(shader::BlurPush),
+               uint32_t(max_inputs), kName) {
+  for (int i = 0; i < max_inputs; ++i) sets_.push_back(program_.allocate());
+}
+
+void LinePrefix::write_descriptors(std::span<const vk::Image* const> inputs) {
+  if (inputs.size() > sets_.size()) throw std::logic_error("LinePrefix: more inputs than sets");
+  const FrameTargets& t = r_.targets;
+  const VkSampler nearest = r_.samplers.nearest.get();
+  inputs_.assign(inputs.begin(), inputs.end());
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    vk::DescriptorWriter(sets_[i])
+        .uniform_buffer(0, r_.frame_uniforms)
+        .storage_buffer(1, r_.materials)
+        .combined_image(2, *inputs[i], nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .storage_image(3, t.sss_prefix)
+        .combined_image(4, t.surface, nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .update(r_.context);
+}
+
+void LinePrefix::record(VkCommandBuffer cmd, const vk::Image& input, bool vertical) const {
+  const auto it = std::find(inputs_.begin(), inputs_.end(), &input);
+  if (it == inputs_.end()) throw std::logic_error("LinePrefix: an input without a descriptor set");
+  program_.bind(cmd, sets_[std::size_t(it - inputs_.begin())]);
+  shader::BlurPush push;
+  push.direction = vertical ? shader::vec4{0, 1, 0, 0} : shader::vec4{1, 0, 0, 0};
+  vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+  // One invocation per row (horizontal) or column (vertical) of the rect.
+  const uint32_t lines = vertical ? r_.rect.width() : r_.rect.height();
+  vkCmdDispatch(cmd, vk::group_count(lines, shader::kWorkgroup1D), 1, 1);
+  compute_barrier(cmd);
+}
+
+}  // namespace sss::renderer
