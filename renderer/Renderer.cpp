@@ -127,6 +127,13 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
       pool_(vk::create_command_pool(context, 0)),  // one command buffer: reset the pool
       fence_(vk::create_fence(context)),
       timer_(context) {
+  if (scene.environment) {
+    has_environment_ = true;
+    for (int k = 0; k < 9; ++k) {
+      const glm::vec3& c = scene.environment->irradiance_sh[std::size_t(k)];
+      environment_sh_[std::size_t(k)] = {c.x, c.y, c.z, 0.0f};
+    }
+  }
   shadow_ = std::make_unique<ShadowPass>(resources_, lights_.shadowed);
   gbuffer_ = std::make_unique<GBufferPass>(resources_);
   lighting_ = std::make_unique<LightingPass>(resources_);
@@ -148,6 +155,7 @@ void Renderer::write_frame_uniforms() {
   uniforms.options.w = options_.transmission ? 1.0f : 0.0f;
   uniforms.flags.x = options_.fresnel ? 1.0f : 0.0f;
   uniforms.flags.y = options_.single_scattering ? 1.0f : 0.0f;
+  uniforms.flags.z = has_environment_ ? 1.0f : 0.0f;
   rect_ = geometry_rect(camera, bounds_, options_.width, options_.height);
   uniforms.rect = {float(rect_.x0), float(rect_.y0), float(rect_.x1), float(rect_.y1)};
   frame_uniforms_.write(&uniforms, sizeof(uniforms));
@@ -155,6 +163,7 @@ void Renderer::write_frame_uniforms() {
 
 void Renderer::write_lights(LightSetup lights) {
   lights_ = std::move(lights);
+  for (std::size_t k = 0; k < environment_sh_.size(); ++k) lights_.block.environment[k] = environment_sh_[k];
   light_buffer_.write(&lights_.block, sizeof(lights_.block));
   shadow_->set_shadowed(lights_.shadowed);
   if (texture_) texture_->invalidate();

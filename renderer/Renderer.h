@@ -154,6 +154,9 @@ class Renderer {
   RenderOptions options_;
   scene::Camera camera_;
   std::vector<scene::Light> scene_lights_;
+  // The scene's environment light as LightBlock::environment holds it (all 0 without one).
+  bool has_environment_ = false;
+  std::array<shader::vec4, 9> environment_sh_{};
   scene::Bounds bounds_;  // of the scene's instances (shadow fits)
   double mm_per_unit_;
   std::vector<std::string> warnings_;

@@ -8,6 +8,7 @@
 // Errors exit 2 (usage, input) or 1 (runtime); Ctrl-C (SIGTERM) stops the render, writes
 // nothing and exits 130 (143).
 #include "CliSupport.h"
+#include "EnvironmentArgs.h"
 #include "MaterialOverrides.h"
 
 #include "renderer/image/AtomicFile.h"
@@ -286,6 +287,7 @@ int main(int argc, char** argv) {
   std::string single_scattering = "on";
   bool brute = false, diffuse_only = false, no_specular = false, quiet = false, stats = false, exitance = false;
   MaterialOverrideArgs material;
+  EnvironmentArgs environment;
   app.add_option("scene", scene_name, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
   app.add_option("--out", out, "Output: FILE.exr (linear radiance) or FILE.png (tonemapped)")->required();
   app.add_option("--png", png, "Also write the tonemapped image to this PNG");
@@ -299,6 +301,7 @@ int main(int argc, char** argv) {
                  "set by --spacing and --error-bound; probe: per-pixel profile importance sampling with probe rays, "
                  "unbiased, with a standard error per pixel (--spp, --target-error, --variance)");
   add_material_override_options(app, material);
+  add_environment_options(app, environment);
   app.add_option("--spacing", spacing,
                  "diffusion: irradiance point spacing in reduced mean free paths (default 0.5; lower it for "
                  "more points and a more accurate sum)");
@@ -461,6 +464,9 @@ int main(int argc, char** argv) {
   scene::add_light_if_missing(s);
   auto overridden = apply_material_overrides(s, material);
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
+  if (auto e = apply_environment(s, environment))
+    return e->file ? input_error("sss-reference", e->message) : usage(e->message);
+
   add_material_warnings(s, std::uint32_t(height));
   print_messages("sss-reference", "warning", s.warnings);
 

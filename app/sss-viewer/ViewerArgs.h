@@ -3,6 +3,7 @@
 // material (MaterialOverrides.h).
 #pragma once
 
+#include "EnvironmentArgs.h"
 #include "MaterialOverrides.h"
 
 #include "renderer/RenderOptions.h"
@@ -30,6 +31,7 @@ struct ViewerArgs {
   std::string sss = "screen";
   std::string mode = "separable";
   MaterialOverrideArgs material;  // --model, --gaussians, --albedo, MEDIUM
+  EnvironmentArgs environment;    // --environment, --environment-intensity
   int taps = 17;
   int shadow_map_size = 1024;  // texels a side (RenderOptions::shadow_map_size)
   float exposure = 1.0f;

@@ -230,11 +230,13 @@ std::string window_title(const scene::Scene& scene, const std::string& source) {
   return "sss-viewer - " + (scene.name.empty() ? source : scene.name);
 }
 
-// Loads `path` as the viewer's command line would (a missing camera or light is added)
-// and builds its renderer with the current options. On failure the current session
-// stays and the message says why.
+// Loads `path` as the viewer's command line would (a missing camera or light is added;
+// the environment light stays the one shown) and builds its renderer with the current
+// options. On failure the current session stays and the message says why.
 std::unique_ptr<Session> open_scene(const vk::Context& ctx, const std::string& path,
-                                    const renderer::RenderOptions& options, std::string& message) {
+                                    const renderer::RenderOptions& options,
+                                    const std::optional<scene::Environment>& environment,
+                                    std::string& message) {
   auto loaded = scene::load_scene(path);
   if (auto* e = std::get_if<scene::LoadError>(&loaded)) {
     message = e->what();
@@ -243,6 +245,7 @@ std::unique_ptr<Session> open_scene(const vk::Context& ctx, const std::string& p
   scene::Scene scene = std::move(std::get<scene::Scene>(loaded));
   scene::add_camera_if_missing(scene);
   scene::add_light_if_missing(scene);
+  scene.environment = environment;
   try {
     auto s = make_session(ctx, std::move(scene), path, options);
     message = "opened " + path;
@@ -422,7 +425,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       renderer::RenderOptions next_options = session->renderer->options();
       next_options.width = uint32_t(std::max(fb_w, 1));  // full size, whatever was drawn last
       next_options.height = uint32_t(std::max(fb_h, 1));
-      auto next = open_scene(ctx, *open_request, next_options, message);
+      auto next = open_scene(ctx, *open_request, next_options, session->scene.environment, message);
       const bool failed = next == nullptr;  // the scene shown stays
       if (next) {
         next->ui->set_interactive_scale(session->ui->interactive_scale());

@@ -102,6 +102,7 @@ int viewer_main(int argc, char** argv) {
   app.add_option("--sss", a.sss, "off | screen | texture (default screen)");
   app.add_option("--mode", a.mode, "separable | gaussians (default separable)");
   add_material_override_options(app, a.material);
+  add_environment_options(app, a.environment);
   app.add_option("--taps", a.taps, "Separable kernel taps (odd, 3..33; default 17)");
   app.add_option("--shadow-map-size", a.shadow_map_size,
                  "Shadow map texels a side, per light (16..8192; default 1024). The golden suite "
@@ -305,6 +306,8 @@ int viewer_main(int argc, char** argv) {
   scene::add_light_if_missing(scene);
   auto overridden = apply_material_overrides(scene, a.material);
   if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
+  if (auto e = apply_environment(scene, a.environment))
+    return e->file ? input_error("sss-viewer", e->message) : usage(e->message);
   add_material_warnings(scene, std::uint32_t(a.height));
   print_messages("sss-viewer", "warning", scene.warnings);
   if (options.sss == renderer::SssMode::Texture) print_messages("sss-viewer", "note", scene.texture_notes);

@@ -174,7 +174,25 @@ glm::dvec3 WalkScene::sample_radiance(const WalkMedium& medium, const WalkMedium
       const glm::dvec3 ng = face_normal(s, *rays_, hit->instance, hit->triangle);
       const double cos_w = glm::dot(w, ng);
       const glm::dvec3 out = cos_w > 0.0 ? ng : -ng;  // towards where the walk was going
-      beta *= walk::fresnel(std::abs(cos_w), band.eta, 1.0);
+      const double reflectance = walk::fresnel(std::abs(cos_w), band.eta, 1.0);
+      // An environment light: the part of the walk the face transmits continues outside
+      // along the refracted direction and meets the sky there unless the scene is in the
+      // way. Radiance entering the denser medium gains eta^2 (L / n^2 is conserved), so
+      // the walk adds beta (1 - F) eta^2 L_env V and goes on with the reflected part (the
+      // same estimate as choosing between the two with probabilities F and 1 - F, with
+      // less noise). Pre/post albedo: sqrt(albedo) at the entry, as the direct beams.
+      glm::dvec3 w_out;
+      if (s.environment && reflectance < 1.0 && walk::refract(w, -out, band.eta, 1.0, w_out)) {
+        const glm::vec3 origin = glm::vec3(p + out * surface_offset_mm(p));
+        if (!rays_->occluded(origin, glm::vec3(w_out), 0.0f, std::numeric_limits<float>::infinity())) {
+          glm::dvec3 sky = glm::dvec3(s.environment->radiance(glm::vec3(w_out))) *
+                           ((1.0 - reflectance) * band.eta * band.eta);
+          if (medium.pre_post)
+            sky *= glm::sqrt(glm::dvec3(base_colour(s, surface_at(s, *rays_, hit->instance, hit->triangle, hit->barycentric))));
+          L += beta * sky;
+        }
+      }
+      beta *= reflectance;
       ++stats.boundary_hits;
       w = glm::normalize(walk::reflect(w, out));
       p -= out * surface_offset_mm(p);

@@ -18,9 +18,12 @@
 //   * new directions from HG; where g differs between channels, again one-sample MIS;
 //   * at a face met from inside: Fresnel reflection with weight F (total internal
 //     reflection: 1). The refracted part leaves the medium towards the outside, where it
-//     meets no light (lights are points or directions), and the frame computes direct light
-//     only, like the other renderers: no interreflection between surfaces. So it is not
-//     followed, which is the same estimate with less noise;
+//     meets no point or directional light, and the frame computes direct light only, like
+//     the other renderers: no interreflection between surfaces. So it is not followed,
+//     which is the same estimate with less noise. With an environment light (scene::
+//     Environment) it meets the sky unless the scene is in the way (one shadow ray along
+//     the refracted direction): the walk adds beta (1 - F) eta^2 L_env there (radiance
+//     entering the denser medium gains eta^2) and goes on reflected;
 //   * a flight that meets no face (the surface has a hole in that direction) runs on as if
 //     the medium continued: it scatters where it was sampled, and only a flight that would
 //     leave the medium's bounds is lost (counted in WalkStats::escaped). Ending every walk

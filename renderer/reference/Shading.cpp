@@ -1,6 +1,7 @@
 #include "renderer/reference/Shading.h"
 
 #include "profiles/Fresnel.h"
+#include "profiles/Random.h"
 
 #include "renderer/image/Image.h"
 
@@ -9,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 
 namespace sss::reference {
 
@@ -156,10 +159,45 @@ double light_visibility(const RayScene& rays, std::size_t index, const SurfacePo
   return rays.occluded(p.position_mm + side * offset, a.l, 0.0f, a.distance_mm - 2.0f * offset) ? 0.0 : 1.0;
 }
 
+glm::dvec3 environment_irradiance(const scene::Environment& env, const RayScene& rays, const SurfacePoint& p,
+                                  const glm::vec3& n, bool as_gpu) {
+  if (as_gpu) return glm::dvec3(env.irradiance(n));
+  // E = integral of L(w) V(w) cos over the hemisphere = pi E_cos[L V] for w drawn with
+  // density cos / pi: kEnvironmentStrata^2 stratified samples (Shirley & Chiu's map of the
+  // square to the disc would do as well; sqrt(u1) and 2 pi u2 keep the strata compact
+  // enough at this count), jittered by a generator seeded from the point's position, so
+  // the same point always gets the same estimate and neighbours get independent ones.
+  const glm::vec3 t = std::fabs(n.x) > 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 b1 = glm::normalize(glm::cross(t, n)), b2 = glm::cross(n, b1);
+  std::uint64_t seed = 0x5EEDu;
+  for (int c = 0; c < 3; ++c) {
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &p.position_mm[c], sizeof(bits));
+    seed = profiles::SplitMix64(seed ^ bits).next();
+  }
+  profiles::Xoshiro256ss rng(seed);
+  const float offset = 1e-4f * std::max(1.0f, glm::length(p.position_mm)) + 1e-4f;
+  const int k = kEnvironmentStrata;
+  glm::dvec3 sum(0.0);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      const double u1 = (i + rng.uniform()) / k, u2 = (j + rng.uniform()) / k;
+      const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+      const glm::vec3 w = glm::normalize(b1 * float(r * std::cos(phi)) + b2 * float(r * std::sin(phi)) +
+                                         n * float(std::sqrt(std::max(0.0, 1.0 - u1))));
+      const glm::vec3 side = glm::dot(p.geometric_normal, w) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
+      if (rays.occluded(p.position_mm + side * offset, w, 0.0f, std::numeric_limits<float>::infinity())) continue;
+      sum += glm::dvec3(env.radiance(w));
+    }
+  return sum * (kPi / double(k * k));
+}
+
 DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const SurfacePoint& p,
                          const glm::vec3& n, const SpecularInputs* spec, const ShadowMaps* maps,
                          const glm::dvec3* entry_eta) {
   DirectLight out;
+  // The environment enters whole, as on the GPU (no Fresnel factor, no specular).
+  if (s.environment) out.irradiance += environment_irradiance(*s.environment, rays, p, n, maps != nullptr);
   for (std::size_t index = 0; index < s.lights.size(); ++index) {
     const std::optional<LightArrival> a = light_arrival(s, index, p.position_mm, maps);
     if (!a) continue;

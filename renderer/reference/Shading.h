@@ -44,6 +44,14 @@ glm::vec3 base_colour(const scene::Scene& scene, const SurfacePoint& p);
 // viewer, then the material's normal map if it has one (and the mesh has tangents).
 glm::vec3 shading_normal(const scene::Scene& scene, const SurfacePoint& p, const glm::vec3& to_eye);
 
+// The environment's irradiance at p with normal n (unit). as_gpu: as the GPU lights it
+// (scene::Environment::irradiance: spherical harmonics, no occlusion; the GPU-shadow mode
+// of direct_light). Otherwise the true one: kEnvironmentStrata² stratified cosine-weighted
+// directions with shadow rays and the full-resolution radiance, deterministic per point.
+inline constexpr int kEnvironmentStrata = 8;
+glm::dvec3 environment_irradiance(const scene::Environment& env, const RayScene& rays, const SurfacePoint& p,
+                                  const glm::vec3& n, bool as_gpu);
+
 struct DirectLight {
   glm::dvec3 irradiance{0.0};  // E, before any albedo
   glm::dvec3 specular{0.0};    // radiance towards the eye (zero when not asked)

@@ -6,6 +6,7 @@
 
 #include "renderer/scene/Bounds.h"
 #include "renderer/scene/Camera.h"
+#include "renderer/scene/Environment.h"
 #include "renderer/scene/Light.h"
 #include "renderer/scene/Material.h"
 #include "renderer/scene/Mesh.h"
@@ -14,6 +15,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,8 @@ struct Scene {
   std::vector<Instance> instances;
   std::vector<Camera> cameras;      // cameras[0] is the one to render from
   std::vector<Light> lights;
+  // Light from every direction (Environment.h): none unless a tool's --environment sets one.
+  std::optional<Environment> environment;
   double mm_per_unit = 1000.0;
   std::vector<std::string> warnings;  // what was skipped or repaired, for the user
   // What only texture-space SSS (--sss texture) is concerned with: a generated UV atlas

@@ -59,7 +59,8 @@ struct FrameUniforms {
   vec4 flags;          // x 1 = directional Fresnel factors on subsurface light
                        // (RenderOptions::fresnel; shading.glsl, composite.glsl); y 1 =
                        // single scattering S(1) per pixel (RenderOptions::
-                       // single_scattering; shading.glsl); zw 0
+                       // single_scattering; shading.glsl); z 1 = an environment light
+                       // (LightBlock::environment); w 0
 };
 
 struct GpuLight {
@@ -74,6 +75,9 @@ struct GpuLight {
 
 struct LightBlock {
   GpuLight lights[SSS_MAX_LIGHTS];
+  // The environment's irradiance as 9 spherical-harmonic coefficients (rgb; w 0), in the
+  // order of scene::sh_basis: E(N) = sum_k environment[k] Y_k(N) (scene/Environment.h).
+  vec4 environment[9];
 };
 
 // One material: surface parameters and, when it scatters, its profile as a fit and as a

@@ -121,6 +121,19 @@ bool light_at(GpuLight light, vec3 P, out vec3 L, out vec3 radiance) {
   return true;
 }
 
+// The environment's irradiance on a surface of unit normal n that sees the whole sphere
+// above it: the 9 coefficients of light_block.environment (C++: scene::Environment::
+// irradiance, the same basis), clamped at 0.
+vec3 environment_irradiance(vec3 n) {
+  float b[9] = float[9](0.282095, 0.488603 * n.y, 0.488603 * n.z, 0.488603 * n.x,
+                        1.092548 * n.x * n.y, 1.092548 * n.y * n.z,
+                        0.315392 * (3.0 * n.z * n.z - 1.0), 1.092548 * n.x * n.z,
+                        0.546274 * (n.x * n.x - n.y * n.y));
+  vec3 e = vec3(0.0);
+  for (int k = 0; k < 9; ++k) e += light_block.environment[k].rgb * b[k];
+  return max(e, vec3(0.0));
+}
+
 struct SurfacePoint {
   int id;       // material
   vec3 P;       // world position
@@ -183,6 +196,9 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
       S += D * vis * F * incident;
     }
   }
+  // The environment (frame.flags.z): its irradiance from the spherical harmonics, with no
+  // occlusion, entering whole (no Fresnel factor, no transmission, no specular from it).
+  if (frame.flags.z > 0.5) E += environment_irradiance(s.N);
   if (transmits) E += E_back / max(materials[s.id].reflectance.rgb, vec3(1e-6));
   // Pre/post albedo: sqrt(albedo) enters before scattering, the other half after it.
   if (materials[s.id].kernel.z > 0.5) E *= sqrt(s.albedo);

@@ -106,6 +106,34 @@ TEST(SssReferenceRandomWalk, HelpListsTheWalkOptions) {
   for (const char* opt : {"--out", "--variance"}) EXPECT_NE(m.out.find(opt), std::string::npos) << opt;
 }
 
+// --environment through the CLI: the walk takes it (the furnace test in
+// tests/reference checks its value); every geometry pixel gains light, the background
+// stays 0, and a bad value is refused by name with nothing written.
+TEST(SssReferenceRandomWalk, TakesAnEnvironmentLight) {
+  const fs::path dir = folder("environment");
+  const CliRun plain = reference(kFrame + " --out " + (dir / "plain.exr").string());
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  const CliRun sky = reference(kFrame + " --environment 0.5,0.5,0.5 --out " + (dir / "sky.exr").string());
+  ASSERT_EQ(sky.code, 0) << sky.err;
+  const sss::image::Image a = read(dir / "plain.exr"), b = read(dir / "sky.exr");
+  ASSERT_EQ(a.rgba.size(), b.rgba.size());
+  int lit = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      if (a.pixel(x, y)[3] <= 0.0f) {
+        EXPECT_EQ(b.pixel(x, y)[0], 0.0f);
+        continue;
+      }
+      ++lit;
+      EXPECT_GT(b.pixel(x, y)[0], a.pixel(x, y)[0]) << x << "," << y;
+    }
+  EXPECT_GT(lit, 20);
+  const CliRun bad = reference(kFrame + " --environment 1,1 --out " + (dir / "bad.exr").string());
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--environment"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "bad.exr"));
+}
+
 TEST(SssReferenceRandomWalk, WritesMeanVarianceAndSummaryWithTheirAttributes) {
   const fs::path dir = folder("small");
   const fs::path exr = dir / "sphere.exr", var = dir / "sphere.var.exr", json = dir / "sphere.json";

@@ -155,6 +155,17 @@ TEST(ViewerApp, DocumentedErrors) {
       {"builtin:sphere --headless --out " + out + " --background 0,1.5,0", 2,
        "--background: each of R, G, B must lie in [0, 1] (sRGB), got 1.5"},
       {"builtin:sphere --headless --out " + out + " --background grey", 2, "--background"},
+      {"builtin:sphere --headless --out " + out + " --environment 1,2", 2,
+       "--environment: the environment '1,2' is neither R,G,B"},
+      {"builtin:sphere --headless --out " + out + " --environment 1,-1,1", 2,
+       "each component must be a finite number >= 0"},
+      {"builtin:sphere --headless --out " + out + " --environment /nonexistent/sky.exr", 2,
+       "--environment: /nonexistent/sky.exr"},
+      {"builtin:sphere --headless --out " + out + " --environment sky.png", 2, "must be OpenEXR"},
+      {"builtin:sphere --headless --out " + out + " --environment 1,1,1 --environment-intensity -1", 2,
+       "intensity must be a finite number >= 0"},
+      {"builtin:sphere --headless --out " + out + " --environment-intensity 2", 2,
+       "--environment-intensity: needs --environment"},
   };
   for (const Case& c : cases) {
     const ViewerRun r = run(c.args);

@@ -1,0 +1,183 @@
+// The reference's environment light (renderer/reference/Shading.h: environment_irradiance):
+// on the GPU's terms it is the spherical harmonics exactly; on its own it samples the
+// hemisphere with shadow rays, checked here against closed forms on the builtin sphere:
+// exact for a uniform sky seen whole, zero where everything is occluded, and unbiased for
+// a linear sky (a Z-test over independent points, each estimate's spread measured).
+#include "profiles/Fresnel.h"
+#include "renderer/reference/GroundTruth.h"
+#include "renderer/reference/RayScene.h"
+#include "renderer/reference/Shading.h"
+#include "renderer/scene/BuiltinScenes.h"
+#include "renderer/scene/Environment.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <vector>
+
+namespace sss::reference {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Sphere {
+  scene::Scene scene = scene::sphere_scene();
+  glm::vec3 centre_mm{0.0f};
+  float radius_mm = 0.0f;
+  Sphere() {
+    const scene::Bounds b = scene.bounds();
+    centre_mm = 0.5f * (b.min + b.max) * float(scene.mm_per_unit);
+    radius_mm = 0.5f * (b.max.x - b.min.x) * float(scene.mm_per_unit);
+  }
+  // A point at `scale` x the radius along unit n, facing along n.
+  SurfacePoint point(const glm::vec3& n, float scale) const {
+    SurfacePoint p;
+    p.position_mm = centre_mm + n * (radius_mm * scale);
+    p.geometric_normal = n;
+    p.normal = n;
+    return p;
+  }
+};
+
+// Directions spread over the sphere (a Fibonacci lattice), the same in every run.
+std::vector<glm::vec3> directions(int count) {
+  std::vector<glm::vec3> d;
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double y = 1.0 - 2.0 * (i + 0.5) / count, r = std::sqrt(1.0 - y * y);
+    d.push_back(glm::vec3(float(r * std::cos(golden * i)), float(y), float(r * std::sin(golden * i))));
+  }
+  return d;
+}
+
+scene::Environment linear_sky(float a, float b) {
+  const int w = 128, h = 64;
+  std::vector<float> rgba(std::size_t(w) * h * 4, 1.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float v = a + b * float(std::cos(kPi * (y + 0.5) / h));  // y = cos(theta)
+      for (int c = 0; c < 3; ++c) rgba[(std::size_t(y) * w + x) * 4 + c] = v;
+    }
+  return scene::image_environment("linear sky", w, h, rgba);
+}
+
+TEST(ReferenceEnvironment, OnTheGpusTermsItIsTheSphericalHarmonics) {
+  const Sphere s;
+  const RayScene rays(s.scene);
+  const scene::Environment env = linear_sky(1.0f, 0.5f);
+  for (const glm::vec3& n : directions(16)) {
+    const glm::dvec3 e = environment_irradiance(env, rays, s.point(n, 1.01f), n, true);
+    const glm::vec3 sh = env.irradiance(n);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(e[c], double(sh[c]));
+  }
+}
+
+// A uniform sky over an unoccluded point: every sample sees L, so the estimate is pi L to
+// rounding. A point inside the sphere: every ray meets the sphere, E = 0.
+TEST(ReferenceEnvironment, AUniformSkyIsPiLInTheOpenAndZeroInside) {
+  const Sphere s;
+  const RayScene rays(s.scene);
+  const scene::Environment env = scene::uniform_environment({0.5f, 1.0f, 2.0f});
+  for (const glm::vec3& n : directions(64)) {
+    const glm::dvec3 open = environment_irradiance(env, rays, s.point(n, 1.01f), n, false);
+    EXPECT_NEAR(open.x, kPi * 0.5, 1e-6);
+    EXPECT_NEAR(open.z, kPi * 2.0, 1e-6);
+    const glm::dvec3 inside = environment_irradiance(env, rays, s.point(n, 0.5f), n, false);
+    EXPECT_EQ(inside.x, 0.0);
+  }
+}
+
+// A linear sky L = a + b w.y: E(n) = pi a + (2 pi / 3) b n.y exactly. Each point's
+// estimate is an average of 64 stratified cosine-weighted samples with its own seed, so
+// the residuals of N points are independent; their mean over its standard error is a
+// Z statistic, |Z| < 4 (a false alarm 1 time in 16,000). The spread itself must be
+// small: stratification bounds each estimate within a few per cent of b.
+TEST(ReferenceEnvironment, ALinearSkyIsSampledWithoutBias) {
+  const Sphere s;
+  const RayScene rays(s.scene);
+  const float a = 1.0f, b = 0.8f;
+  const scene::Environment env = linear_sky(a, b);
+  std::vector<double> residual;
+  for (const glm::vec3& n : directions(400)) {
+    const double expected = kPi * a + 2.0 * kPi / 3.0 * b * n.y;
+    residual.push_back(environment_irradiance(env, rays, s.point(n, 1.01f), n, false).x - expected);
+  }
+  double mean = 0.0;
+  for (double r : residual) mean += r;
+  mean /= double(residual.size());
+  double var = 0.0;
+  for (double r : residual) var += (r - mean) * (r - mean);
+  var /= double(residual.size() - 1);
+  const double se = std::sqrt(var / double(residual.size()));
+  std::printf("[ environment reference ] mean residual %.2e, sd %.2e, Z %.2f\n", mean, std::sqrt(var), mean / se);
+  EXPECT_LT(std::fabs(mean), 4.0 * se + 1e-12);
+  EXPECT_LT(std::sqrt(var), 0.05 * kPi * b);
+}
+
+// The ground truth's random walk in a furnace: a sphere of a medium that hardly absorbs
+// (sigma_a = 1e-6 / mm, sigma_s = 0.1 / mm, g = 0), no lights, a uniform sky of radiance
+// L. In equilibrium the light inside is isotropic at eta^2 L (L / n^2 is conserved across
+// the boundary), and the radiance leaving towards the outside is F_t(theta) L, whatever
+// the scattering. So:
+//  * eta = 1 (no Fresnel reflection), the light that crossed the medium towards the eye
+//    is L at every pixel;
+//  * eta = 1.3, its exitance (--exitance: M / pi, the cosine-weighted mean over the
+//    outside hemisphere) is c L, c = 1 - 2 m1(1/eta) (profiles::
+//    fresnel_exit_normalization), which checks the eta^2 and the 1 - F of the walk's
+//    boundary term.
+// Less what the medium absorbs: the mean path length through a body under uniform
+// incidence is 4 V eta^2 / S whether or not the medium scatters (Blanco & Fournier 2003;
+// the eta^2 for a mismatched boundary: Savo et al. 2017), 4 R eta^2 / 3 for a sphere, so
+// the loss is about sigma_a 4 R eta^2 / 3 of the value (1e-4 at most here). Tolerance:
+// that, plus 4 standard errors of the frame mean (Russian roulette makes each walk 0 or
+// a full weight).
+TEST(ReferenceEnvironment, TheRandomWalkInAFurnaceReturnsTheSky) {
+  for (const double eta : {1.0, 1.3}) {
+    Sphere s;
+    s.scene.lights.clear();
+    for (scene::Material& m : s.scene.materials) {
+      if (!m.sss.enabled) continue;
+      m.sss.medium.sigma_a = {1e-6, 1e-6, 1e-6};
+      m.sss.medium.sigma_s = {0.1, 0.1, 0.1};
+      m.sss.medium.g = {0.0, 0.0, 0.0};
+      m.sss.medium.eta = {eta, eta, eta};
+      m.sss.scale = 1.0;
+    }
+    const glm::vec3 sky(0.7f, 0.5f, 0.3f);
+    s.scene.environment = scene::uniform_environment(sky);
+    GroundTruthOptions o;
+    o.width = 64;
+    o.height = 36;
+    o.spp = 16;
+    o.diffuse_only = true;
+    o.exitance = eta != 1.0;
+    o.threads = 2;
+    const GroundTruthImage g = render_ground_truth(s.scene, o);
+    double sum[3] = {0, 0, 0}, var[3] = {0, 0, 0};
+    int n = 0;
+    for (int y = 0; y < g.hdr.height; ++y)
+      for (int x = 0; x < g.hdr.width; ++x) {
+        const float* p = g.hdr.pixel(x, y);
+        if (p[3] <= 0.0f) continue;
+        ++n;
+        for (int c = 0; c < 3; ++c) {
+          sum[c] += p[c];
+          var[c] += g.variance.pixel(x, y)[c];
+        }
+      }
+    ASSERT_GT(n, 100);
+    const double factor = eta == 1.0 ? 1.0 : profiles::fresnel_exit_normalization(eta);
+    const double loss = 1e-6 * 4.0 * s.radius_mm * eta * eta / 3.0;
+    for (int c = 0; c < 3; ++c) {
+      const double mean = sum[c] / n, se = std::sqrt(var[c]) / n, expected = factor * sky[c];
+      std::printf("[ furnace eta %.1f ] channel %d: mean %.6f, expected %.6f, SE %.2e over %d pixels\n", eta, c,
+                  mean, expected, se, n);
+      EXPECT_NEAR(mean, expected, 4.0 * se + loss * expected + 1e-6) << "eta " << eta << " channel " << c;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sss::reference
