@@ -127,13 +127,7 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
       pool_(vk::create_command_pool(context, 0)),  // one command buffer: reset the pool
       fence_(vk::create_fence(context)),
       timer_(context) {
-  if (scene.environment) {
-    has_environment_ = true;
-    for (int k = 0; k < 9; ++k) {
-      const glm::vec3& c = scene.environment->irradiance_sh[std::size_t(k)];
-      environment_sh_[std::size_t(k)] = {c.x, c.y, c.z, 0.0f};
-    }
-  }
+  store_environment(scene.environment);
   shadow_ = std::make_unique<ShadowPass>(resources_, lights_.shadowed);
   gbuffer_ = std::make_unique<GBufferPass>(resources_);
   lighting_ = std::make_unique<LightingPass>(resources_);
@@ -292,6 +286,20 @@ std::array<float, 2> Renderer::debug_range() const {
 
 void Renderer::set_camera(const scene::Camera& camera) {
   camera_ = camera;
+  write_frame_uniforms();
+}
+
+void Renderer::store_environment(const std::optional<scene::Environment>& environment) {
+  has_environment_ = environment.has_value();
+  for (std::size_t k = 0; k < environment_sh_.size(); ++k) {
+    const glm::vec3 c = environment ? environment->irradiance_sh[k] : glm::vec3(0.0f);
+    environment_sh_[k] = {c.x, c.y, c.z, 0.0f};
+  }
+}
+
+void Renderer::set_environment(const std::optional<scene::Environment>& environment) {
+  store_environment(environment);
+  write_lights(lights_);
   write_frame_uniforms();
 }
 

@@ -35,6 +35,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,8 @@ class Renderer {
   // New lights (LightSetup: block, shadow matrices); grows the shadow-map array if it
   // holds fewer layers than the lights need (warnings() follows).
   void set_lights(const std::vector<scene::Light>& lights);
+  // A new environment light (none: nullopt). Cheap: the light block and frame uniforms.
+  void set_environment(const std::optional<scene::Environment>& environment);
   // New materials, as many as the scene's and with the same textures (else
   // std::invalid_argument): refits the Gaussians and separable kernels (build_material_data),
   // re-uploads the table into the same buffer, updates the draw constants.
@@ -149,6 +152,8 @@ class Renderer {
   void update_display_passes();
   // warnings_: the lights', the scene's and the texture path's.
   void collect_warnings();
+  // has_environment_ and environment_sh_ from the scene's environment.
+  void store_environment(const std::optional<scene::Environment>& environment);
 
   const vk::Context& context_;
   RenderOptions options_;

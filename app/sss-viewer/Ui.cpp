@@ -144,8 +144,13 @@ void draw_profile_plot(const ProfilePlot& p, bool with_error) {
 }  // namespace
 
 ViewerUi::ViewerUi(const scene::Scene& scene, int separable_taps, bool single_scattering)
-    : editor_(scene, separable_taps, FitWorker::compute_default, single_scattering), lights_(scene.lights) {
+    : editor_(scene, separable_taps, FitWorker::compute_default, single_scattering),
+      lights_(scene.lights),
+      environment_(scene.environment),
+      environment_on_(scene.environment.has_value()) {
   if (!lights_.empty()) select_light(0);
+  if (environment_ && environment_->uniform())
+    for (int c = 0; c < 3; ++c) sky_[c] = environment_->colour[c];
   std::size_t sss = 0;
   for (const scene::Material& m : scene.materials) sss += m.sss.enabled ? 1 : 0;
   show_labels_ = sss > 1;
@@ -248,6 +253,7 @@ void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
   draw_sss(r);
   draw_materials(r);
   draw_light(r);
+  draw_environment(r);
   draw_stats(r, frame_ms);
   draw_screenshot(r);
   if (!error_.empty()) ImGui::TextColored(kErrorColor, "%s", error_.c_str());
@@ -696,6 +702,40 @@ void ViewerUi::draw_light(renderer::Renderer& r) {
                                 ImGuiSliderFlags_Logarithmic);
   changed |= ImGui::ColorEdit3("colour##light", light_color_, ImGuiColorEditFlags_Float);
   if (changed) set_light(r, std::size_t(light_), azimuth_deg_, elevation_deg_, intensity_, light_color_);
+}
+
+void ViewerUi::draw_environment(renderer::Renderer& r) {
+  if (!ImGui::CollapsingHeader("Environment")) return;
+  const bool image = environment_ && !environment_->uniform();
+  bool changed = ImGui::Checkbox("environment light", &environment_on_);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("--environment: light from every direction, diffuse only, scattered like\n"
+                      "the other lights (spherical harmonics, no occlusion on the GPU)");
+  ImGui::BeginDisabled(!environment_on_);
+  if (image) {
+    ImGui::TextWrapped("image: %s", environment_->source.c_str());
+  } else {
+    changed |= ImGui::ColorEdit3("sky##environment", sky_, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("--environment R,G,B: a uniform sky's linear radiance");
+  }
+  changed |= ImGui::SliderFloat("scale##environment", &environment_scale_, 0.0f, 10.0f, "%.3g",
+                                ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("multiplies the radiance (after --environment-intensity)");
+  ImGui::EndDisabled();
+  if (!changed) return;
+  std::optional<scene::Environment> next;
+  if (environment_on_) {
+    const float k = std::max(environment_scale_, 0.0f);
+    if (image) {
+      next = *environment_;
+      for (glm::vec3& p : next->image) p *= k;
+      for (glm::vec3& c : next->irradiance_sh) c *= k;
+    } else {
+      next = scene::uniform_environment(glm::max(glm::vec3(sky_[0], sky_[1], sky_[2]), glm::vec3(0.0f)), k);
+    }
+  }
+  r.set_environment(next);
 }
 
 void ViewerUi::draw_stats(const renderer::Renderer& r, double frame_ms) {

@@ -97,6 +97,8 @@ class ViewerUi {
   // its η; true when a field's edit ended (the caller applies).
   bool draw_layers(MaterialEdit& e, std::size_t i);
   void draw_light(renderer::Renderer& r);
+  // The environment light: on/off, a uniform sky's colour, or the image's name; a scale.
+  void draw_environment(renderer::Renderer& r);
   void draw_stats(const renderer::Renderer& r, double frame_ms);
   void draw_screenshot(const renderer::Renderer& r);
   void select_light(std::size_t i);
@@ -113,6 +115,11 @@ class ViewerUi {
   int light_ = 0;  // the light the panel edits
   float azimuth_deg_ = 0.0f, elevation_deg_ = 0.0f, intensity_ = 1.0f;
   float light_color_[3] = {1.0f, 1.0f, 1.0f};
+  // The environment as loaded (--environment, its intensity applied), and the panel's edits.
+  std::optional<scene::Environment> environment_;
+  bool environment_on_ = false;
+  float sky_[3] = {0.3f, 0.3f, 0.3f};  // a uniform sky's linear radiance
+  float environment_scale_ = 1.0f;
   bool plot_error_ = true;
   float interactive_scale_ = 0.5f;  // the plot shows the fit's relative error below
   std::string script_;

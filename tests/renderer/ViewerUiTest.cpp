@@ -866,6 +866,75 @@ TEST_F(ViewerUiTest, TheEnableSubsurfaceSwitchGivesAPlainGltfMaterialSssAndTakes
   EXPECT_TRUE(bit_identical(r.read_hdr(), opaque)) << "opaque again, as before the switch";
 }
 
+// Issue 20 part 3, environment light: the panel's Environment section switches the sky
+// off and on through clicks (injected mouse events on the widgets found by hovering): off,
+// the frame is the one rendered without an environment bit for bit; on again, the one
+// rendered with it.
+TEST_F(ViewerUiTest, TheEnvironmentSwitchTakesTheSkyAwayAndBringsItBack) {
+  scene::Scene plain = scene::sphere_scene();
+  scene::Scene lit = plain;
+  lit.environment = scene::uniform_environment({0.4f, 0.4f, 0.5f});
+  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  image::Image without, with;
+  {
+    Renderer a(ctx(), plain, o);
+    a.render_frame();
+    without = a.read_hdr();
+  }
+  Renderer r(ctx(), lit, o);
+  r.render_frame();
+  with = r.read_hdr();
+  ASSERT_FALSE(bit_identical(with, without));
+
+  renderer::testing::HeadlessImGui imgui;
+  ImGuiIO& io = imgui.io();
+  io.DisplaySize = ImVec2(960.0f, 2400.0f);  // a panel tall enough to show every section
+  app::ViewerUi ui(lit, o.separable_taps);
+  ImGuiID header_id = 0, switch_id = 0;
+  const auto frame = [&] {
+    io.DeltaTime = 1.0f / 60.0f;
+    ImGui::NewFrame();
+    ui.draw(r, 16.0);
+    ImGui::Begin("sss-viewer");  // appends to the panel: only to compute the IDs
+    header_id = ImGui::GetID("Environment");
+    switch_id = ImGui::GetID("environment light");
+    ImGui::End();
+    ImGui::Render();
+    return ImGui::FindWindowByName("sss-viewer");
+  };
+  const auto click = [&](ImVec2 at) {
+    io.MousePos = at;
+    frame();
+    io.MouseDown[0] = true;
+    frame();
+    io.MouseDown[0] = false;
+    frame();
+  };
+  const auto find = [&](ImGuiWindow* w, const ImGuiID& id) -> std::optional<ImVec2> {
+    for (float y = w->Pos.y + 2.0f; y < w->Pos.y + w->Size.y; y += 4.0f)
+      for (float x = w->Pos.x + 12.0f; x < w->Pos.x + 96.0f; x += 8.0f) {
+        io.MousePos = ImVec2(x, y);
+        frame();
+        if (ImGui::GetCurrentContext()->HoveredId == id) return ImVec2(x, y);
+      }
+    return std::nullopt;
+  };
+  ImGuiWindow* panel = frame();
+  panel = frame();
+  ASSERT_NE(panel, nullptr);
+  const auto header = find(panel, header_id);
+  ASSERT_TRUE(header.has_value()) << "the Environment section's header";
+  click(*header);
+  const auto box = find(panel, switch_id);
+  ASSERT_TRUE(box.has_value()) << "the open section shows the switch";
+  click(*box);
+  r.render_frame();
+  EXPECT_TRUE(bit_identical(r.read_hdr(), without)) << "the sky switched off";
+  click(*box);
+  r.render_frame();
+  EXPECT_TRUE(bit_identical(r.read_hdr(), with)) << "the sky switched on again";
+}
+
 // Issue 20 part 3: builtin:materials showed eleven spheres and no way to tell which is
 // which but the profile-id view. Each sphere gets its material's name under it: one label
 // per SSS material, inside the window, below its sphere's projected centre, none
