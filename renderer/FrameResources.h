@@ -3,6 +3,7 @@
 #pragma once
 
 #include "renderer/CameraSetup.h"
+#include "renderer/EnvironmentMaps.h"
 #include "renderer/FrameTargets.h"
 #include "renderer/GpuScene.h"
 #include "renderer/vk/Buffer.h"
@@ -28,6 +29,7 @@ struct FrameResources {
   const vk::Buffer& materials;       // GpuMaterial[]
   const Samplers& samplers;
   const GpuScene& scene;
+  const EnvironmentMaps& environment;  // the environment's specular tables (lighting)
   // The rect the screen passes dispatch over (geometry_rect; FrameUniforms::rect).
   const PixelRect& rect;
 };

@@ -13,6 +13,8 @@ vk::DescriptorSetLayoutBuilder bindings() {
       .add(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
   for (uint32_t i = 3; i <= 6; ++i) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
   b.add(10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);  // shadow depth: thickness
+  b.add(11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);  // environment: prefiltered levels
+  b.add(12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);  // environment: DFG table
   for (uint32_t i = 7; i <= 9; ++i) b.add(i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
   return b;
 }
@@ -39,6 +41,8 @@ void LightingPass::write_descriptors() {
       .storage_image(8, t.specular)
       .storage_image(9, t.surface)
       .combined_image(10, t.light_depth, nearest)
+      .combined_image(11, r_.environment.specular(), nearest)
+      .combined_image(12, r_.environment.dfg(), nearest)
       .update(r_.context);
 }
 

@@ -122,8 +122,9 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
       light_buffer_(context, {sizeof(shader::LightBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                               vk::MemoryUsage::Dynamic, "lights"}),
       samplers_(make_samplers(context)),
+      environment_maps_(context),
       resources_{context, targets_, frame_uniforms_, light_buffer_,
-                 materials_.buffer(), samplers_, scene_, rect_},
+                 materials_.buffer(), samplers_, scene_, environment_maps_, rect_},
       pool_(vk::create_command_pool(context, 0)),  // one command buffer: reset the pool
       fence_(vk::create_fence(context)),
       timer_(context) {
@@ -295,6 +296,8 @@ void Renderer::store_environment(const std::optional<scene::Environment>& enviro
     const glm::vec3 c = environment ? environment->irradiance_sh[k] : glm::vec3(0.0f);
     environment_sh_[k] = {c.x, c.y, c.z, 0.0f};
   }
+  context_.wait_idle();  // a frame may still read the levels
+  environment_maps_.upload(environment);
 }
 
 void Renderer::set_environment(const std::optional<scene::Environment>& environment) {

@@ -79,7 +79,8 @@ class Renderer {
   // New lights (LightSetup: block, shadow matrices); grows the shadow-map array if it
   // holds fewer layers than the lights need (warnings() follows).
   void set_lights(const std::vector<scene::Light>& lights);
-  // A new environment light (none: nullopt). Cheap: the light block and frame uniforms.
+  // A new environment light (none: nullopt): the light block, the frame uniforms and an
+  // upload of its prefiltered levels (0.8 MB; waits for the device).
   void set_environment(const std::optional<scene::Environment>& environment);
   // New materials, as many as the scene's and with the same textures (else
   // std::invalid_argument): refits the Gaussians and separable kernels (build_material_data),
@@ -152,7 +153,7 @@ class Renderer {
   void update_display_passes();
   // warnings_: the lights', the scene's and the texture path's.
   void collect_warnings();
-  // has_environment_ and environment_sh_ from the scene's environment.
+  // has_environment_, environment_sh_ and environment_maps_ from the scene's environment.
   void store_environment(const std::optional<scene::Environment>& environment);
 
   const vk::Context& context_;
@@ -172,6 +173,7 @@ class Renderer {
   vk::Buffer frame_uniforms_;
   vk::Buffer light_buffer_;
   Samplers samplers_;
+  EnvironmentMaps environment_maps_;
   PixelRect rect_;  // geometry_rect of the current camera and size (write_frame_uniforms)
   FrameResources resources_;
   std::unique_ptr<ShadowPass> shadow_;

@@ -25,6 +25,10 @@ layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D specular_img;
 layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D surface_img;
 // The shadow maps read as depth (no comparison, nearest): thickness for transmission.
 layout(set = 0, binding = 10) uniform sampler2DArray light_depth_tex;
+// The environment's split-sum tables (renderer/EnvironmentMaps.h), read with texelFetch.
+layout(set = 0, binding = 11) uniform sampler2DArray environment_specular_tex;
+layout(set = 0, binding = 12) uniform sampler2D dfg_tex;
+#define SSS_ENVIRONMENT_SPECULAR 1
 
 #include "shared/sss.glsl"
 #include "shared/thickness.glsl"

@@ -709,8 +709,9 @@ void ViewerUi::draw_environment(renderer::Renderer& r) {
   const bool image = environment_ && !environment_->uniform();
   bool changed = ImGui::Checkbox("environment light", &environment_on_);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("--environment: light from every direction, diffuse only, scattered like\n"
-                      "the other lights (spherical harmonics, no occlusion on the GPU)");
+    ImGui::SetTooltip("--environment: light from every direction; its diffuse part scattered like\n"
+                      "the other lights (spherical harmonics), its specular from a prefiltered map\n"
+                      "(split sum); no occlusion on the GPU");
   ImGui::BeginDisabled(!environment_on_);
   if (image) {
     ImGui::TextWrapped("image: %s", environment_->source.c_str());
@@ -729,8 +730,7 @@ void ViewerUi::draw_environment(renderer::Renderer& r) {
     const float k = std::max(environment_scale_, 0.0f);
     if (image) {
       next = *environment_;
-      for (glm::vec3& p : next->image) p *= k;
-      for (glm::vec3& c : next->irradiance_sh) c *= k;
+      next->scale(k);
     } else {
       next = scene::uniform_environment(glm::max(glm::vec3(sky_[0], sky_[1], sky_[2]), glm::vec3(0.0f)), k);
     }

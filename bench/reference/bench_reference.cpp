@@ -16,16 +16,27 @@
 //    |M - M_exact| over pixels and channels in % of R_d against the exact edge response
 //    (profiles/EdgeResponse.h), and `speedup` = octree time / probe time. Arg: the model.
 //
-//   scripts/bench.sh --benchmark_filter=Reference
+//  * The environment light's CPU preparation (issue 20): an equirectangular image of W x W/2
+//    made into a scene::Environment (spherical harmonics, the prefilter's 128 x 64 grid and
+//    the split sum's 6 prefiltered levels), against the prefilter alone on the grid (the
+//    baseline: its fixed cost, measured first in the same run): `prefilter_share` is the
+//    baseline over the whole. Arg: W.
+//
+//   scripts/bench.sh --benchmark_filter='Reference|Environment'
+
 #include "profiles/EdgeResponse.h"
 #include "profiles/Profile.h"
 #include "renderer/image/Metrics.h"
 #include "renderer/reference/ReferenceRenderer.h"
 #include "renderer/scene/BuiltinScenes.h"
+#include "renderer/scene/Environment.h"
+#include "renderer/scene/SplitSum.h"
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
+#include <vector>
 #include <cmath>
 #include <string>
 #include <stdexcept>
@@ -135,5 +146,49 @@ void BM_ReferenceEdgeOctreeVsProbe(benchmark::State& state) {
   state.SetLabel(std::string(profiles::model_name(model)));
 }
 BENCHMARK(BM_ReferenceEdgeOctreeVsProbe)->DenseRange(0, 6)->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+namespace {
+
+double g_prefilter_seconds = 0.0;
+
+std::vector<float> sky_image(int w, int h) {
+  std::vector<float> rgba(std::size_t(w) * h * 4, 1.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c)
+        rgba[(std::size_t(y) * w + x) * 4 + c] = 0.2f + float(y) / float(h) + 0.1f * float((x * 7 + c) % 13);
+  return rgba;
+}
+
+void BM_EnvironmentPrefilterAlone(benchmark::State& state) {
+  std::vector<glm::vec3> grid(std::size_t(sss::scene::kSpecularWidth) * sss::scene::kSpecularHeight);
+  for (std::size_t i = 0; i < grid.size(); ++i) grid[i] = glm::vec3(float(i % 17) * 0.1f, 0.5f, 1.0f);
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<glm::vec3> levels = sss::scene::prefilter_levels(grid);
+    benchmark::DoNotOptimize(levels.data());
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    g_prefilter_seconds = s;
+    state.SetIterationTime(s);
+  }
+}
+BENCHMARK(BM_EnvironmentPrefilterAlone)->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
+
+void BM_EnvironmentFromImage(benchmark::State& state) {
+  const int w = int(state.range(0)), h = w / 2;
+  const std::vector<float> rgba = sky_image(w, h);
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    sss::scene::Environment e = sss::scene::image_environment("bench", w, h, rgba);
+    benchmark::DoNotOptimize(e.specular.data());
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    state.SetIterationTime(seconds);
+  }
+  state.counters["prefilter_share"] = seconds > 0.0 ? g_prefilter_seconds / seconds : 0.0;
+}
+BENCHMARK(BM_EnvironmentFromImage)->Arg(256)->Arg(1024)->Arg(4096)->UseManualTime()->Iterations(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace

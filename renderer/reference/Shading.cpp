@@ -4,6 +4,7 @@
 #include "profiles/Random.h"
 
 #include "renderer/image/Image.h"
+#include "renderer/scene/SplitSum.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -192,12 +193,67 @@ glm::dvec3 environment_irradiance(const scene::Environment& env, const RayScene&
   return sum * (kPi / double(k * k));
 }
 
+glm::dvec3 environment_specular(const scene::Environment& env, const RayScene& rays, const SurfacePoint& p,
+                                const glm::vec3& n, const SpecularInputs& spec, bool as_gpu) {
+  const glm::vec3& v = spec.to_eye;
+  const float n_dot_v = std::max(glm::dot(n, v), 1e-4f);
+  const glm::dvec3 f0(spec.f0);
+  if (as_gpu) {
+    // The split sum, as lighting.comp evaluates it (no occlusion).
+    const glm::vec3 r = glm::reflect(-v, n);
+    const glm::vec2 ab = scene::dfg_lookup(n_dot_v, spec.roughness);
+    return glm::dvec3(env.specular_radiance(r, spec.roughness)) * (f0 * double(ab.x) + double(ab.y));
+  }
+  // integral of L(l) V(l) f(v, l) n.l dl with l = reflect(-v, h), h drawn from
+  // D(h) n.h (Walter et al. 2007, eq. 35): each sample weighs
+  // L V F vis 4 (v.h) (n.l) / (n.h) (D cancels; vis the height-correlated visibility).
+  // kEnvironmentStrata² stratified samples, seeded from the point as the irradiance is.
+  const glm::vec3 t = std::fabs(n.x) > 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 b1 = glm::normalize(glm::cross(t, n)), b2 = glm::cross(n, b1);
+  std::uint64_t seed = 0x5BEC0u;
+  for (int c = 0; c < 3; ++c) {
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &p.position_mm[c], sizeof(bits));
+    seed = profiles::SplitMix64(seed ^ bits).next();
+  }
+  profiles::Xoshiro256ss rng(seed);
+  const double alpha = scene::ggx_alpha(spec.roughness), a2 = alpha * alpha;
+  const double nv = n_dot_v;
+  const float offset = 1e-4f * std::max(1.0f, glm::length(p.position_mm)) + 1e-4f;
+  const int k = kEnvironmentStrata;
+  glm::dvec3 sum(0.0);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      const double u1 = (i + rng.uniform()) / k, u2 = (j + rng.uniform()) / k;
+      const double tan2 = a2 * u1 / std::max(1.0 - u1, 1e-300);
+      const double cos_h = 1.0 / std::sqrt(1.0 + tan2), sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
+      const double phi = 2.0 * kPi * u2;
+      const glm::vec3 h = glm::normalize(b1 * float(sin_h * std::cos(phi)) + b2 * float(sin_h * std::sin(phi)) +
+                                         n * float(cos_h));
+      const double vh = glm::dot(v, h);
+      if (vh <= 0.0) continue;
+      const glm::vec3 l = glm::normalize(2.0f * float(vh) * h - v);
+      const double nl = glm::dot(n, l);
+      if (nl <= 0.0) continue;
+      const glm::vec3 side = glm::dot(p.geometric_normal, l) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
+      if (rays.occluded(p.position_mm + side * offset, l, 0.0f, std::numeric_limits<float>::infinity())) continue;
+      const double vis = 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
+      const glm::dvec3 F = f0 + (1.0 - f0) * std::pow(1.0 - vh, 5.0);
+      sum += glm::dvec3(env.radiance(l)) * F * (vis * 4.0 * vh * nl / cos_h);
+    }
+  return sum / double(k * k);
+}
+
 DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const SurfacePoint& p,
                          const glm::vec3& n, const SpecularInputs* spec, const ShadowMaps* maps,
                          const glm::dvec3* entry_eta) {
   DirectLight out;
-  // The environment enters whole, as on the GPU (no Fresnel factor, no specular).
-  if (s.environment) out.irradiance += environment_irradiance(*s.environment, rays, p, n, maps != nullptr);
+  // The environment enters whole, as on the GPU (no Fresnel factor); its specular is
+  // sampled (or, with the GPU's shadow maps, the GPU's split sum).
+  if (s.environment) {
+    out.irradiance += environment_irradiance(*s.environment, rays, p, n, maps != nullptr);
+    if (spec) out.specular += environment_specular(*s.environment, rays, p, n, *spec, maps != nullptr);
+  }
   for (std::size_t index = 0; index < s.lights.size(); ++index) {
     const std::optional<LightArrival> a = light_arrival(s, index, p.position_mm, maps);
     if (!a) continue;

@@ -52,6 +52,14 @@ inline constexpr int kEnvironmentStrata = 8;
 glm::dvec3 environment_irradiance(const scene::Environment& env, const RayScene& rays, const SurfacePoint& p,
                                   const glm::vec3& n, bool as_gpu);
 
+struct SpecularInputs;
+// The environment's specular radiance towards spec.to_eye at p (normal n): as_gpu, the
+// split sum the GPU evaluates (scene/SplitSum.h, no occlusion); otherwise the true
+// integral of L V f n.l, kEnvironmentStrata² stratified GGX-distributed normals with
+// shadow rays and the full-resolution radiance, deterministic per point.
+glm::dvec3 environment_specular(const scene::Environment& env, const RayScene& rays, const SurfacePoint& p,
+                                const glm::vec3& n, const SpecularInputs& spec, bool as_gpu);
+
 struct DirectLight {
   glm::dvec3 irradiance{0.0};  // E, before any albedo
   glm::dvec3 specular{0.0};    // radiance towards the eye (zero when not asked)

@@ -1,6 +1,7 @@
 #include "renderer/scene/Environment.h"
 
 #include "renderer/image/Image.h"
+#include "renderer/scene/SplitSum.h"
 
 #include <glm/geometric.hpp>
 
@@ -54,20 +55,18 @@ std::array<float, 9> sh_basis(const glm::vec3& d) {
 
 glm::vec3 Environment::radiance(const glm::vec3& d) const {
   if (uniform()) return colour;
-  const glm::vec3 n = glm::normalize(d);
-  const double u = 0.5 + std::atan2(double(n.x), double(-n.z)) / (2.0 * kPi);
-  const double v = std::acos(std::clamp(double(n.y), -1.0, 1.0)) / kPi;
-  const double fx = u * width - 0.5, fy = std::clamp(v * height - 0.5, 0.0, double(height - 1));
-  const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-  const float tx = float(fx - x0), ty = float(fy - y0);
-  const auto at = [&](int x, int y) {
-    x = ((x % width) + width) % width;  // wraps in u
-    y = std::clamp(y, 0, height - 1);
-    return image[std::size_t(y) * width + x];
-  };
-  const glm::vec3 top = at(x0, y0) * (1.0f - tx) + at(x0 + 1, y0) * tx;
-  const glm::vec3 bottom = at(x0, y0 + 1) * (1.0f - tx) + at(x0 + 1, y0 + 1) * tx;
-  return top * (1.0f - ty) + bottom * ty;
+  return equirect_bilinear(image.data(), width, height, d);
+}
+
+glm::vec3 Environment::specular_radiance(const glm::vec3& r, float roughness) const {
+  return specular_lookup(specular, r, roughness);
+}
+
+void Environment::scale(float k) {
+  colour *= k;
+  for (glm::vec3& p : image) p *= k;
+  for (glm::vec3& c : irradiance_sh) c *= k;
+  for (glm::vec3& p : specular) p *= k;
 }
 
 glm::vec3 Environment::irradiance(const glm::vec3& n) const {
@@ -92,6 +91,8 @@ Environment uniform_environment(const glm::vec3& radiance, float intensity) {
   e.colour = radiance * intensity;
   // Only Y_00 = 1 / sqrt(4 pi): L_00 = L sqrt(4 pi), E = A_0 L_00 Y_00 = pi L.
   e.irradiance_sh[0] = e.colour * float(kPi * std::sqrt(4.0 * kPi));
+  // Every lobe average of a constant is the constant.
+  e.specular.assign(std::size_t(kSpecularWidth) * kSpecularHeight * kSpecularLevels, e.colour);
   return e;
 }
 
@@ -129,15 +130,45 @@ Environment image_environment(const std::string& source, int width, int height,
     total += row_weight[std::size_t(y)] * width;
   }
   std::array<glm::dvec3, 9> sum{};
-  for (int y = 0; y < height; ++y)
+  // direction_at, with each column's azimuth and each row's polar angle computed once.
+  std::vector<double> sin_psi(static_cast<std::size_t>(width)), cos_psi(static_cast<std::size_t>(width));
+  for (int x = 0; x < width; ++x) {
+    const double psi = 2.0 * kPi * ((x + 0.5) / width - 0.5);
+    sin_psi[std::size_t(x)] = std::sin(psi);
+    cos_psi[std::size_t(x)] = std::cos(psi);
+  }
+  for (int y = 0; y < height; ++y) {
+    const double theta = kPi * (y + 0.5) / height, st = std::sin(theta), ct = std::cos(theta);
     for (int x = 0; x < width; ++x) {
-      const glm::vec3 d = direction_at((x + 0.5) / width, (y + 0.5) / height);
+      const glm::vec3 d(float(st * sin_psi[std::size_t(x)]), float(ct), float(-st * cos_psi[std::size_t(x)]));
       const std::array<float, 9> b = sh_basis(d);
       const glm::dvec3 l(e.image[std::size_t(y) * width + x]);
       const double w = row_weight[std::size_t(y)] * 4.0 * kPi / total;
       for (int k = 0; k < 9; ++k) sum[k] += l * (double(b[k]) * w);
     }
+  }
   for (int k = 0; k < 9; ++k) e.irradiance_sh[k] = glm::vec3(sum[k] * kCosineBand[k]);
+  // The radiance on the prefilter's grid: each grid texel the solid-angle mean of the
+  // pixels whose centres fall in it, when the image is at least as fine; else the image
+  // read bilinearly at the texel's centre.
+  const int gw = kSpecularWidth, gh = kSpecularHeight;
+  std::vector<glm::vec3> grid(std::size_t(gw) * gh);
+  if (width >= gw && height >= gh) {
+    std::vector<glm::dvec3> acc(grid.size(), glm::dvec3(0.0));
+    std::vector<double> weight(grid.size(), 0.0);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::size_t cell = std::size_t((y * gh) / height) * gw + std::size_t((x * gw) / width);
+        acc[cell] += glm::dvec3(e.image[std::size_t(y) * width + x]) * row_weight[std::size_t(y)];
+        weight[cell] += row_weight[std::size_t(y)];
+      }
+    for (std::size_t i = 0; i < grid.size(); ++i) grid[i] = glm::vec3(acc[i] / std::max(weight[i], 1e-300));
+  } else {
+    for (int y = 0; y < gh; ++y)
+      for (int x = 0; x < gw; ++x)
+        grid[std::size_t(y) * gw + x] = e.radiance(direction_at((x + 0.5) / gw, (y + 0.5) / gh));
+  }
+  e.specular = prefilter_levels(grid);
   return e;
 }
 

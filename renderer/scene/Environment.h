@@ -15,6 +15,9 @@
 // A1 = 2 pi / 3, A2 = pi / 4), exact for a uniform environment and for any linear one,
 // with a mean error of a few per cent for a typical HDRI and ringing (clamped at 0) behind
 // a small bright sun.
+//
+// Specular light from it: the split sum (SplitSum.h), from `specular`, the radiance
+// averaged over the GGX lobe at kSpecularLevels roughnesses.
 #pragma once
 
 #include <glm/vec3.hpp>
@@ -33,6 +36,9 @@ struct Environment {
   // E(n) = sum_k sh[k] Y_k(n): the irradiance's coefficients (radiance coefficients x A_l),
   // in the order of sh_basis().
   std::array<glm::vec3, 9> irradiance_sh{};
+  // The prefiltered radiance: kSpecularLevels layers of kSpecularWidth x kSpecularHeight
+  // (SplitSum.h), intensity applied; what the GPU samples for specular light.
+  std::vector<glm::vec3> specular;
 
   bool uniform() const { return image.empty(); }
   // The radiance arriving from direction d (unit, pointing away from the surface).
@@ -40,6 +46,12 @@ struct Environment {
   // The irradiance of a surface of unit normal n that sees the whole sphere above it,
   // from the spherical harmonics (what the GPU evaluates), clamped at 0.
   glm::vec3 irradiance(const glm::vec3& n) const;
+  // The prefiltered radiance around the mirror direction r (unit) at perceptual roughness
+  // `roughness` (scene::specular_lookup of `specular`, as the GPU reads it).
+  glm::vec3 specular_radiance(const glm::vec3& r, float roughness) const;
+  // Every radiance it holds (image, colour, harmonics, prefiltered levels) times k >= 0:
+  // the viewer's live scale, without prefiltering again.
+  void scale(float k);
 };
 
 // The 9 real spherical harmonics Y_00, Y_1-1, Y_10, Y_11, Y_2-2, Y_2-1, Y_20, Y_21, Y_22

@@ -134,6 +134,55 @@ vec3 environment_irradiance(vec3 n) {
   return max(e, vec3(0.0));
 }
 
+#ifdef SSS_ENVIRONMENT_SPECULAR
+// The environment's specular light by the split sum (C++: renderer/scene/SplitSum.h, which
+// derives it; the same lookups, texel for texel): Lp(R, r) (F0 A + B). Needs
+// environment_specular_tex (sampler2DArray: the prefiltered levels, equirectangular) and
+// dfg_tex (sampler2D: A, B over n.v and r at texel centres).
+
+// Bilinear in one level at direction d (unit): u wraps, v clamps (scene::equirect_bilinear).
+vec3 environment_level(int layer, vec3 d) {
+  ivec2 size = textureSize(environment_specular_tex, 0).xy;
+  float u = 0.5 + atan(d.x, -d.z) / (2.0 * kPi);
+  float v = acos(clamp(d.y, -1.0, 1.0)) / kPi;
+  float fx = u * float(size.x) - 0.5;
+  float fy = clamp(v * float(size.y) - 0.5, 0.0, float(size.y - 1));
+  int x0 = int(floor(fx)), y0 = int(floor(fy));
+  float tx = fx - float(x0), ty = fy - float(y0);
+  int xa = (x0 + size.x) % size.x, xb = (x0 + 1 + size.x) % size.x;  // x0 >= -1
+  int ya = y0, yb = min(y0 + 1, size.y - 1);
+  vec3 top = texelFetch(environment_specular_tex, ivec3(xa, ya, layer), 0).rgb * (1.0 - tx) +
+             texelFetch(environment_specular_tex, ivec3(xb, ya, layer), 0).rgb * tx;
+  vec3 bottom = texelFetch(environment_specular_tex, ivec3(xa, yb, layer), 0).rgb * (1.0 - tx) +
+                texelFetch(environment_specular_tex, ivec3(xb, yb, layer), 0).rgb * tx;
+  return top * (1.0 - ty) + bottom * ty;
+}
+
+// scene::dfg_lookup: (A, B) bilinear between texel centres, clamped at the edges.
+vec2 dfg_lookup(float n_dot_v, float roughness) {
+  int n = textureSize(dfg_tex, 0).x;
+  float x = clamp(n_dot_v * float(n) - 0.5, 0.0, float(n - 1));
+  float y = clamp(roughness * float(n) - 0.5, 0.0, float(n - 1));
+  int x0 = min(int(x), n - 2), y0 = min(int(y), n - 2);
+  float fx = x - float(x0), fy = y - float(y0);
+  vec2 a = texelFetch(dfg_tex, ivec2(x0, y0), 0).xy * (1.0 - fx) + texelFetch(dfg_tex, ivec2(x0 + 1, y0), 0).xy * fx;
+  vec2 b = texelFetch(dfg_tex, ivec2(x0, y0 + 1), 0).xy * (1.0 - fx) +
+           texelFetch(dfg_tex, ivec2(x0 + 1, y0 + 1), 0).xy * fx;
+  return a * (1.0 - fy) + b * fy;
+}
+
+vec3 environment_specular(vec3 N, vec3 V, float roughness, vec3 F0) {
+  int levels = textureSize(environment_specular_tex, 0).z;
+  float f = clamp(roughness, 0.0, 1.0) * float(levels - 1);
+  int k0 = min(int(f), levels - 2);
+  float t = f - float(k0);
+  vec3 R = reflect(-V, N);
+  vec3 Lp = environment_level(k0, R) * (1.0 - t) + environment_level(k0 + 1, R) * t;
+  vec2 ab = dfg_lookup(max(dot(N, V), 1e-4), roughness);
+  return Lp * (F0 * ab.x + ab.y);
+}
+#endif
+
 struct SurfacePoint {
   int id;       // material
   vec3 P;       // world position
@@ -197,8 +246,14 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
     }
   }
   // The environment (frame.flags.z): its irradiance from the spherical harmonics, with no
-  // occlusion, entering whole (no Fresnel factor, no transmission, no specular from it).
-  if (frame.flags.z > 0.5) E += environment_irradiance(s.N);
+  // occlusion, entering whole (no Fresnel factor, no transmission); its specular by the
+  // split sum where the pass has the tables (lighting.comp).
+  if (frame.flags.z > 0.5) {
+    E += environment_irradiance(s.N);
+#ifdef SSS_ENVIRONMENT_SPECULAR
+    if (has_specular) S += environment_specular(s.N, s.V, surface.z, F0);
+#endif
+  }
   if (transmits) E += E_back / max(materials[s.id].reflectance.rgb, vec3(1e-6));
   // Pre/post albedo: sqrt(albedo) enters before scattering, the other half after it.
   if (materials[s.id].kernel.z > 0.5) E *= sqrt(s.albedo);

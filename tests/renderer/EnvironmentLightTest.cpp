@@ -5,10 +5,16 @@
 //   dL = albedo x T x L  (T the material's total diffuse reflectance, which --sss off
 //                         keeps as a Lambertian's albedo),
 // whatever the blur (follow surface falls back to the centre value, which equals every
-// other). The key light, its shadows, the specular and S(1) are the same in both frames.
+// other), on the frame less its specular target. The key light, its shadows, its specular
+// and S(1) are the same in both frames.
+//
+// The specular part: with a uniform sky every lobe average is L, so the split sum gives
+// dS = L (F0 A(n.v, r) + B(n.v, r)) exactly (scene/SplitSum.h); checked on a flat slab
+// under a perspective camera, where n.v at each pixel follows from the camera alone.
 #include "RenderTest.h"
 
 #include "renderer/scene/BuiltinScenes.h"
+#include "renderer/scene/SplitSum.h"
 
 #include <gtest/gtest.h>
 
@@ -55,13 +61,20 @@ TEST_F(EnvironmentLightTest, AUniformSkyAddsAlbedoTimesTotalReflectanceTimesItsR
     double worst = 0.0;
     for (int y = 0; y < 90; ++y)
       for (int x = 0; x < 160; ++x) {
-        const float* a = without.hdr.pixel(x, y);
-        const float* b = with.hdr.pixel(x, y);
-        if (a[3] <= 0.0f) {  // background: no light of any kind
-          for (int c = 0; c < 3; ++c) EXPECT_EQ(b[c], 0.0f) << mode.name << " background at " << x << "," << y;
+        const float* ha = without.hdr.pixel(x, y);
+        const float* hb = with.hdr.pixel(x, y);
+        if (ha[3] <= 0.0f) {  // background: no light of any kind
+          for (int c = 0; c < 3; ++c) EXPECT_EQ(hb[c], 0.0f) << mode.name << " background at " << x << "," << y;
           continue;
         }
         ++pixels;
+        const float* sa = without.specular.pixel(x, y);
+        const float* sb = with.specular.pixel(x, y);
+        float a[3], b[3];  // diffuse: the frame less its specular
+        for (int c = 0; c < 3; ++c) {
+          a[c] = ha[c] - sa[c];
+          b[c] = hb[c] - sb[c];
+        }
         for (int c = 0; c < 3; ++c) {
           const double expected = double(albedo[c]) * T[c] * sky[c];
           const double tol = mode.relative * (std::fabs(a[c]) + std::fabs(b[c])) + 1e-6;
@@ -72,6 +85,64 @@ TEST_F(EnvironmentLightTest, AUniformSkyAddsAlbedoTimesTotalReflectanceTimesItsR
     EXPECT_GT(pixels, 1000) << mode.name;
     std::printf("[ environment %s ] %d pixels, worst |dL - albedo T L| / (albedo T L) %.2e\n", mode.name, pixels,
                 worst);
+  }
+}
+
+// The edge slab with a specular lobe, seen from kHeight mm above by a perspective camera
+// looking straight down: the slab's normal is +y everywhere, so a pixel whose ray leaves
+// the axis at camera-space slope (sx, sy) has n.v = 1 / sqrt(1 + sx² + sy²), from 1 at the
+// centre to 0.38 in the corners. dS must be L (F0 A + B) at that n.v, read from the same
+// table with scene::dfg_lookup (the table itself is checked against an independent
+// quadrature in tests/scene/test_split_sum.cpp). Tolerance: the specular target is
+// rgba16f, and each frame's S loses up to one unit of its last place, 2^-10 relative:
+// Vulkan lets the conversion round either way, and lavapipe truncates (on the unlit half,
+// where the frame without the sky has S = 0, every error is negative and under 1 ulp);
+// n.v from the float camera is good to 1e-6 and the table's slope in n.v is under 3
+// (|d(F0 A + B)/dn.v| ≤ 3 at r ≥ 0.25, test_split_sum.cpp), so 1e-5 L more.
+TEST_F(EnvironmentLightTest, AUniformSkysSpecularIsTheSplitSumOfItsRadiance) {
+  constexpr int kW = 160, kH = 90;
+  constexpr double kHeightMm = 12.0, kHalfWidthMm = 20.0;
+  const glm::vec3 sky(0.5f, 0.4f, 0.3f);
+  for (const float roughness : {0.3f, 0.6f, 0.9f}) {
+    scene::Scene plain = scene::edge_scene();
+    plain.materials[0].specular = 1.0f;
+    plain.materials[0].roughness = roughness;
+    plain.materials[0].metallic = 0.0f;
+    scene::Camera& cam = plain.cameras[0];
+    const double aspect = double(kW) / kH;
+    cam.projection = scene::Projection::Perspective;
+    cam.yfov = float(2.0 * std::atan(kHalfWidthMm / kHeightMm / aspect));
+    cam.aspect = 0.0f;
+    cam.znear = float(0.1 * kHeightMm * 1e-3);
+    cam.zfar = float(10.0 * kHeightMm * 1e-3);
+    cam.world = scene::look_at_world({0.0f, float(kHeightMm * 1e-3), 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
+    scene::Scene lit = plain;
+    lit.environment = scene::uniform_environment(sky);
+    const RenderOptions options = small_options(kW, kH, SssMode::Off);
+    const Frame without = render(plain, options);
+    const Frame with = render(lit, options);
+    const double f0 = 0.04;
+    const double t = std::tan(0.5 * double(cam.yfov));
+    double worst = 0.0;
+    int pixels = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (without.hdr.pixel(x, y)[3] <= 0.0f) continue;
+        ++pixels;
+        const double sx = (2.0 * (x + 0.5) / kW - 1.0) * t * aspect, sy = (1.0 - 2.0 * (y + 0.5) / kH) * t;
+        const float nv = float(1.0 / std::sqrt(1.0 + sx * sx + sy * sy));
+        const glm::vec2 ab = scene::dfg_lookup(nv, roughness);
+        for (int c = 0; c < 3; ++c) {
+          const double a = without.specular.pixel(x, y)[c], b = with.specular.pixel(x, y)[c];
+          const double expected = double(sky[c]) * (f0 * ab.x + ab.y);
+          const double tol = std::ldexp(1.0, -10) * (std::fabs(a) + std::fabs(b)) + 1e-5 * sky[c];
+          EXPECT_NEAR(b - a, expected, tol) << "r " << roughness << " pixel " << x << "," << y << " channel " << c;
+          worst = std::max(worst, std::fabs(b - a - expected) / tol);
+        }
+      }
+    EXPECT_EQ(pixels, kW * kH) << "the slab fills the frame";
+    std::printf("[ environment specular, r %.1f ] %d pixels, worst |dS - L (F0 A + B)| / tol %.3f\n", roughness,
+                pixels, worst);
   }
 }
 

@@ -1,0 +1,34 @@
+#include "renderer/EnvironmentMaps.h"
+
+#include "renderer/scene/SplitSum.h"
+#include "renderer/vk/Context.h"
+#include "renderer/vk/Transfer.h"
+
+#include <span>
+#include <vector>
+
+namespace sss::renderer {
+
+EnvironmentMaps::EnvironmentMaps(const vk::Context& context) : context_(context) {
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  vk::ImageDesc levels(scene::kSpecularWidth, scene::kSpecularHeight, VK_FORMAT_R32G32B32A32_SFLOAT, usage,
+                       "environment specular");
+  levels.array_layers = scene::kSpecularLevels;
+  levels.view_type = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  specular_ = vk::Image(context, levels);
+  dfg_ = vk::Image(context, {scene::kDfgSize, scene::kDfgSize, VK_FORMAT_R32G32_SFLOAT, usage, "dfg"});
+  const std::vector<glm::vec2>& table = scene::dfg_table();
+  vk::upload_image(context, dfg_, std::as_bytes(std::span(table)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  upload(std::nullopt);
+}
+
+void EnvironmentMaps::upload(const std::optional<scene::Environment>& environment) {
+  const std::size_t texels = std::size_t(scene::kSpecularWidth) * scene::kSpecularHeight * scene::kSpecularLevels;
+  std::vector<float> rgba(texels * 4, 0.0f);
+  if (environment && environment->specular.size() == texels)
+    for (std::size_t i = 0; i < texels; ++i)
+      for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = environment->specular[i][c];
+  vk::upload_image(context_, specular_, std::as_bytes(std::span(rgba)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+}  // namespace sss::renderer

@@ -1,0 +1,36 @@
+// The environment's specular tables on the GPU (scene/SplitSum.h): the prefiltered
+// radiance (kSpecularLevels layers of kSpecularWidth x kSpecularHeight, rgba32f, 2D array)
+// and the DFG table (kDfgSize², rg32f). Both are read with texelFetch (lighting.comp through
+// shading.glsl), so they need no filtering support and match the C++ lookups bit for bit in
+// their arithmetic. Both stay in SHADER_READ_ONLY_OPTIMAL; without an environment the
+// levels hold 0 (and the frame's flag keeps the shader from reading them).
+#pragma once
+
+#include "renderer/scene/Environment.h"
+#include "renderer/vk/Image.h"
+
+#include <optional>
+
+namespace sss::vk {
+class Context;
+}
+
+namespace sss::renderer {
+
+class EnvironmentMaps {
+ public:
+  explicit EnvironmentMaps(const vk::Context& context);
+  // Uploads the levels of `environment` (zeros for none); waits for the copy, so no frame
+  // may be in flight (Renderer::set_environment waits for the device first).
+  void upload(const std::optional<scene::Environment>& environment);
+
+  const vk::Image& specular() const { return specular_; }
+  const vk::Image& dfg() const { return dfg_; }
+
+ private:
+  const vk::Context& context_;
+  vk::Image specular_;
+  vk::Image dfg_;
+};
+
+}  // namespace sss::renderer
