@@ -15,7 +15,13 @@ CameraSetup make_camera_setup(const scene::Camera& camera, std::uint32_t width,
   c.position = camera.position();
   c.forward = camera.forward();
   c.orthographic = camera.projection == scene::Projection::Orthographic;
-  c.proj = scene::clip_from_view(camera, width, height);
+  // Reversed depth: P rebuilt from the depth buffer (lighting.comp) stays within ~1e-7 of
+  // its distance whatever the camera's znear. With the usual mapping a glTF camera's
+  // znear of 0.05 and zfar of 1e6 (2CylinderEngine.glb) left one float step of depth a
+  // whole scene unit deep at 1000 units, more than the shadow test's bias: the shadow map
+  // then shadowed lit faces in stripes (shadow acne that no bias scaled to the scene
+  // removes; issue 20).
+  c.proj = scene::clip_from_view(camera, width, height, /*reversed_depth=*/true);
   return c;
 }
 
@@ -32,7 +38,8 @@ shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32
   shader::FrameUniforms u;
   const glm::mat4 view_proj = camera.proj * camera.view;
   u.view_proj = to_shader(view_proj);
-  u.inv_view_proj = to_shader(glm::inverse(view_proj));
+  // Inverted in double: its entries span the scene's distances and their reciprocals.
+  u.inv_view_proj = to_shader(glm::mat4(glm::inverse(glm::dmat4(camera.proj) * glm::dmat4(camera.view))));
   u.inv_proj = to_shader(glm::inverse(camera.proj));
   u.camera = {camera.position.x, camera.position.y, camera.position.z,
               camera.orthographic ? 1.0f : 0.0f};

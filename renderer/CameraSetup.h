@@ -15,7 +15,7 @@ namespace sss::renderer {
 
 struct CameraSetup {
   glm::mat4 view{1.0f};
-  glm::mat4 proj{1.0f};  // Vulkan clip space: y flipped, z in [0, 1]
+  glm::mat4 proj{1.0f};  // Vulkan clip space: y flipped, z in [0, 1] reversed (1 at the near plane)
   bool orthographic = false;
   glm::vec3 position{0.0f};
   glm::vec3 forward{0.0f, 0.0f, -1.0f};

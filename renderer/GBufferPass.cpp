@@ -45,7 +45,8 @@ vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout l
       .color(kAlbedoFormat);
   if (uv_stretch) builder.color(kUvStretchFormat);
   add_vertex_input(builder);
-  return builder.depth(kDepthFormat, vk::DepthTest::Write)
+  // Reversed depth (CameraSetup.h): nearer is larger, the buffer clears to 0 (the far plane).
+  return builder.depth(kDepthFormat, vk::DepthTest::Write, VK_COMPARE_OP_GREATER)
       .cull(VK_CULL_MODE_NONE)
       .build(context, layout, uv_stretch ? "gbuffer uv stretch" : "gbuffer");
 }
@@ -74,7 +75,7 @@ void GBufferPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
   const std::array<vk::ColorTarget, 3> colors = {vk::ColorTarget(t.normal.view()),
                                                  vk::ColorTarget(t.albedo.view()),
                                                  vk::ColorTarget(t.uv_stretch.view())};
-  const vk::DepthTarget depth(t.depth.view());
+  const vk::DepthTarget depth(t.depth.view(), 0.0f);  // reversed depth: 0 is the far plane
   vk::begin_rendering(cmd, t.depth.extent(),
                       std::span<const vk::ColorTarget>(colors.data(), uv_stretch_ ? 3 : 2), &depth);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,

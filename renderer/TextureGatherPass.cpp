@@ -29,7 +29,7 @@ vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout l
   builder.vertex_shader(sss_spv_gbuffer_vert)
       .fragment_shader(sss_spv_texture_gather_frag)
       .color(kLightingFormat)
-      .depth(kDepthFormat, vk::DepthTest::ReadOnly, VK_COMPARE_OP_LESS_OR_EQUAL)
+      .depth(kDepthFormat, vk::DepthTest::ReadOnly, VK_COMPARE_OP_GREATER_OR_EQUAL)  // reversed depth
       .dynamic_depth_bias()
       .cull(VK_CULL_MODE_NONE);
   add_vertex_input(builder);
@@ -90,11 +90,11 @@ void TextureGatherPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
                             nullptr);
     // The lookup's depth need not be bit-identical to the G-buffer's (lavapipe compiles the
     // same vertex shader per pipeline; `invariant` draws a Mesa warning), so it is pulled
-    // toward the camera by a few units of depth resolution: the visible surface passes,
+    // toward the camera (up: reversed depth) by a few units of depth resolution: the visible surface passes,
     // what lies behind it does not. No slope-scaled term: at a silhouette it let the back
     // of the sphere through (TextureSpaceTest.SphereSeamShowsNoLine: 2.75% there); with
     // this bias no scattering pixel of the bunny, sphere or materials misses its lookup.
-    vkCmdSetDepthBias(cmd, -kLookupBiasUnits, 0.0f, -kLookupBiasSlope);
+    vkCmdSetDepthBias(cmd, kLookupBiasUnits, 0.0f, kLookupBiasSlope);
     for (const auto& [instance, object] : draws_)
       r_.scene.draw_instance(cmd, layout_.get(), instance, object);
   }

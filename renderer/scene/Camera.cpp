@@ -13,16 +13,20 @@ glm::vec3 Camera::forward() const { return glm::normalize(-glm::vec3(world[2]));
 glm::vec3 Camera::up() const { return glm::normalize(glm::vec3(world[1])); }
 glm::mat4 Camera::view() const { return glm::inverse(world); }
 
-glm::mat4 clip_from_view(const Camera& camera, std::uint32_t width, std::uint32_t height) {
+glm::mat4 clip_from_view(const Camera& camera, std::uint32_t width, std::uint32_t height, bool reversed_depth) {
   const float aspect = float(width) / float(height);
   glm::mat4 proj;
+  // Swapping the planes maps the near one to depth 1 and the far one to 0 (glm's _ZO
+  // forms are linear in 1/z or z between the two planes it is given).
   if (camera.projection == Projection::Orthographic) {
     const glm::vec2 half = camera.ortho_half_extent(aspect);
-    proj = glm::orthoRH_ZO(-half.x, half.x, -half.y, half.y, camera.znear, camera.zfar);
+    const float n = reversed_depth ? camera.zfar : camera.znear, f = reversed_depth ? camera.znear : camera.zfar;
+    proj = glm::orthoRH_ZO(-half.x, half.x, -half.y, half.y, n, f);
   } else {
     const float a = camera.aspect > 0.0f ? camera.aspect : aspect;
     const float zfar = camera.zfar > 0.0f ? camera.zfar : camera.znear * 1.0e5f;
-    proj = glm::perspectiveRH_ZO(camera.yfov, a, camera.znear, zfar);
+    proj = reversed_depth ? glm::perspectiveRH_ZO(camera.yfov, a, zfar, camera.znear)
+                          : glm::perspectiveRH_ZO(camera.yfov, a, camera.znear, zfar);
   }
   proj[1][1] = -proj[1][1];  // Vulkan: image y points down
   return proj;

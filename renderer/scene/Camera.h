@@ -42,7 +42,11 @@ struct Camera {
 // The projection both renderers use for an image of width x height pixels: Vulkan clip
 // space (image y down, depth in [0, 1]; an infinite far plane becomes znear * 1e5).
 // Pixel (x, y) of the image covers NDC [2x/w - 1, 2(x+1)/w - 1] x [2y/h - 1, ...].
-glm::mat4 clip_from_view(const Camera& camera, std::uint32_t width, std::uint32_t height);
+// reversed_depth: depth 1 at the near plane and 0 at the far one (the GPU's depth buffer,
+// renderer/CameraSetup.h: a float depth then keeps ~2^-24 of relative precision at every
+// distance, where the usual mapping crowds it at the near plane); x, y and w are the same.
+glm::mat4 clip_from_view(const Camera& camera, std::uint32_t width, std::uint32_t height,
+                         bool reversed_depth = false);
 
 // A rigid transform at `eye` looking at `target`; `up` must not be parallel to the view.
 glm::mat4 look_at_world(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up);
