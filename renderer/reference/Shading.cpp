@@ -161,8 +161,15 @@ double light_visibility(const RayScene& rays, std::size_t index, const SurfacePo
 }
 
 glm::dvec3 environment_irradiance(const scene::Environment& env, const RayScene& rays, const SurfacePoint& p,
-                                  const glm::vec3& n, bool as_gpu) {
-  if (as_gpu) return glm::dvec3(env.irradiance(n));
+                                  const glm::vec3& n, bool as_gpu, const glm::dvec3* entry_eta) {
+  if (as_gpu) {
+    glm::dvec3 e(env.irradiance(n));
+    // The GPU's entry factor for a sky: c, the cosine-weighted mean of F_t over the
+    // hemisphere (shading.glsl), exact for a uniform sky.
+    if (entry_eta)
+      for (int c = 0; c < 3; ++c) e[c] *= profiles::fresnel_exit_normalization((*entry_eta)[c]);
+    return e;
+  }
   // E = integral of L(w) V(w) cos over the hemisphere = pi E_cos[L V] for w drawn with
   // density cos / pi: kEnvironmentStrata^2 stratified samples (Shirley & Chiu's map of the
   // square to the disc would do as well; sqrt(u1) and 2 pi u2 keep the strata compact
@@ -188,7 +195,10 @@ glm::dvec3 environment_irradiance(const scene::Environment& env, const RayScene&
                                          n * float(std::sqrt(std::max(0.0, 1.0 - u1))));
       const glm::vec3 side = glm::dot(p.geometric_normal, w) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
       if (rays.occluded(p.position_mm + side * offset, w, 0.0f, std::numeric_limits<float>::infinity())) continue;
-      sum += glm::dvec3(env.radiance(w));
+      glm::dvec3 l(env.radiance(w));
+      if (entry_eta)  // the part that enters at this direction's cosine
+        for (int c = 0; c < 3; ++c) l[c] *= profiles::fresnel_transmittance(glm::dot(n, w), (*entry_eta)[c]);
+      sum += l;
     }
   return sum * (kPi / double(k * k));
 }
@@ -248,10 +258,10 @@ DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const Surf
                          const glm::vec3& n, const SpecularInputs* spec, const ShadowMaps* maps,
                          const glm::dvec3* entry_eta) {
   DirectLight out;
-  // The environment enters whole, as on the GPU (no Fresnel factor); its specular is
-  // sampled (or, with the GPU's shadow maps, the GPU's split sum).
+  // The environment: with directional Fresnel (entry_eta), the part that enters; its
+  // specular is sampled (or, with the GPU's shadow maps, the GPU's split sum).
   if (s.environment) {
-    out.irradiance += environment_irradiance(*s.environment, rays, p, n, maps != nullptr);
+    out.irradiance += environment_irradiance(*s.environment, rays, p, n, maps != nullptr, entry_eta);
     if (spec) out.specular += environment_specular(*s.environment, rays, p, n, *spec, maps != nullptr);
   }
   for (std::size_t index = 0; index < s.lights.size(); ++index) {

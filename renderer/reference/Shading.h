@@ -48,9 +48,12 @@ glm::vec3 shading_normal(const scene::Scene& scene, const SurfacePoint& p, const
 // (scene::Environment::irradiance: spherical harmonics, no occlusion; the GPU-shadow mode
 // of direct_light). Otherwise the true one: kEnvironmentStrata² stratified cosine-weighted
 // directions with shadow rays and the full-resolution radiance, deterministic per point.
+// entry_eta (per channel; directional Fresnel on a subsurface material): only the part
+// that enters, each direction times F_t(η, n.w), or as the GPU takes it, times
+// c = profiles::fresnel_exit_normalization(η), F_t's cosine-weighted mean.
 inline constexpr int kEnvironmentStrata = 8;
 glm::dvec3 environment_irradiance(const scene::Environment& env, const RayScene& rays, const SurfacePoint& p,
-                                  const glm::vec3& n, bool as_gpu);
+                                  const glm::vec3& n, bool as_gpu, const glm::dvec3* entry_eta = nullptr);
 
 struct SpecularInputs;
 // The environment's specular radiance towards spec.to_eye at p (normal n): as_gpu, the

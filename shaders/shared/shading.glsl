@@ -246,10 +246,14 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
     }
   }
   // The environment (frame.flags.z): its irradiance from the spherical harmonics, with no
-  // occlusion, entering whole (no Fresnel factor, no transmission); its specular by the
-  // split sum where the pass has the tables (lighting.comp).
+  // occlusion and no transmission; with directional Fresnel, a subsurface material takes
+  // the part of it that enters, c = the cosine-weighted mean of F_t over the hemisphere
+  // (1 / exit_norm; exact for a uniform sky, which the GPU cannot tell from others); its
+  // specular by the split sum where the pass has the tables (lighting.comp).
   if (frame.flags.z > 0.5) {
-    E += environment_irradiance(s.N);
+    vec3 sky = environment_irradiance(s.N);
+    if (subsurface && frame.flags.x > 0.5) sky /= materials[s.id].exit_norm.rgb;
+    E += sky;
 #ifdef SSS_ENVIRONMENT_SPECULAR
     if (has_specular) S += environment_specular(s.N, s.V, surface.z, F0);
 #endif

@@ -118,6 +118,40 @@ TEST(ReferenceEnvironment, ALinearSkyIsSampledWithoutBias) {
   EXPECT_LT(std::sqrt(var), 0.05 * kPi * b);
 }
 
+// With directional Fresnel only the part that enters counts: for a uniform sky each point
+// gets pi L c(eta), c the cosine-weighted mean of F_t (profiles::fresnel_exit_normalization,
+// integrated by its own quadrature), per channel; here each of 64 stratified directions is
+// weighted by its own F_t, so |Z| < 4 over 100 points as above. On the GPU's terms it is
+// the harmonics times c exactly.
+TEST(ReferenceEnvironment, WithDirectionalFresnelASkyEntersByTheHemispheresTransmittance) {
+  const Sphere s;
+  const RayScene rays(s.scene);
+  const float L = 0.7f;
+  const scene::Environment env = scene::uniform_environment({L, L, L});
+  const glm::dvec3 eta(1.0, 1.3, 1.6);
+  glm::dvec3 c;
+  for (int k = 0; k < 3; ++k) c[k] = profiles::fresnel_exit_normalization(eta[k]);
+  std::vector<glm::dvec3> residual;
+  for (const glm::vec3& n : directions(100)) {
+    const glm::dvec3 e = environment_irradiance(env, rays, s.point(n, 1.01f), n, false, &eta);
+    residual.push_back(e - kPi * double(L) * c);
+    const glm::dvec3 gpu = environment_irradiance(env, rays, s.point(n, 1.01f), n, true, &eta);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(gpu[k], double(env.irradiance(n)[k]) * c[k]);
+  }
+  for (int k = 0; k < 3; ++k) {
+    double mean = 0.0, var = 0.0;
+    for (const glm::dvec3& r : residual) mean += r[k];
+    mean /= double(residual.size());
+    for (const glm::dvec3& r : residual) var += (r[k] - mean) * (r[k] - mean);
+    var /= double(residual.size() - 1);
+    const double se = std::sqrt(var / double(residual.size()));
+    std::printf("[ environment entry, eta %.1f ] c %.5f, mean residual %.2e, Z %.2f\n", eta[k], c[k], mean,
+                se > 0.0 ? mean / se : 0.0);
+    EXPECT_LT(std::fabs(mean), 4.0 * se + 1e-9) << "eta " << eta[k];
+  }
+  EXPECT_NEAR(c[0], 1.0, 1e-12);  // eta 1: nothing is reflected
+}
+
 // A view direction at cosine nv to n, turned by `turn` about it.
 glm::vec3 view_at(const glm::vec3& n, double nv, double turn) {
   const glm::vec3 t = std::fabs(n.x) > 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);

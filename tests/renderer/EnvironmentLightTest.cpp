@@ -15,6 +15,7 @@
 
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/scene/SplitSum.h"
+#include "profiles/Fresnel.h"
 
 #include <gtest/gtest.h>
 
@@ -85,6 +86,51 @@ TEST_F(EnvironmentLightTest, AUniformSkyAddsAlbedoTimesTotalReflectanceTimesItsR
     EXPECT_GT(pixels, 1000) << mode.name;
     std::printf("[ environment %s ] %d pixels, worst |dL - albedo T L| / (albedo T L) %.2e\n", mode.name, pixels,
                 worst);
+  }
+}
+
+// With directional Fresnel a subsurface material takes the part of a sky that enters,
+// c = profiles::fresnel_exit_normalization(eta) (exact for a uniform sky), and the
+// composite lets M F_t(eta, n.v) / (c pi) out, so the frame's diffuse part grows by
+//   dL = albedo x T x L x F_t(eta, n.v)
+// at each pixel, n.v being what the composite itself reads (the specular target's alpha).
+// Same float bounds as the test above; F_t is evaluated here in double and on the GPU in
+// float from the same stored n.v (1e-6 more).
+TEST_F(EnvironmentLightTest, WithDirectionalFresnelTheSkyEntersAndLeavesThroughTheBoundary) {
+  const glm::vec3 sky(0.5f, 0.4f, 0.3f);
+  const Mode modes[] = {{SssMode::Off, SssKind::Separable, "off", 5e-5},
+                        {SssMode::Screen, SssKind::Separable, "separable", 5e-5}};
+  for (const Mode& mode : modes) {
+    scene::Scene plain = scene::sphere_scene();
+    scene::Scene lit = plain;
+    lit.environment = scene::uniform_environment(sky);
+    RenderOptions options = small_options(160, 90, mode.sss, mode.kind);
+    options.fresnel = true;
+    const Frame without = render(plain, options);
+    const Frame with = render(lit, options);
+    const glm::vec4 albedo = plain.materials[0].base_color;
+    const auto eta = plain.materials[0].sss.medium.eta;
+    const MaterialProfile& p = *with.materials.profiles[0];
+    int pixels = 0;
+    double worst = 0.0;
+    for (int y = 0; y < 90; ++y)
+      for (int x = 0; x < 160; ++x) {
+        if (without.hdr.pixel(x, y)[3] <= 0.0f) continue;
+        ++pixels;
+        const double nv = with.specular.pixel(x, y)[3];
+        for (int c = 0; c < 3; ++c) {
+          const double a = without.hdr.pixel(x, y)[c] - without.specular.pixel(x, y)[c];
+          const double b = with.hdr.pixel(x, y)[c] - with.specular.pixel(x, y)[c];
+          const double T = mode.kind == SssKind::Separable ? p.kernel.total_reflectance[c] : p.fit.total_reflectance[c];
+          const double expected = double(albedo[c]) * T * sky[c] * profiles::fresnel_transmittance(nv, eta[c]);
+          const double tol = mode.relative * (std::fabs(a) + std::fabs(b)) + 1e-6;
+          EXPECT_NEAR(b - a, expected, tol) << mode.name << " pixel " << x << "," << y << " channel " << c;
+          if (expected > 0.0) worst = std::max(worst, std::fabs(b - a - expected) / tol);
+        }
+      }
+    EXPECT_GT(pixels, 1000) << mode.name;
+    std::printf("[ environment with Fresnel, %s ] %d pixels, worst |dL - albedo T L F_t| / tol %.3f\n", mode.name,
+                pixels, worst);
   }
 }
 
