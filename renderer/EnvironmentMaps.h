@@ -1,8 +1,8 @@
 // The environment's specular tables on the GPU (scene/SplitSum.h): the prefiltered
 // radiance (kSpecularLevels layers of kSpecularWidth x kSpecularHeight, rgba32f, 2D array)
 // and the DFG table (kDfgSize², rg32f). Both are read with texelFetch (lighting.comp through
-// shading.glsl), so they need no filtering support and match the C++ lookups bit for bit in
-// their arithmetic. Both stay in SHADER_READ_ONLY_OPTIMAL; without an environment the
+// shading.glsl), so they need no filtering support and go through the same arithmetic as the
+// C++ lookups (in float, with the GPU's own atan and acos). Both stay in SHADER_READ_ONLY_OPTIMAL; without an environment the
 // levels hold 0 (and the frame's flag keeps the shader from reading them).
 #pragma once
 

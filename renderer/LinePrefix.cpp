@@ -52,9 +52,9 @@ void LinePrefix::record(VkCommandBuffer cmd, const vk::Image& input, bool vertic
   shader::BlurPush push;
   push.direction = vertical ? shader::vec4{0, 1, 0, 0} : shader::vec4{1, 0, 0, 0};
   vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-  // One invocation per row (horizontal) or column (vertical) of the rect.
+  // One workgroup per row (horizontal) or column (vertical) of the rect (sss_prefix.comp).
   const uint32_t lines = vertical ? r_.rect.width() : r_.rect.height();
-  vkCmdDispatch(cmd, vk::group_count(lines, shader::kWorkgroup1D), 1, 1);
+  vkCmdDispatch(cmd, std::max(lines, 1u), 1, 1);
   compute_barrier(cmd);
 }
 

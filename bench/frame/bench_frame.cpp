@@ -7,7 +7,8 @@
 //   bench_frame [SCENE] [--width W] [--height H] [--frames N] [--warmup N]
 //               [--sss off|screen|texture] [--mode separable|gaussians] [--taps N]
 //               [--transmission on|off] [--single-scattering on|off] [--aa off|fxaa] [--look-away] [--texture-size N]
-//               [--texture-update every-frame|on-change] [--objects N] [--out FILE.png]
+//               [--texture-update every-frame|on-change] [--objects N] [--environment R,G,B|FILE.exr]
+//               [--out FILE.png]
 // --objects N: N copies of the scene's instances side by side along x (one bounding
 // diameter apart), the camera moved back along its view to frame them all (issue 6: the
 // texture path's cost against the screen path for one and for three SSS objects).
@@ -16,6 +17,7 @@
 #include "renderer/Renderer.h"
 #include "renderer/image/Image.h"
 #include "renderer/scene/BuiltinScenes.h"
+#include "renderer/scene/Environment.h"
 #include "renderer/vk/Context.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -37,7 +39,7 @@ int usage(const char* message) {
                "bench_frame: %s\nusage: bench_frame [SCENE] [--width W] [--height H] "
                "[--frames N] [--warmup N] [--sss off|screen|texture] [--mode separable|gaussians] "
                "[--taps N] [--transmission on|off] [--single-scattering on|off] [--aa off|fxaa] [--look-away] [--texture-size N] "
-               "[--texture-update every-frame|on-change] [--objects N]\n",
+               "[--texture-update every-frame|on-change] [--objects N] [--environment R,G,B|FILE.exr]\n",
                message);
   return 2;
 }
@@ -68,6 +70,7 @@ int main(int argc, char** argv) {
   bool look_away = false;  // turn the camera around: an all-background frame (masking cost)
   int objects = 1;
   std::string out;  // --out FILE.png: the last frame, to see what was measured
+  std::string environment;  // --environment: a sky (scene::load_environment), for its cost
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
@@ -119,6 +122,8 @@ int main(int argc, char** argv) {
       const auto aa = renderer::parse_antialias(value());
       if (!aa) return usage("--aa: expected off or fxaa");
       options.antialias = *aa;
+    } else if (arg == "--environment") {
+      environment = value();
     } else if (arg == "--mode") {
       const auto kind = renderer::parse_sss_kind(value());
       if (!kind) return usage("--mode: expected separable or gaussians");
@@ -133,6 +138,13 @@ int main(int argc, char** argv) {
   scene::Scene scene = std::move(std::get<scene::Scene>(loaded));
   scene::add_camera_if_missing(scene);
   scene::add_light_if_missing(scene);
+  if (!environment.empty()) {
+    try {
+      scene.environment = scene::load_environment(environment);
+    } catch (const std::exception& e) {
+      return usage(e.what());
+    }
+  }
   if (objects > 1) {
     const scene::Bounds one = scene.bounds();
     const float step = 2.0f * one.radius();

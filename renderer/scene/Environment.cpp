@@ -158,7 +158,9 @@ Environment image_environment(const std::string& source, int width, int height,
     std::vector<double> weight(grid.size(), 0.0);
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
-        const std::size_t cell = std::size_t((y * gh) / height) * gw + std::size_t((x * gw) / width);
+        // The cell that holds the pixel's centre.
+        const std::size_t cell =
+            std::size_t(((2 * y + 1) * gh) / (2 * height)) * gw + std::size_t(((2 * x + 1) * gw) / (2 * width));
         acc[cell] += glm::dvec3(e.image[std::size_t(y) * width + x]) * row_weight[std::size_t(y)];
         weight[cell] += row_weight[std::size_t(y)];
       }

@@ -110,7 +110,8 @@ glm::vec2 dfg_lookup(float n_dot_v, float roughness) {
 
 glm::vec3 equirect_bilinear(const glm::vec3* image, int width, int height, const glm::vec3& d) {
   const glm::vec3 n = glm::normalize(d);
-  const double u = 0.5 + std::atan2(double(n.x), double(-n.z)) / (2.0 * kPi);
+  // Straight up or down, u = 1/2 (GLSL's atan(0, 0) is undefined; atan2 would give 0 or pi).
+  const double u = (n.x == 0.0f && n.z == 0.0f) ? 0.5 : 0.5 + std::atan2(double(n.x), double(-n.z)) / (2.0 * kPi);
   const double v = std::acos(std::clamp(double(n.y), -1.0, 1.0)) / kPi;
   const double fx = u * width - 0.5, fy = std::clamp(v * height - 0.5, 0.0, double(height - 1));
   const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));

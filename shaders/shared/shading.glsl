@@ -136,14 +136,15 @@ vec3 environment_irradiance(vec3 n) {
 
 #ifdef SSS_ENVIRONMENT_SPECULAR
 // The environment's specular light by the split sum (C++: renderer/scene/SplitSum.h, which
-// derives it; the same lookups, texel for texel): Lp(R, r) (F0 A + B). Needs
+// derives it; the same lookups, in float): Lp(R, r) (F0 A + B). Needs
 // environment_specular_tex (sampler2DArray: the prefiltered levels, equirectangular) and
 // dfg_tex (sampler2D: A, B over n.v and r at texel centres).
 
 // Bilinear in one level at direction d (unit): u wraps, v clamps (scene::equirect_bilinear).
 vec3 environment_level(int layer, vec3 d) {
   ivec2 size = textureSize(environment_specular_tex, 0).xy;
-  float u = 0.5 + atan(d.x, -d.z) / (2.0 * kPi);
+  // atan(0, 0) is undefined in GLSL: straight up or down, u = 1/2 (as in C++).
+  float u = (d.x == 0.0 && d.z == 0.0) ? 0.5 : 0.5 + atan(d.x, -d.z) / (2.0 * kPi);
   float v = acos(clamp(d.y, -1.0, 1.0)) / kPi;
   float fx = u * float(size.x) - 0.5;
   float fy = clamp(v * float(size.y) - 0.5, 0.0, float(size.y - 1));

@@ -3,9 +3,8 @@
 // outgoing hemisphere in (theta_l, phi_l): no importance sampling and no code shared with
 // scene::dfg_integrate, so the split-sum tests have an independent value.
 //   A = integral f/F (1 - Fc) n.l dl,  B = integral f/F Fc n.l dl,  f/F = D vis.
-// The theta grid is denser near the mirror direction's polar angle's range only through
-// its size: n_theta x n_phi cells; phi over [0, pi] doubled (the lobe is symmetric about
-// the plane of n and v).
+// A uniform grid of n_theta x n_phi cells; phi over [0, pi], doubled (the lobe is
+// symmetric about the plane of n and v).
 #pragma once
 
 #include <glm/vec2.hpp>

@@ -21,6 +21,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 
 namespace sss::renderer::testing {
 namespace {
@@ -137,7 +141,7 @@ TEST_F(EnvironmentLightTest, WithDirectionalFresnelTheSkyEntersAndLeavesThroughT
 // The edge slab with a specular lobe, seen from kHeight mm above by a perspective camera
 // looking straight down: the slab's normal is +y everywhere, so a pixel whose ray leaves
 // the axis at camera-space slope (sx, sy) has n.v = 1 / sqrt(1 + sx² + sy²), from 1 at the
-// centre to 0.38 in the corners. dS must be L (F0 A + B) at that n.v, read from the same
+// centre to 0.46 in the corners. dS must be L (F0 A + B) at that n.v, read from the same
 // table with scene::dfg_lookup (the table itself is checked against an independent
 // quadrature in tests/scene/test_split_sum.cpp). Tolerance: the specular target is
 // rgba16f, and each frame's S loses up to one unit of its last place, 2^-10 relative:
@@ -189,6 +193,75 @@ TEST_F(EnvironmentLightTest, AUniformSkysSpecularIsTheSplitSumOfItsRadiance) {
     EXPECT_EQ(pixels, kW * kH) << "the slab fills the frame";
     std::printf("[ environment specular, r %.1f ] %d pixels, worst |dS - L (F0 A + B)| / tol %.3f\n", roughness,
                 pixels, worst);
+  }
+}
+
+// The prefiltered lookup on the GPU against scene::specular_lookup in C++, on a sky that
+// changes along u and v (so a flipped axis, a wrong wrap or swapped levels would show), on
+// the slab in perspective: each pixel's dS must be Lp(R, r) (F0 A + B), R the mirror of
+// its view ray about the slab's normal. Tolerance: the rgba16f bound above, plus what the
+// GPU's atan and acos may change: Vulkan allows them 4096 ulp, 1.5e-3 rad at most, so
+// the larger change of Lp when R turns by 2e-3 rad in azimuth or in elevation, computed
+// per pixel; plus 1e-5 of the sky's largest radiance for n.v (as above).
+TEST_F(EnvironmentLightTest, AnImageSkysSpecularIsThePrefilteredLookup) {
+  constexpr int kW = 160, kH = 90, kSkyW = 64, kSkyH = 32;
+  constexpr double kHeightMm = 12.0, kHalfWidthMm = 20.0;
+  std::vector<float> rgba(std::size_t(kSkyW) * kSkyH * 4, 1.0f);
+  for (int y = 0; y < kSkyH; ++y)
+    for (int x = 0; x < kSkyW; ++x) {
+      float* p = &rgba[(std::size_t(y) * kSkyW + x) * 4];
+      const float u = (x + 0.5f) / kSkyW, v = (y + 0.5f) / kSkyH;
+      p[0] = 0.2f + 0.6f * u;
+      p[1] = 0.2f + 0.6f * v;
+      p[2] = 0.1f + 0.8f * u * (1.0f - v);
+    }
+  const scene::Environment sky = scene::image_environment("gradient", kSkyW, kSkyH, rgba);
+  for (const float roughness : {0.25f, 0.5f, 0.8f}) {
+    scene::Scene plain = scene::edge_scene();
+    plain.materials[0].specular = 1.0f;
+    plain.materials[0].roughness = roughness;
+    plain.materials[0].metallic = 0.0f;
+    scene::Camera& cam = plain.cameras[0];
+    const double aspect = double(kW) / kH;
+    cam.projection = scene::Projection::Perspective;
+    cam.yfov = float(2.0 * std::atan(kHalfWidthMm / kHeightMm / aspect));
+    cam.aspect = 0.0f;
+    cam.znear = float(0.1 * kHeightMm * 1e-3);
+    cam.zfar = float(10.0 * kHeightMm * 1e-3);
+    cam.world = scene::look_at_world({0.0f, float(kHeightMm * 1e-3), 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
+    scene::Scene lit = plain;
+    lit.environment = sky;
+    const RenderOptions options = small_options(kW, kH, SssMode::Off);
+    const Frame without = render(plain, options);
+    const Frame with = render(lit, options);
+    const double f0 = 0.04, t = std::tan(0.5 * double(cam.yfov));
+    const glm::mat3 to_world(cam.world);
+    double worst = 0.0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const glm::vec3 d = glm::normalize(
+            to_world * glm::vec3(float((2.0 * (x + 0.5) / kW - 1.0) * t * aspect), float((1.0 - 2.0 * (y + 0.5) / kH) * t), -1.0f));
+        const glm::vec3 r(d.x, -d.y, d.z);  // mirrored about +y
+        const float nv = -d.y;
+        const glm::vec2 ab = scene::dfg_lookup(nv, roughness);
+        const double k = f0 * ab.x + ab.y;
+        const glm::vec3 lp = sky.specular_radiance(r, roughness);
+        // Lp's change when r turns by 2e-3 rad about +y, or towards / away from +y.
+        const float turn = 2e-3f;
+        const glm::vec3 around(r.x * std::cos(turn) + r.z * std::sin(turn), r.y, -r.x * std::sin(turn) + r.z * std::cos(turn));
+        const glm::vec3 side = glm::normalize(glm::cross(r, glm::vec3(0.0f, 1.0f, 0.0f)));
+        const glm::vec3 up = glm::normalize(r * std::cos(turn) + glm::cross(side, r) * std::sin(turn));
+        const glm::vec3 moved = glm::max(glm::abs(sky.specular_radiance(around, roughness) - lp),
+                                         glm::abs(sky.specular_radiance(up, roughness) - lp));
+        for (int c = 0; c < 3; ++c) {
+          const double a = without.specular.pixel(x, y)[c], b = with.specular.pixel(x, y)[c];
+          const double expected = double(lp[c]) * k;
+          const double tol = std::ldexp(1.0, -10) * (std::fabs(a) + std::fabs(b)) + double(moved[c]) * k + 1e-5;
+          EXPECT_NEAR(b - a, expected, tol) << "r " << roughness << " pixel " << x << "," << y << " channel " << c;
+          worst = std::max(worst, std::fabs(b - a - expected) / tol);
+        }
+      }
+    std::printf("[ environment specular, image sky, r %.2f ] worst |dS - Lp (F0 A + B)| / tol %.3f\n", roughness, worst);
   }
 }
 

@@ -83,14 +83,24 @@ TEST(SplitSum, TheLookupIsWithinOnePercentBetweenTheNodes) {
   std::printf("[ dfg ] largest |d(F0 A + B)/d n.v| at r >= 0.25: %.3f\n", slope);
 }
 
+// A uniform sky, given as a uniform sky and as a constant image (which goes through the
+// quadrature): every lobe average is the constant, to float rounding of the normalised
+// weights (4 ulp).
 TEST(SplitSum, AUniformSkyIsItsOwnLobeAverageAtEveryLevel) {
-  const Environment e = uniform_environment({0.3f, 0.6f, 1.2f}, 2.0f);
-  ASSERT_EQ(e.specular.size(), std::size_t(kSpecularWidth) * kSpecularHeight * kSpecularLevels);
-  for (const float r : {0.0f, 0.13f, 0.5f, 0.77f, 1.0f})
-    for (const glm::vec3 d : {glm::vec3(0, 1, 0), glm::vec3(0.3f, -0.2f, 0.9f), glm::vec3(-1, 0, 0)}) {
-      const glm::vec3 l = e.specular_radiance(glm::normalize(d), r);
-      for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(l[c], e.colour[c]);
-    }
+  const glm::vec3 colour(0.6f, 1.2f, 2.4f);
+  const Environment given = uniform_environment({0.3f, 0.6f, 1.2f}, 2.0f);
+  std::vector<float> rgba(std::size_t(300) * 150 * 4, 1.0f);
+  for (std::size_t i = 0; i < rgba.size(); i += 4)
+    for (int c = 0; c < 3; ++c) rgba[i + c] = colour[c];
+  const Environment image = image_environment("constant", 300, 150, rgba);
+  for (const Environment* e : {&given, &image}) {
+    ASSERT_EQ(e->specular.size(), std::size_t(kSpecularWidth) * kSpecularHeight * kSpecularLevels);
+    for (const float r : {0.0f, 0.13f, 0.5f, 0.77f, 1.0f})
+      for (const glm::vec3 d : {glm::vec3(0, 1, 0), glm::vec3(0.3f, -0.2f, 0.9f), glm::vec3(-1, 0, 0)}) {
+        const glm::vec3 l = e->specular_radiance(glm::normalize(d), r);
+        for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(l[c], colour[c]) << e->source << " r " << r;
+      }
+  }
 }
 
 // The lobe's mean direction: with n = v = R the weight of l is D(h) (R.l), h halfway, so
@@ -130,7 +140,8 @@ Environment linear_sky(float a, float b, int w, int h) {
 // mean direction can sit up to half a source texel off the continuous one (b sin(d_{k-1}/2));
 // then two bilinear steps (the level onto the 128 x 64 grid, the lookup) each add at most
 // the interpolated function's curvature, b d^2 / 8 with d the step's texel angle. Level 0
-// is the sky itself: only its two bilinear steps.
+// is the sky itself: its box average onto the grid (within b d0^2 / 8 of the centre value
+// for a band of height d0 around a cos) and the lookup's bilinear step.
 TEST(SplitSum, ALinearSkyPrefiltersToItsLobesMeanDirection) {
   const float a = 0.5f, b = 0.4f;
   const Environment e = linear_sky(a, b, 256, 128);
