@@ -17,12 +17,18 @@ EnvironmentMaps::EnvironmentMaps(const vk::Context& context) : context_(context)
   levels.view_type = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
   specular_ = vk::Image(context, levels);
   dfg_ = vk::Image(context, {scene::kDfgSize, scene::kDfgSize, VK_FORMAT_R32G32_SFLOAT, usage, "dfg"});
-  const std::vector<glm::vec2>& table = scene::dfg_table();
-  vk::upload_image(context, dfg_, std::as_bytes(std::span(table)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  upload(std::nullopt);
+  // Zeros until an environment needs the table: building it takes ~0.16 s, which every
+  // renderer without an environment (most tests) would pay at start-up.
+  const std::vector<glm::vec2> zeros(std::size_t(scene::kDfgSize) * scene::kDfgSize, glm::vec2(0.0f));
+  vk::upload_image(context, dfg_, std::as_bytes(std::span(zeros)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
 void EnvironmentMaps::upload(const std::optional<scene::Environment>& environment) {
+  if (environment && !dfg_uploaded_) {
+    const std::vector<glm::vec2>& table = scene::dfg_table();
+    vk::upload_image(context_, dfg_, std::as_bytes(std::span(table)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    dfg_uploaded_ = true;
+  }
   const std::size_t texels = std::size_t(scene::kSpecularWidth) * scene::kSpecularHeight * scene::kSpecularLevels;
   std::vector<float> rgba(texels * 4, 0.0f);
   if (environment && environment->specular.size() == texels)

@@ -19,6 +19,8 @@ namespace sss::renderer {
 
 class EnvironmentMaps {
  public:
+  // The levels are undefined until the first upload(), which must come before the first
+  // frame (Renderer's constructor makes it, with the scene's environment or none).
   explicit EnvironmentMaps(const vk::Context& context);
   // Uploads the levels of `environment` (zeros for none); waits for the copy, so no frame
   // may be in flight (Renderer::set_environment waits for the device first).
@@ -31,6 +33,7 @@ class EnvironmentMaps {
   const vk::Context& context_;
   vk::Image specular_;
   vk::Image dfg_;
+  bool dfg_uploaded_ = false;  // the table, made at the first environment (zeros before)
 };
 
 }  // namespace sss::renderer

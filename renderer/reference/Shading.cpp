@@ -160,6 +160,55 @@ double light_visibility(const RayScene& rays, std::size_t index, const SurfacePo
   return rays.occluded(p.position_mm + side * offset, a.l, 0.0f, a.distance_mm - 2.0f * offset) ? 0.0 : 1.0;
 }
 
+namespace {
+
+// Stratified directions about a point's normal n for the environment's estimates: n's
+// tangent frame, a generator seeded from the point's position and a salt (the same point
+// always gets the same estimate, neighbours independent ones), and whether the sky is
+// open along a direction, from just off the surface on its side.
+class PointSky {
+ public:
+  PointSky(const RayScene& rays, const SurfacePoint& p, const glm::vec3& n, std::uint64_t salt)
+      : rays_(rays), p_(p), n_(n), rng_(seed(p, salt)) {
+    const glm::vec3 t = std::fabs(n.x) > 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    b1_ = glm::normalize(glm::cross(t, n));
+    b2_ = glm::cross(n, b1_);
+    offset_ = 1e-4f * std::max(1.0f, glm::length(p.position_mm)) + 1e-4f;
+  }
+  // A jittered point of stratum (i, j) of kEnvironmentStrata² over the unit square.
+  glm::dvec2 stratum(int i, int j) {
+    const double k = kEnvironmentStrata;
+    const double u1 = (i + rng_.uniform()) / k;
+    return {u1, (j + rng_.uniform()) / k};
+  }
+  // The unit direction with cosine `cos_n` to n at azimuth phi.
+  glm::vec3 direction(double cos_n, double phi) const {
+    const double s = std::sqrt(std::max(0.0, 1.0 - cos_n * cos_n));
+    return glm::normalize(b1_ * float(s * std::cos(phi)) + b2_ * float(s * std::sin(phi)) + n_ * float(cos_n));
+  }
+  bool open(const glm::vec3& w) const {
+    const glm::vec3 side = glm::dot(p_.geometric_normal, w) >= 0.0f ? p_.geometric_normal : -p_.geometric_normal;
+    return !rays_.occluded(p_.position_mm + side * offset_, w, 0.0f, std::numeric_limits<float>::infinity());
+  }
+
+ private:
+  static std::uint64_t seed(const SurfacePoint& p, std::uint64_t salt) {
+    for (int c = 0; c < 3; ++c) {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, &p.position_mm[c], sizeof(bits));
+      salt = profiles::SplitMix64(salt ^ bits).next();
+    }
+    return salt;
+  }
+  const RayScene& rays_;
+  const SurfacePoint& p_;
+  glm::vec3 n_, b1_{0.0f}, b2_{0.0f};
+  profiles::Xoshiro256ss rng_;
+  float offset_ = 0.0f;
+};
+
+}  // namespace
+
 glm::dvec3 environment_irradiance(const scene::Environment& env, const RayScene& rays, const SurfacePoint& p,
                                   const glm::vec3& n, bool as_gpu, const glm::dvec3* entry_eta) {
   if (as_gpu) {
@@ -171,30 +220,17 @@ glm::dvec3 environment_irradiance(const scene::Environment& env, const RayScene&
     return e;
   }
   // E = integral of L(w) V(w) cos over the hemisphere = pi E_cos[L V] for w drawn with
-  // density cos / pi: kEnvironmentStrata^2 stratified samples (Shirley & Chiu's map of the
-  // square to the disc would do as well; sqrt(u1) and 2 pi u2 keep the strata compact
-  // enough at this count), jittered by a generator seeded from the point's position, so
-  // the same point always gets the same estimate and neighbours get independent ones.
-  const glm::vec3 t = std::fabs(n.x) > 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-  const glm::vec3 b1 = glm::normalize(glm::cross(t, n)), b2 = glm::cross(n, b1);
-  std::uint64_t seed = 0x5EEDu;
-  for (int c = 0; c < 3; ++c) {
-    std::uint32_t bits = 0;
-    std::memcpy(&bits, &p.position_mm[c], sizeof(bits));
-    seed = profiles::SplitMix64(seed ^ bits).next();
-  }
-  profiles::Xoshiro256ss rng(seed);
-  const float offset = 1e-4f * std::max(1.0f, glm::length(p.position_mm)) + 1e-4f;
+  // density cos / pi (cos = sqrt(1 - u1), azimuth 2 pi u2): kEnvironmentStrata^2
+  // stratified samples (Shirley & Chiu's map of the square to the disc would do as well;
+  // these strata are compact enough at this count).
+  PointSky sky(rays, p, n, 0x5EEDu);
   const int k = kEnvironmentStrata;
   glm::dvec3 sum(0.0);
   for (int i = 0; i < k; ++i)
     for (int j = 0; j < k; ++j) {
-      const double u1 = (i + rng.uniform()) / k, u2 = (j + rng.uniform()) / k;
-      const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
-      const glm::vec3 w = glm::normalize(b1 * float(r * std::cos(phi)) + b2 * float(r * std::sin(phi)) +
-                                         n * float(std::sqrt(std::max(0.0, 1.0 - u1))));
-      const glm::vec3 side = glm::dot(p.geometric_normal, w) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
-      if (rays.occluded(p.position_mm + side * offset, w, 0.0f, std::numeric_limits<float>::infinity())) continue;
+      const glm::dvec2 u = sky.stratum(i, j);
+      const glm::vec3 w = sky.direction(std::sqrt(std::max(0.0, 1.0 - u.x)), 2.0 * kPi * u.y);
+      if (!sky.open(w)) continue;
       glm::dvec3 l(env.radiance(w));
       if (entry_eta)  // the part that enters at this direction's cosine
         for (int c = 0; c < 3; ++c) l[c] *= profiles::fresnel_transmittance(glm::dot(n, w), (*entry_eta)[c]);
@@ -215,41 +251,24 @@ glm::dvec3 environment_specular(const scene::Environment& env, const RayScene& r
     return glm::dvec3(env.specular_radiance(r, spec.roughness)) * (f0 * double(ab.x) + double(ab.y));
   }
   // integral of L(l) V(l) f(v, l) n.l dl with l = reflect(-v, h), h drawn from
-  // D(h) n.h (Walter et al. 2007, eq. 35): each sample weighs
-  // L V F vis 4 (v.h) (n.l) / (n.h) (D cancels; vis the height-correlated visibility).
+  // D(h) n.h: each sample weighs L V F vis 4 (v.h) (n.l) / (n.h) (D cancels).
   // kEnvironmentStrata² stratified samples, seeded from the point as the irradiance is.
-  const glm::vec3 t = std::fabs(n.x) > 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-  const glm::vec3 b1 = glm::normalize(glm::cross(t, n)), b2 = glm::cross(n, b1);
-  std::uint64_t seed = 0x5BEC0u;
-  for (int c = 0; c < 3; ++c) {
-    std::uint32_t bits = 0;
-    std::memcpy(&bits, &p.position_mm[c], sizeof(bits));
-    seed = profiles::SplitMix64(seed ^ bits).next();
-  }
-  profiles::Xoshiro256ss rng(seed);
+  PointSky sky(rays, p, n, 0x5BEC0u);
   const double alpha = scene::ggx_alpha(spec.roughness), a2 = alpha * alpha;
-  const double nv = n_dot_v;
-  const float offset = 1e-4f * std::max(1.0f, glm::length(p.position_mm)) + 1e-4f;
   const int k = kEnvironmentStrata;
   glm::dvec3 sum(0.0);
   for (int i = 0; i < k; ++i)
     for (int j = 0; j < k; ++j) {
-      const double u1 = (i + rng.uniform()) / k, u2 = (j + rng.uniform()) / k;
-      const double tan2 = a2 * u1 / std::max(1.0 - u1, 1e-300);
-      const double cos_h = 1.0 / std::sqrt(1.0 + tan2), sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
-      const double phi = 2.0 * kPi * u2;
-      const glm::vec3 h = glm::normalize(b1 * float(sin_h * std::cos(phi)) + b2 * float(sin_h * std::sin(phi)) +
-                                         n * float(cos_h));
+      const glm::dvec2 u = sky.stratum(i, j);
+      const double cos_h = scene::ggx_normal_cosine(u.x, a2);
+      const glm::vec3 h = sky.direction(cos_h, 2.0 * kPi * u.y);
       const double vh = glm::dot(v, h);
       if (vh <= 0.0) continue;
       const glm::vec3 l = glm::normalize(2.0f * float(vh) * h - v);
       const double nl = glm::dot(n, l);
-      if (nl <= 0.0) continue;
-      const glm::vec3 side = glm::dot(p.geometric_normal, l) >= 0.0f ? p.geometric_normal : -p.geometric_normal;
-      if (rays.occluded(p.position_mm + side * offset, l, 0.0f, std::numeric_limits<float>::infinity())) continue;
-      const double vis = 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
+      if (nl <= 0.0 || !sky.open(l)) continue;
       const glm::dvec3 F = f0 + (1.0 - f0) * std::pow(1.0 - vh, 5.0);
-      sum += glm::dvec3(env.radiance(l)) * F * (vis * 4.0 * vh * nl / cos_h);
+      sum += glm::dvec3(env.radiance(l)) * F * (scene::smith_visibility(nl, n_dot_v, a2) * 4.0 * vh * nl / cos_h);
     }
   return sum / double(k * k);
 }
@@ -290,9 +309,7 @@ DirectLight direct_light(const scene::Scene& s, const RayScene& rays, const Surf
       const double v_dot_h = std::max(double(glm::dot(v, h)), 0.0);
       const double dd = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
       const double D = a2 / (kPi * dd * dd);
-      const double nl = n_dot_l;
-      const double vis = 0.5 / (nl * std::sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2) +
-                                n_dot_v * std::sqrt(nl * nl * (1.0 - a2) + a2));
+      const double vis = scene::smith_visibility(n_dot_l, n_dot_v, a2);
       const glm::dvec3 f0(spec->f0);
       const glm::dvec3 F = f0 + (1.0 - f0) * std::pow(1.0 - v_dot_h, 5.0);
       out.specular += D * vis * F * incident;

@@ -23,11 +23,6 @@ double radical_inverse(std::uint32_t i) {
   return double(i) * (1.0 / 4294967296.0);
 }
 
-// Smith's height-correlated visibility G2 / (4 n.l n.v) (Heitz 2014), as the lights' lobe.
-double smith_visibility(double nl, double nv, double a2) {
-  return 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
-}
-
 // Direction of equirectangular coordinates (u, v) (Environment.h's convention).
 glm::dvec3 direction_at(double u, double v) {
   const double theta = kPi * v, psi = 2.0 * kPi * (u - 0.5);
@@ -56,6 +51,14 @@ std::vector<glm::vec3> halve(const std::vector<glm::vec3>& g, int w, int h) {
 
 double ggx_alpha(double roughness) { return std::max(roughness * roughness, 1e-3); }
 
+double smith_visibility(double nl, double nv, double a2) {
+  return 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
+}
+
+double ggx_normal_cosine(double u, double a2) {
+  return 1.0 / std::sqrt(1.0 + a2 * u / std::max(1.0 - u, 1e-300));
+}
+
 DfgEntry dfg_integrate(double n_dot_v, double roughness, int samples) {
   const double nv = std::clamp(n_dot_v, 1e-4, 1.0);
   const double alpha = ggx_alpha(roughness), a2 = alpha * alpha;
@@ -63,8 +66,7 @@ DfgEntry dfg_integrate(double n_dot_v, double roughness, int samples) {
   glm::dvec2 sum(0.0), sum2(0.0);
   for (int i = 0; i < samples; ++i) {
     const double u1 = (i + 0.5) / samples, u2 = radical_inverse(std::uint32_t(i));
-    const double tan2 = a2 * u1 / (1.0 - u1);
-    const double cos_h = 1.0 / std::sqrt(1.0 + tan2), sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
+    const double cos_h = ggx_normal_cosine(u1, a2), sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
     const double phi = 2.0 * kPi * u2;
     const glm::dvec3 h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
     const double vh = glm::dot(v, h);

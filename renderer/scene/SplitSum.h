@@ -49,6 +49,12 @@ DfgEntry dfg_integrate(double n_dot_v, double roughness, int samples);
 
 // The GGX alpha of a perceptual roughness, as the lights' lobe takes it.
 double ggx_alpha(double roughness);
+// Smith's height-correlated visibility G2 / (4 n.l n.v) (Heitz 2014) of GGX with alpha^2 = a2:
+// the lights' lobe is D vis F.
+double smith_visibility(double n_dot_l, double n_dot_v, double a2);
+// cos(theta_h) of a GGX normal drawn with density D(h) n.h from u in [0, 1) (Walter et al.
+// 2007, eq. 35: tan^2 theta_h = a2 u / (1 - u)); its azimuth is uniform.
+double ggx_normal_cosine(double u, double a2);
 
 // The prefiltered levels: level k has roughness k / (kSpecularLevels - 1) and holds the
 // lobe-averaged radiance at (kSpecularWidth >> k) x (kSpecularHeight >> k) directions (no

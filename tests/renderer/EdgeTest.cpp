@@ -125,17 +125,7 @@ class EdgeTest : public RenderTest {
     EdgeRun run;
     run.scene = scene::edge_scene(eo);
     run.scene.materials[0].sss.scale = material_scale;
-    if (height_mm > 0.0) {
-      scene::Camera& cam = run.scene.cameras[0];
-      const double aspect = double(width) / kHeight;
-      cam.projection = scene::Projection::Perspective;
-      cam.yfov = float(2.0 * std::atan(half_width_mm / height_mm / aspect));
-      cam.aspect = 0.0f;
-      cam.znear = float(0.1 * height_mm * 1e-3);
-      cam.zfar = float(10.0 * height_mm * 1e-3);
-      cam.world = scene::look_at_world({0.0f, float(height_mm * 1e-3), 0.0f}, glm::vec3(0.0f),
-                                       {0.0f, 0.0f, -1.0f});
-    }
+    if (height_mm > 0.0) look_straight_down(run.scene.cameras[0], height_mm, half_width_mm, double(width) / kHeight);
     if (tilt_deg > 0.0) {
       const double t = tilt_deg * kPi / 180.0;
       const float d = float(100.0 * 1e-3);  // 100 mm from the origin, as the default camera

@@ -149,38 +149,36 @@ TEST_F(EnvironmentLightTest, WithDirectionalFresnelTheSkyEntersAndLeavesThroughT
 // where the frame without the sky has S = 0, every error is negative and under 1 ulp);
 // n.v from the float camera is good to 1e-6 and the table's slope in n.v is under 3
 // (|d(F0 A + B)/dn.v| ≤ 3 at r ≥ 0.25, test_split_sum.cpp), so 1e-5 L more.
+// The slab with a specular lobe of `roughness` (F0 0.04), seen from 12 mm above over
+// +-20 mm across.
+scene::Scene specular_slab(float roughness, double aspect) {
+  scene::Scene s = scene::edge_scene();
+  s.materials[0].specular = 1.0f;
+  s.materials[0].roughness = roughness;
+  s.materials[0].metallic = 0.0f;
+  look_straight_down(s.cameras[0], 12.0, 20.0, aspect);
+  return s;
+}
+
 TEST_F(EnvironmentLightTest, AUniformSkysSpecularIsTheSplitSumOfItsRadiance) {
   constexpr int kW = 160, kH = 90;
-  constexpr double kHeightMm = 12.0, kHalfWidthMm = 20.0;
   const glm::vec3 sky(0.5f, 0.4f, 0.3f);
   for (const float roughness : {0.3f, 0.6f, 0.9f}) {
-    scene::Scene plain = scene::edge_scene();
-    plain.materials[0].specular = 1.0f;
-    plain.materials[0].roughness = roughness;
-    plain.materials[0].metallic = 0.0f;
-    scene::Camera& cam = plain.cameras[0];
-    const double aspect = double(kW) / kH;
-    cam.projection = scene::Projection::Perspective;
-    cam.yfov = float(2.0 * std::atan(kHalfWidthMm / kHeightMm / aspect));
-    cam.aspect = 0.0f;
-    cam.znear = float(0.1 * kHeightMm * 1e-3);
-    cam.zfar = float(10.0 * kHeightMm * 1e-3);
-    cam.world = scene::look_at_world({0.0f, float(kHeightMm * 1e-3), 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
+    const scene::Scene plain = specular_slab(roughness, double(kW) / kH);
+    const scene::Camera& cam = plain.cameras[0];
     scene::Scene lit = plain;
     lit.environment = scene::uniform_environment(sky);
     const RenderOptions options = small_options(kW, kH, SssMode::Off);
     const Frame without = render(plain, options);
     const Frame with = render(lit, options);
     const double f0 = 0.04;
-    const double t = std::tan(0.5 * double(cam.yfov));
     double worst = 0.0;
     int pixels = 0;
     for (int y = 0; y < kH; ++y)
       for (int x = 0; x < kW; ++x) {
         if (without.hdr.pixel(x, y)[3] <= 0.0f) continue;
         ++pixels;
-        const double sx = (2.0 * (x + 0.5) / kW - 1.0) * t * aspect, sy = (1.0 - 2.0 * (y + 0.5) / kH) * t;
-        const float nv = float(1.0 / std::sqrt(1.0 + sx * sx + sy * sy));
+        const float nv = -pixel_ray(cam, x, y, kW, kH).y;
         const glm::vec2 ab = scene::dfg_lookup(nv, roughness);
         for (int c = 0; c < 3; ++c) {
           const double a = without.specular.pixel(x, y)[c], b = with.specular.pixel(x, y)[c];
@@ -205,7 +203,6 @@ TEST_F(EnvironmentLightTest, AUniformSkysSpecularIsTheSplitSumOfItsRadiance) {
 // per pixel; plus 1e-5 of the sky's largest radiance for n.v (as above).
 TEST_F(EnvironmentLightTest, AnImageSkysSpecularIsThePrefilteredLookup) {
   constexpr int kW = 160, kH = 90, kSkyW = 64, kSkyH = 32;
-  constexpr double kHeightMm = 12.0, kHalfWidthMm = 20.0;
   std::vector<float> rgba(std::size_t(kSkyW) * kSkyH * 4, 1.0f);
   for (int y = 0; y < kSkyH; ++y)
     for (int x = 0; x < kSkyW; ++x) {
@@ -217,30 +214,18 @@ TEST_F(EnvironmentLightTest, AnImageSkysSpecularIsThePrefilteredLookup) {
     }
   const scene::Environment sky = scene::image_environment("gradient", kSkyW, kSkyH, rgba);
   for (const float roughness : {0.25f, 0.5f, 0.8f}) {
-    scene::Scene plain = scene::edge_scene();
-    plain.materials[0].specular = 1.0f;
-    plain.materials[0].roughness = roughness;
-    plain.materials[0].metallic = 0.0f;
-    scene::Camera& cam = plain.cameras[0];
-    const double aspect = double(kW) / kH;
-    cam.projection = scene::Projection::Perspective;
-    cam.yfov = float(2.0 * std::atan(kHalfWidthMm / kHeightMm / aspect));
-    cam.aspect = 0.0f;
-    cam.znear = float(0.1 * kHeightMm * 1e-3);
-    cam.zfar = float(10.0 * kHeightMm * 1e-3);
-    cam.world = scene::look_at_world({0.0f, float(kHeightMm * 1e-3), 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
+    const scene::Scene plain = specular_slab(roughness, double(kW) / kH);
+    const scene::Camera& cam = plain.cameras[0];
     scene::Scene lit = plain;
     lit.environment = sky;
     const RenderOptions options = small_options(kW, kH, SssMode::Off);
     const Frame without = render(plain, options);
     const Frame with = render(lit, options);
-    const double f0 = 0.04, t = std::tan(0.5 * double(cam.yfov));
-    const glm::mat3 to_world(cam.world);
+    const double f0 = 0.04;
     double worst = 0.0;
     for (int y = 0; y < kH; ++y)
       for (int x = 0; x < kW; ++x) {
-        const glm::vec3 d = glm::normalize(
-            to_world * glm::vec3(float((2.0 * (x + 0.5) / kW - 1.0) * t * aspect), float((1.0 - 2.0 * (y + 0.5) / kH) * t), -1.0f));
+        const glm::vec3 d = pixel_ray(cam, x, y, kW, kH);
         const glm::vec3 r(d.x, -d.y, d.z);  // mirrored about +y
         const float nv = -d.y;
         const glm::vec2 ab = scene::dfg_lookup(nv, roughness);

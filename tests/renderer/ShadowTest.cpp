@@ -9,7 +9,6 @@
 
 #include <gtest/gtest.h>
 
-#include <glm/matrix.hpp>
 
 #include <cmath>
 
@@ -57,19 +56,22 @@ TEST_F(RenderTest, ShadowMapDarkensWhatTheBarHides) {
 // subject a thousand units away, as in 2CylinderEngine.glb, is 2e4; this is 50 times
 // worse), looking down at 45 degrees at the bar's shadow from beside it (the bar hides
 // none of the slab at x <= 0 from it), with 4096² shadow maps. Every pixel whose ray meets
-// the slab (found from the camera's field of view) more than kMargin inside the shadow,
-// x in [-17, -5] mm, must be dark, and every one more than kMargin outside it, up to x = 0,
-// must be E cos(45) / pi to the same 1e-3 as above. kMargin = 0.5 mm: the 3x3 PCF reaches
-// 1.5 texels and the normal offset moves the lookup 1.5 texels (0.07 mm each here) along
-// the slab. The point lighting rebuilds from the depth buffer must therefore not move by
-// more than that. With the usual depth mapping one float step of depth is 6e-8 z^2 /
+// the slab (found from the camera's field of view) more than a margin inside the shadow,
+// x in [-17, -5] mm, must be dark, and every one more than that outside it, up to x = 0,
+// must be E cos(45) / pi to the same 1e-3 as above. The margin is what the shadow test
+// itself may move an edge by, 5.5 texels of the map (0.07 mm each here, 0.39 mm): the
+// 3x3 PCF of bilinear taps reads texels up to 2 away, the normal offset lifts the lookup
+// 1.5 texels, and the depth bias of 2 texels' depth shifts the edge by 2 texels along a
+// slab lit at 45 degrees (ShadowFrustum.cpp). The point lighting rebuilds from the depth
+// buffer must therefore not move by more than that. With the usual depth mapping one float step of depth is 6e-8 z^2 /
 // znear, about 4 mm at 55 mm: the shadow's edges moved by millimetres, as the engine's
 // fins striped its faces; with the reversed mapping (CameraSetup.h) a step is 2^-24 of
 // the distance at any znear.
 TEST_F(RenderTest, ACameraWithATinyNearPlaneKeepsTheShadowsEdges) {
-  constexpr double kMargin = 0.5;  // mm
   const int w = 128, h = 96;
   scene::Scene s = bar_scene();
+  const double texel_mm = 2.0 * double(s.bounds().radius()) * s.mm_per_unit / 4096.0;
+  const double margin = 5.5 * texel_mm;
   scene::Camera& cam = s.cameras[0];
   cam.projection = scene::Projection::Perspective;
   cam.yfov = 0.6f;
@@ -82,22 +84,18 @@ TEST_F(RenderTest, ACameraWithATinyNearPlaneKeepsTheShadowsEdges) {
   options.shadow_map_size = 4096;
   const Frame f = render(s, options);
   const float lit = std::cos(0.25f * 3.14159265f) / 3.14159265f;
-  const double t = std::tan(0.5 * double(cam.yfov)), aspect = double(w) / h;
-  const glm::dmat3 to_world(cam.world);
   int lit_checked = 0, dark_checked = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      // The pixel centre's ray (camera looks down -z, image y down).
-      const glm::dvec3 d = to_world * glm::dvec3((2.0 * (x + 0.5) / w - 1.0) * t * aspect,
-                                                 (1.0 - 2.0 * (y + 0.5) / h) * t, -1.0);
+      const glm::dvec3 d(pixel_ray(cam, x, y, w, h));
       if (!(d.y < 0.0)) continue;
       const glm::dvec3 hit = (glm::dvec3(eye) - d * (double(eye.y) / d.y)) / double(kMm);  // slab top, mm
       if (hit.x > 0.0 || std::fabs(hit.z) > 40.0) continue;
       const float v = f.hdr.pixel(x, y)[0];
-      if (hit.x > -17.0 + kMargin && hit.x < -5.0 - kMargin) {
+      if (hit.x > -17.0 + margin && hit.x < -5.0 - margin) {
         ++dark_checked;
         EXPECT_LT(v, 1e-4f) << "shadow at px " << x << "," << y << " (slab x " << hit.x << " mm)";
-      } else if (hit.x < -17.0 - kMargin || hit.x > -5.0 + kMargin) {
+      } else if (hit.x < -17.0 - margin || hit.x > -5.0 + margin) {
         ++lit_checked;
         EXPECT_NEAR(v, lit, 1e-3f * lit) << "lit at px " << x << "," << y << " (slab x " << hit.x << " mm)";
       }

@@ -41,8 +41,9 @@ TEST(SplitSum, TheDfgEntriesAreTheLobesAlbedoByAnIndependentQuadrature) {
 }
 
 // A mirror (r = 0, alpha 1e-3) reflects v whole, weighted by Schlick's Fresnel at n.v:
-// A = 1 - (1 - n.v)^5, B = (1 - n.v)^5 (the visibility and the Jacobian cancel at h = n),
-// up to the lobe's width alpha = 1e-3, which moves n.l and v.h by O(alpha): 5e-3.
+// A = 1 - (1 - n.v)^5, B = (1 - n.v)^5 (the visibility and the Jacobian cancel at h = n).
+// The lobe's normals lie within a few alpha of n, so v.h moves by ~alpha = 1e-3 and
+// Schlick's weight, whose slope 5 (1 - v.h)^4 is at most 5, by 5e-3 at most.
 TEST(SplitSum, AMirrorReflectsEverythingWithSchlicksFresnel) {
   for (const double nv : {0.2, 0.5, 0.8, 1.0}) {
     const DfgEntry e = dfg_integrate(nv, 0.0, kDfgSamples);
