@@ -21,7 +21,7 @@ inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 // The G-buffer depth after the G-buffer pass: sampled by compute passes and tested (not
 // written) by the texture path's lookup draw.
 inline constexpr VkImageLayout kDepthReadLayout = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
-inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // xyz normal, w roughness
+inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // xyz normal, w inward thickness mm
 inline constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;       // rgb albedo, a id
 inline constexpr VkFormat kUvStretchFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // mm per u, v; has UVs
 inline constexpr VkFormat kLightingFormat = VK_FORMAT_R16G16B16A16_SFLOAT;

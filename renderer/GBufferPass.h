@@ -1,4 +1,4 @@
-// GBufferPass ("gbuffer"): depth (D32), normal + roughness (rgba16f) and albedo +
+// GBufferPass ("gbuffer"): depth (D32), normal + inward thickness (rgba16f) and albedo +
 // material id (rgba8) with dynamic rendering. Leaves normal and albedo
 // SHADER_READ_ONLY_OPTIMAL, depth kDepthReadLayout.
 #pragma once

@@ -1,6 +1,7 @@
 #include "renderer/GpuScene.h"
 
 #include "renderer/CameraSetup.h"
+#include "renderer/reference/Thickness.h"
 #include "renderer/scene/UvAtlas.h"
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Sampler.h"
@@ -43,7 +44,8 @@ void add_vertex_input(vk::GraphicsPipelineBuilder& builder) {
       .vertex_attribute(1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal))
       .vertex_attribute(2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv))
       .vertex_attribute(3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, tangent))
-      .vertex_attribute(4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, atlas));
+      .vertex_attribute(4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, atlas))
+      .vertex_attribute(5, 0, VK_FORMAT_R32_SFLOAT, offsetof(GpuVertex, thickness));
 }
 
 int GpuScene::add_texture(const vk::Context& context, const scene::Scene& scene,
@@ -97,12 +99,16 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
       warnings_.push_back("mesh '" + mesh.name + "' has " + std::to_string(islands.count) +
                           " UV islands: texture-space SSS tells apart 2048, so islands 2048 "
                           "apart may blur into each other where they are within a kernel");
+    // Every mesh, scattering or not: a material can be given subsurface scattering on a
+    // live renderer (set_materials), and the bake costs a BVH build and a ray per vertex.
+    const std::vector<float> thickness = reference::inward_thickness(mesh);
     std::vector<GpuVertex> vertices(mesh.positions.size());
     for (std::size_t i = 0; i < vertices.size(); ++i) {
       const glm::vec3& p = mesh.positions[i];
       const glm::vec3& n = mesh.normals[i];
       GpuVertex& v = vertices[i];
-      v = {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 0.0f}, {}};
+      v = {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 0.0f}, {},
+           i < thickness.size() ? thickness[i] : -1.0f};
       if (sss_uvs)
         for (int c = 0; c < 4; ++c)
           v.atlas[c] = c < 2 ? atlas[i][c] : c == 2 ? float(islands.vertex_island[i]) : 0.0f;

@@ -33,9 +33,13 @@ struct GpuVertex {
   // 0.25..0.75 for its seam gutter's (Mesh::uv_atlas_gutter), so that its own win. All
   // zero when the mesh's SSS UVs are not usable.
   float atlas[4];
+  // Inward thickness (reference::inward_thickness): the distance from the vertex along -n
+  // out of the mesh, in mesh units; -1 without a hit. The G-buffer turns it into world mm
+  // for the environment's transmission.
+  float thickness;
 };
 
-// Every GpuVertex attribute (locations 0..4) from binding 0: what the pipelines drawing
+// Every GpuVertex attribute (locations 0..5) from binding 0: what the pipelines drawing
 // the scene's meshes with all attributes declare (G-buffer, texture path).
 void add_vertex_input(vk::GraphicsPipelineBuilder& builder);
 

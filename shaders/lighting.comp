@@ -49,7 +49,9 @@ void main() {
   SurfacePoint s;
   s.id = id;
   s.P = w.xyz / w.w;
-  s.N = normalize(texelFetch(normal_tex, p, 0).xyz);
+  vec4 normal = texelFetch(normal_tex, p, 0);
+  s.N = normalize(normal.xyz);
+  s.thickness_mm = normal.w;
   s.V = frame.camera.w > 0.5 ? -frame.forward.xyz : normalize(frame.camera.xyz - s.P);
   s.albedo = texelFetch(albedo_tex, p, 0).rgb;
   float depth_mm = dot(s.P - frame.camera.xyz, frame.forward.xyz) * frame.scale.x;

@@ -13,13 +13,13 @@
 
 layout(location = 4) flat in float in_island;
 layout(location = 0) out vec4 out_position;  // world xyz, w the UV island + 1 (0: empty)
-layout(location = 1) out vec4 out_normal;    // xyz
+layout(location = 1) out vec4 out_normal;    // xyz, w inward thickness (mm)
 layout(location = 2) out vec4 out_albedo;    // rgb base colour
 layout(location = 3) out vec4 out_stretch;   // x mm per texel along u, y along v
 
 void main() {
   out_position = vec4(in_world, in_island + 1.0);
-  out_normal = vec4(shading_normal(1.0), 1.0);
+  out_normal = vec4(shading_normal(1.0), thickness_mm());
   out_albedo = vec4(base_colour(), 1.0);
   out_stretch = vec4(length(dFdx(in_world)) * frame.scale.x, length(dFdy(in_world)) * frame.scale.x,
                      0.0, 1.0);

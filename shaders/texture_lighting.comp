@@ -35,7 +35,9 @@ void main() {
   SurfacePoint s;
   s.id = int(push.direction.w);
   s.P = position.xyz;
-  s.N = normalize(texelFetch(normal_tex, p, 0).xyz);
+  vec4 normal = texelFetch(normal_tex, p, 0);
+  s.N = normalize(normal.xyz);
+  s.thickness_mm = normal.w;
   s.V = s.N;  // no specular here
   s.albedo = texelFetch(albedo_tex, p, 0).rgb;
   vec3 E, S;

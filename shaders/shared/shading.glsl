@@ -190,6 +190,7 @@ struct SurfacePoint {
   vec3 N;       // unit normal
   vec3 V;       // unit direction to the eye (specular only)
   vec3 albedo;  // base colour (F0 of metals)
+  float thickness_mm;  // inward thickness along -N (the G-buffer's), for the sky's transmission
 };
 
 // E: irradiance at P (Σ over lights of E_light N·L x shadow; for subsurface materials
@@ -247,14 +248,26 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
     }
   }
   // The environment (frame.flags.z): its irradiance from the spherical harmonics, with no
-  // occlusion and no transmission; with directional Fresnel, a subsurface material takes
-  // the part of it that enters, c = the cosine-weighted mean of F_t over the hemisphere
-  // (1 / exit_norm; exact for a uniform sky, which the GPU cannot tell from others); its
-  // specular by the split sum where the pass has the tables (lighting.comp).
+  // occlusion; with directional Fresnel, a subsurface material takes the part of it that
+  // enters, c = the cosine-weighted mean of F_t over the hemisphere (1 / exit_norm; exact
+  // for a uniform sky, which the GPU cannot tell from others); its specular by the split
+  // sum where the pass has the tables (lighting.comp).
+  // Its transmission: the sky lights the far side of a thin part from every direction, so
+  // no one light's shadow map gives the path. The surface behind P is taken d = the inward
+  // thickness away along -N, facing -N: it receives environment_irradiance(-N) (entering
+  // by the same c), which crosses d as a light's does, T(d) (transmittance_total; a slab's
+  // own total). Exact for a flat slab under any sky; on a curved thin part the far
+  // surface's normal and its distance vary over the profile's width.
   if (frame.flags.z > 0.5) {
     vec3 sky = environment_irradiance(s.N);
-    if (subsurface && frame.flags.x > 0.5) sky /= materials[s.id].exit_norm.rgb;
+    bool entering = subsurface && frame.flags.x > 0.5;
+    if (entering) sky /= materials[s.id].exit_norm.rgb;
     E += sky;
+    if (transmits && s.thickness_mm >= 0.0 && s.thickness_mm < 1e30) {
+      vec3 behind = environment_irradiance(-s.N);
+      if (entering) behind /= materials[s.id].exit_norm.rgb;
+      E_back += behind * transmittance_total(s.id, s.thickness_mm);
+    }
 #ifdef SSS_ENVIRONMENT_SPECULAR
     if (has_specular) S += environment_specular(s.N, s.V, surface.z, F0);
 #endif

@@ -15,6 +15,11 @@ layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_tangent;
+layout(location = 5) in float in_thickness;  // world units (mesh_vertex.glsl)
+
+// The inward thickness in mm, what the G-buffer's normal target keeps in w (the
+// environment's transmission, shading.glsl); infinite (in half floats) where there is none.
+float thickness_mm() { return in_thickness * frame.scale.x; }
 
 // The interpolated normal times `facing` (+-1), bent by the tangent-space normal map
 // (glTF: linear, +Y up in UV space, xy scaled) when the draw has one and the mesh has

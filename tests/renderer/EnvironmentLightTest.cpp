@@ -16,11 +16,16 @@
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/scene/SplitSum.h"
 #include "profiles/Fresnel.h"
+#include "profiles/Profile.h"
+#include "renderer/MaterialTable.h"
+#include "renderer/scene/SssExtras.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <variant>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -247,6 +252,73 @@ TEST_F(EnvironmentLightTest, AnImageSkysSpecularIsThePrefilteredLookup) {
         }
       }
     std::printf("[ environment specular, image sky, r %.2f ] worst |dS - Lp (F0 A + B)| / tol %.3f\n", roughness, worst);
+  }
+}
+
+// The sky's transmission through a thin part (shading.glsl): builtin:slab (30 x 30 x 2 mm,
+// base colour 1, no specular) without its light, under a uniform sky of radiance L: both
+// faces receive pi L, and the back's crosses the slab to the front. Fresnel off (M/pi),
+// at the front's centre (8 x 8 px), where the slab is uniform over the kernel's reach, so
+// the blur moves no energy (TransmissionTest.cpp's header):
+//   L_out = L (R + T), per channel (albedo 1),
+// R the total reflectance the mode uses (as above), T the total transmittance across the
+// 2 mm:
+// - the multipole slab: its closed-form total, profiles::RgbProfile::total_transmittance
+//   (the fit of T(r) keeps it exactly, TransmissionTest's SlabFitKeepsTheMultipoleTotal);
+// - better-dipole (semi-infinite) on the same box: the fit's T(d) = Σ w_i exp(-d²/2v_i)
+//   at d = 2 mm, the thickness the G-buffer got from reference::inward_thickness (a box's
+//   side exactly, test_thickness.cpp, in float: 0.002 m x 1000).
+// Tolerance: the Mode's float chain, as above, and for better-dipole the thickness's
+// storage: the G-buffer keeps it in a half float, one unit of the last place either way
+// (round or truncate, as lavapipe does), 2^-10 relative: L |dT/dd| d 2^-10, dT/dd =
+// -Σ w_i exp(-d²/2v_i) d/v_i. Without the sky's transmission the centre is L R, short by
+// L T: 14-48% of it here.
+TEST_F(EnvironmentLightTest, AThinSlabTransmitsTheSkyBehindIt) {
+  const glm::vec3 sky(0.5f, 0.4f, 0.3f);
+  const Mode modes[] = {{SssMode::Screen, SssKind::Separable, "separable", 5e-5},
+                        {SssMode::Screen, SssKind::Gaussians, "gaussians", 8.8e-3},
+                        {SssMode::Texture, SssKind::Gaussians, "texture", 8.8e-3}};
+  for (const bool semi_infinite : {false, true}) {
+    scene::Scene s = scene::slab_scene();
+    s.lights.clear();
+    s.environment = scene::uniform_environment(sky);
+    if (semi_infinite) {
+      profiles::Medium medium = s.materials[0].sss.medium;
+      medium.thickness_mm = std::numeric_limits<double>::infinity();
+      auto made = scene::make_sss_material(scene::CoefficientSource{medium}, profiles::Model::BetterDipole);
+      ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(made));
+      s.materials[0].sss = std::get<scene::SssMaterial>(made);
+    }
+    const profiles::RgbProfile rgb(s.materials[0].sss.model, s.materials[0].sss.effective_medium());
+    for (const Mode& mode : modes) {
+      RenderOptions options = small_options(160, 90, mode.sss, mode.kind);
+      options.fresnel = false;
+      options.texture_size = 512;
+      const Frame f = render(s, options);
+      const MaterialProfile& p = *f.materials.profiles[0];
+      for (int c = 0; c < 3; ++c) {
+        double T = rgb.total_transmittance()[c], dT = 0.0;  // dT: |dT/dd| at d = 2 mm
+        if (semi_infinite) {
+          const double d = 2.0;
+          T = 0.0;
+          for (std::size_t i = 0; i < p.fit.variances_mm2.size(); ++i) {
+            const double v = p.fit.variances_mm2[i], term = p.fit.weights[i][c] * std::exp(-d * d / (2.0 * v));
+            T += term;
+            dT += term * d / v;
+          }
+        }
+        const double R = mode.kind == SssKind::Separable ? p.kernel.total_reflectance[c] : p.fit.total_reflectance[c];
+        double L = 0.0;
+        for (int y = 41; y < 49; ++y)
+          for (int x = 76; x < 84; ++x) L += (f.hdr.pixel(x, y)[c] - f.specular.pixel(x, y)[c]) / 64.0;
+        const double expected = sky[c] * (R + T);
+        std::printf("[ sky through the %s slab, %s ] channel %d: %.5f, L (R + T) %.5f (T/R %.3f), error %.2e\n",
+                    semi_infinite ? "better-dipole" : "multipole", mode.name, c, L, expected, T / R,
+                    L / expected - 1.0);
+        const double storage = sky[c] * dT * 2.0 * std::ldexp(1.0, -10);
+        EXPECT_NEAR(L, expected, mode.relative * expected + storage + 1e-6) << mode.name << " channel " << c;
+      }
+    }
   }
 }
 
