@@ -22,12 +22,19 @@
 //    baseline: its fixed cost, measured first in the same run): `prefilter_share` is the
 //    baseline over the whole. Arg: W.
 //
-//   scripts/bench.sh --benchmark_filter='Reference|Environment'
+//  * The inward thickness the GPU's environment transmission bakes at upload (issue 20):
+//    reference::inward_thickness on the bunny's mesh (one Embree ray per vertex), against
+//    the BVH build alone on the same mesh (the baseline, measured first in the same run):
+//    `bvh_share` is the baseline over the whole, `vertices` the rays cast.
+//
+//   scripts/bench.sh --benchmark_filter='Reference|Environment|Thickness'
 
 #include "profiles/EdgeResponse.h"
 #include "profiles/Profile.h"
 #include "renderer/image/Metrics.h"
+#include "renderer/reference/RayScene.h"
 #include "renderer/reference/ReferenceRenderer.h"
+#include "renderer/reference/Thickness.h"
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/scene/Environment.h"
 #include "renderer/scene/SplitSum.h"
@@ -190,5 +197,38 @@ void BM_EnvironmentFromImage(benchmark::State& state) {
   state.counters["prefilter_share"] = seconds > 0.0 ? g_prefilter_seconds / seconds : 0.0;
 }
 BENCHMARK(BM_EnvironmentFromImage)->Arg(256)->Arg(1024)->Arg(4096)->UseManualTime()->Iterations(2)->Unit(benchmark::kMillisecond);
+
+double g_bvh_seconds = 0.0;
+
+void BM_ThicknessBvhAlone(benchmark::State& state) {
+  scene::Scene s = load("builtin:bunny");
+  s.instances.resize(1);
+  s.instances[0].world = glm::mat4(1.0f);
+  s.mm_per_unit = 1.0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const reference::RayScene rays(s);
+    benchmark::DoNotOptimize(&rays);
+    g_bvh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    state.SetIterationTime(g_bvh_seconds);
+  }
+}
+BENCHMARK(BM_ThicknessBvhAlone)->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
+
+void BM_InwardThickness(benchmark::State& state) {
+  const scene::Scene s = load("builtin:bunny");
+  const scene::Mesh& mesh = s.meshes.at(s.instances.at(0).mesh);
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<float> d = reference::inward_thickness(mesh);
+    benchmark::DoNotOptimize(d.data());
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    state.SetIterationTime(seconds);
+  }
+  state.counters["vertices"] = double(mesh.positions.size());
+  state.counters["bvh_share"] = seconds > 0.0 ? g_bvh_seconds / seconds : 0.0;
+}
+BENCHMARK(BM_InwardThickness)->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
 
 }  // namespace
