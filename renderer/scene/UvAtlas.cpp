@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <exception>
 #include <limits>
 #include <numbers>
 #include <type_traits>
@@ -717,6 +718,36 @@ UvIslands uv_islands(const std::vector<glm::vec2>& uv, const std::vector<std::ui
   return out;
 }
 
+double reflectance_reach_mm(const profiles::RgbProfile& profile, double fraction) {
+  const double step = std::log(1.02), r0 = 1e-4;
+  const double r_max = std::min(1e4, std::max(profile.support_radius(), 1e-3));
+  std::vector<double> r, dm;  // midpoints and their share of ∫ R 2πr dr (dr = r d ln r)
+  for (double lo = r0; lo < r_max; lo *= 1.02) {
+    const double mid = lo * std::sqrt(1.02);
+    r.push_back(mid);
+  }
+  double reach = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const profiles::RadialProfile& p = profile.channel(c);
+    dm.assign(r.size(), 0.0);
+    double total = 0.0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      dm[i] = std::max(p.reflectance(r[i]), 0.0) * 2.0 * std::numbers::pi * r[i] * r[i] * step;
+      total += dm[i];
+    }
+    if (!(total > 0.0)) continue;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      sum += dm[i];
+      if (sum >= fraction * total) {
+        reach = std::max(reach, r[i] * std::sqrt(1.02));
+        break;
+      }
+    }
+  }
+  return reach;
+}
+
 std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options) {
   std::size_t generated = 0;
   for (Mesh& mesh : scene.meshes) {
@@ -725,10 +756,26 @@ std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options) {
     if (!mesh.uv_atlas.empty()) continue;
     const UvCheck check = check_uvs(mesh);
     if (check.usable) continue;
-    const AtlasStats stats = generate_atlas(mesh, options);
-    char detail[96];
-    std::snprintf(detail, sizeof detail, "%zu charts, %.0f%% of the texture used", stats.charts,
-                  100.0 * stats.utilization);
+    // The padding the material's reach asks for, at the scale a first layout gives (more
+    // padding packs the charts smaller, so the gutter then reaches further still).
+    AtlasOptions o = options;
+    double reach_mm = 0.0;
+    try {
+      reach_mm = reflectance_reach_mm(scene.materials[mesh.material].sss.profile(), kGutterReflectanceShare);
+    } catch (const std::exception&) {
+      reach_mm = 0.0;  // a profile that cannot be made: the renderer reports it
+    }
+    if (reach_mm > 0.0) {
+      const double s = build_atlas(mesh, options).stats.uv_per_unit;  // UV per scene unit
+      const double needed = reach_mm / scene.mm_per_unit * s * options.resolution / 1.5;
+      const double cap = double(kMaxPaddingTexels) * options.resolution / 1024.0;
+      o.padding_texels = std::uint32_t(std::max(double(options.padding_texels), std::ceil(std::min(needed, cap))));
+    }
+    const AtlasStats stats = generate_atlas(mesh, o);
+    char detail[160];
+    std::snprintf(detail, sizeof detail,
+                  "%zu charts, %.0f%% of the texture used, %u texels of padding for a %.1f mm reach",
+                  stats.charts, 100.0 * stats.utilization, o.padding_texels, reach_mm);
     scene.texture_notes.push_back("mesh " + mesh.name + ": generated a UV atlas (" + check.reason +
                              "; " + detail + ")");
     ++generated;

@@ -32,6 +32,7 @@
 #pragma once
 
 #include "renderer/scene/Mesh.h"
+#include "profiles/Profile.h"
 
 #include <array>
 #include <cstddef>
@@ -77,8 +78,8 @@ struct AtlasOptions {
   std::uint32_t padding_texels = 4;   // empty texels around each chart (>= 2 between charts)
 };
 
-// What load_scene generates with: 12 texels of padding at 1024² (4 mm on the bunny) leave
-// room for the seam gutters a kernel reaches into. Also used where a material is given
+// What load_scene generates with: at least 12 texels of padding at 1024², more for a wide
+// kernel (ensure_sss_atlases), leave room for the seam gutters a kernel reaches into. Also used where a material is given
 // subsurface scattering after loading (--sss-material).
 inline constexpr AtlasOptions kLoadAtlasOptions{1024, 12};
 
@@ -138,9 +139,30 @@ struct UvIslands {
 };
 UvIslands uv_islands(const std::vector<glm::vec2>& uv, const std::vector<std::uint32_t>& indices);
 
+// The radius (mm) within which a profile keeps `fraction` of its total reflectance
+// ∫ R(r) 2πr dr, the largest over the channels (a midpoint rule in ln r from 1e-4 mm out
+// to 1e4 mm or the profile's support, 2% steps).
+double reflectance_reach_mm(const profiles::RgbProfile& profile, double fraction);
+
+// The share of a material's reflectance whose taps the seam gutter must hold: past the
+// gutter a tap takes the point reflection about the centre (sss_texture.comp), exact only
+// where the irradiance is linear; with 12 texels (the gutter 1.5x that, 6.4 mm on the
+// bunny, 44% of skin1's reflectance at its scale) a small chart near the key's shadow
+// edge kept its own light as a lighter triangular patch (issue 20 part 3).
+inline constexpr double kGutterReflectanceShare = 0.9;
+// The most padding a reach may ask for at 1024²: the padding is paid around each of the
+// charts, and the bunny's 74 keep 34% of the texture at 12 texels, 18% at 28, 13% at 32,
+// 2% at 48 (mm per texel grows as the square root of that). At 28 the gutter reaches
+// 20.4 mm, 82% of skin1's reflectance at the bunny's scale, and the patches are gone from
+// the frame (tests/scene/test_uv_atlas.cpp prints both).
+inline constexpr std::uint32_t kMaxPaddingTexels = 28;
+
 // For every mesh drawn with a subsurface material whose uv0 fails check_uvs and that has
 // no uv_atlas yet: generate_atlas() and a note in Scene::texture_notes, "mesh NAME:
-// generated a UV atlas (REASON)".
+// generated a UV atlas (REASON)". The padding is options.padding_texels, or more when the
+// material's profile needs it: enough (up to kMaxPaddingTexels, scaled with the
+// resolution) that the seam gutter, 1.5 x the padding, reaches the radius holding
+// kGutterReflectanceShare of its reflectance (reflectance_reach_mm).
 // Returns how many atlases were generated. Not called on load (see README: "UV atlas").
 std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options = {});
 

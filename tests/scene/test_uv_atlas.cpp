@@ -4,11 +4,17 @@
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/scene/Shapes.h"
 #include "renderer/scene/UvAtlas.h"
+#include "profiles/GaussianSumProfile.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
 #include <cmath>
 #include <iostream>
 #include <variant>
@@ -245,6 +251,66 @@ TEST(UvAtlas, EnsureSssAtlasesWarnsAndSkipsUsableUvs) {
   EXPECT_EQ(ensure_sss_atlases(sphere), 0u);
   EXPECT_TRUE(sphere.meshes[0].uv_atlas.empty());
   EXPECT_EQ(&sss_uvs(sphere.meshes[0]), &sphere.meshes[0].uv0);
+}
+
+// reflectance_reach_mm against a closed form: a Gaussian of variance v keeps
+// 1 - exp(-rho²/2v) of its total within rho, so the fraction f lies within
+// rho = sqrt(-2 v ln(1 - f)). The midpoint rule returns the end of the 2% cell where the sum
+// crosses f, so the answer is at most one cell (2%) above rho, plus the rule's own error on
+// each cell (second order: 1e-4 relative), and never below rho by more than that.
+TEST(UvAtlas, ReflectanceReachOfAGaussianIsItsClosedForm) {
+  std::array<std::unique_ptr<profiles::RadialProfile>, 3> channels;
+  const double v[3] = {0.25, 4.0, 30.0};
+  for (int c = 0; c < 3; ++c)
+    channels[c] = std::make_unique<profiles::GaussianSumProfile>(std::vector<double>{v[c]}, std::vector<double>{0.5});
+  const profiles::RgbProfile rgb(profiles::Model::Dipole, std::move(channels));
+  for (const double f : {0.5, 0.9, 0.99}) {
+    const double rho = std::sqrt(-2.0 * 30.0 * std::log(1.0 - f));  // the widest channel's
+    const double got = reflectance_reach_mm(rgb, f);
+    std::printf("[ reach ] fraction %.2f: %.4f mm, closed form %.4f mm\n", f, got, rho);
+    EXPECT_GE(got, rho * (1.0 - 1e-3)) << f;
+    EXPECT_LE(got, rho * 1.02 * (1.0 + 1e-3)) << f;
+  }
+}
+
+// The padding follows the material (issue 20 part 3, texture mode's triangular patches):
+// the seam gutter, 1.5 x the padding, must reach the radius holding
+// kGutterReflectanceShare of the reflectance, or kMaxPaddingTexels when that is further.
+// builtin:bunny's skin1 at scale 0.25 reaches past the cap; a small kernel keeps the
+// minimum.
+TEST(UvAtlas, ThePaddingCoversTheKernelsReachUpToTheCap) {
+  const auto padding_in = [](const std::string& note) {
+    const std::size_t at = note.find(" texels of padding");
+    EXPECT_NE(at, std::string::npos) << note;
+    std::size_t start = note.rfind(' ', at - 1) + 1;
+    return std::stoul(note.substr(start, at - start));
+  };
+  Scene wide = std::get<Scene>(bunny_scene());
+  ASSERT_EQ(ensure_sss_atlases(wide, kLoadAtlasOptions), 1u);
+  const double reach = reflectance_reach_mm(wide.materials[0].sss.profile(), kGutterReflectanceShare);
+  std::printf("[ padding ] bunny: %s\n", wide.texture_notes.back().c_str());
+  EXPECT_GT(reach, 20.0);
+  EXPECT_EQ(padding_in(wide.texture_notes.back()), kMaxPaddingTexels);
+  // What the gutter holds, before and after (printed for the README): its reach in mm
+  // and the share of skin1's reflectance within it, by bisection on the fraction.
+  const profiles::RgbProfile skin = wide.materials[0].sss.profile();
+  for (const std::uint32_t padding : {kLoadAtlasOptions.padding_texels, kMaxPaddingTexels}) {
+    const double s = build_atlas(wide.meshes[0], {1024, padding}).stats.uv_per_unit;
+    const double gutter_mm = 1.5 * padding / (1024.0 * s) * wide.mm_per_unit;
+    double lo = 0.0, hi = 1.0;
+    for (int i = 0; i < 30; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (reflectance_reach_mm(skin, mid) <= gutter_mm ? lo : hi) = mid;
+    }
+    std::printf("[ padding ] %u texels: the gutter reaches %.1f mm, %.0f%% of skin1's reflectance at scale 0.25\n",
+                padding, gutter_mm, 100.0 * lo);
+  }
+
+  Scene narrow = std::get<Scene>(bunny_scene());
+  narrow.materials[0].sss.scale = 50.0;  // the kernel 200x narrower than the builtin's
+  ASSERT_EQ(ensure_sss_atlases(narrow, kLoadAtlasOptions), 1u);
+  std::printf("[ padding ] bunny at scale 50: %s\n", narrow.texture_notes.back().c_str());
+  EXPECT_EQ(padding_in(narrow.texture_notes.back()), kLoadAtlasOptions.padding_texels);
 }
 
 }  // namespace
