@@ -722,10 +722,7 @@ double reflectance_reach_mm(const profiles::RgbProfile& profile, double fraction
   const double step = std::log(1.02), r0 = 1e-4;
   const double r_max = std::min(1e4, std::max(profile.support_radius(), 1e-3));
   std::vector<double> r, dm;  // midpoints and their share of ∫ R 2πr dr (dr = r d ln r)
-  for (double lo = r0; lo < r_max; lo *= 1.02) {
-    const double mid = lo * std::sqrt(1.02);
-    r.push_back(mid);
-  }
+  for (double lo = r0; lo < r_max; lo *= 1.02) r.push_back(lo * std::sqrt(1.02));
   double reach = 0.0;
   for (int c = 0; c < 3; ++c) {
     const profiles::RadialProfile& p = profile.channel(c);
@@ -767,7 +764,7 @@ std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options) {
     }
     if (reach_mm > 0.0) {
       const double s = build_atlas(mesh, options).stats.uv_per_unit;  // UV per scene unit
-      const double needed = reach_mm / scene.mm_per_unit * s * options.resolution / 1.5;
+      const double needed = reach_mm / scene.mm_per_unit * s * options.resolution / kGutterReachInPaddings;
       const double cap = double(kMaxPaddingTexels) * options.resolution / 1024.0;
       o.padding_texels = std::uint32_t(std::max(double(options.padding_texels), std::ceil(std::min(needed, cap))));
     }

@@ -146,22 +146,28 @@ double reflectance_reach_mm(const profiles::RgbProfile& profile, double fraction
 
 // The share of a material's reflectance whose taps the seam gutter must hold: past the
 // gutter a tap takes the point reflection about the centre (sss_texture.comp), exact only
-// where the irradiance is linear; with 12 texels (the gutter 1.5x that, 6.4 mm on the
-// bunny, 44% of skin1's reflectance at its scale) a small chart near the key's shadow
-// edge kept its own light as a lighter triangular patch (issue 20 part 3).
+// where the irradiance is linear; with 12 texels a small chart near the key's shadow edge
+// kept its own light as a lighter triangular patch (issue 20 part 3).
 inline constexpr double kGutterReflectanceShare = 0.9;
+// How far past a chart's border its gutter continues the surface, in paddings: build_atlas
+// unfolds gutter triangles out to 1.5 x the gap between two charts (3 paddings), but a
+// chart owns only its own padding; the next padding out is its neighbour's, where the
+// nearer gutter wins. So the continuation is 1 padding where two charts face each other
+// and 2 where none does. ensure_sss_atlases sizes the padding with 1.5, between the two
+// (a guarantee everywhere would take 1).
+inline constexpr double kGutterReachInPaddings = 1.5;
 // The most padding a reach may ask for at 1024²: the padding is paid around each of the
 // charts, and the bunny's 74 keep 34% of the texture at 12 texels, 18% at 28, 13% at 32,
-// 2% at 48 (mm per texel grows as the square root of that). At 28 the gutter reaches
-// 20.4 mm, 82% of skin1's reflectance at the bunny's scale, and the patches are gone from
-// the frame (tests/scene/test_uv_atlas.cpp prints both).
+// 2% at 48 (mm per texel grows as the square root of that). At 28 the patches are gone
+// from the frame; tests/scene/test_uv_atlas.cpp prints the gutter's reach in mm and the
+// share of skin1's reflectance within it, at 1 and at 1.5 paddings, for 12 and 28 texels.
 inline constexpr std::uint32_t kMaxPaddingTexels = 28;
 
 // For every mesh drawn with a subsurface material whose uv0 fails check_uvs and that has
 // no uv_atlas yet: generate_atlas() and a note in Scene::texture_notes, "mesh NAME:
 // generated a UV atlas (REASON)". The padding is options.padding_texels, or more when the
 // material's profile needs it: enough (up to kMaxPaddingTexels, scaled with the
-// resolution) that the seam gutter, 1.5 x the padding, reaches the radius holding
+// resolution) that kGutterReachInPaddings paddings reach the radius holding
 // kGutterReflectanceShare of its reflectance (reflectance_reach_mm).
 // Returns how many atlases were generated. Not called on load (see README: "UV atlas").
 std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options = {});

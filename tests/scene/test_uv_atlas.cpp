@@ -274,7 +274,7 @@ TEST(UvAtlas, ReflectanceReachOfAGaussianIsItsClosedForm) {
 }
 
 // The padding follows the material (issue 20 part 3, texture mode's triangular patches):
-// the seam gutter, 1.5 x the padding, must reach the radius holding
+// kGutterReachInPaddings paddings must reach the radius holding
 // kGutterReflectanceShare of the reflectance, or kMaxPaddingTexels when that is further.
 // builtin:bunny's skin1 at scale 0.25 reaches past the cap; a small kernel keeps the
 // minimum.
@@ -292,18 +292,21 @@ TEST(UvAtlas, ThePaddingCoversTheKernelsReachUpToTheCap) {
   EXPECT_GT(reach, 20.0);
   EXPECT_EQ(padding_in(wide.texture_notes.back()), kMaxPaddingTexels);
   // What the gutter holds, before and after (printed for the README): its reach in mm
-  // and the share of skin1's reflectance within it, by bisection on the fraction.
+  // at 1 padding (where two charts face each other) and at kGutterReachInPaddings, and
+  // the share of skin1's reflectance within each, by bisection on the fraction.
   const profiles::RgbProfile skin = wide.materials[0].sss.profile();
   for (const std::uint32_t padding : {kLoadAtlasOptions.padding_texels, kMaxPaddingTexels}) {
     const double s = build_atlas(wide.meshes[0], {1024, padding}).stats.uv_per_unit;
-    const double gutter_mm = 1.5 * padding / (1024.0 * s) * wide.mm_per_unit;
-    double lo = 0.0, hi = 1.0;
-    for (int i = 0; i < 30; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (reflectance_reach_mm(skin, mid) <= gutter_mm ? lo : hi) = mid;
+    for (const double paddings : {1.0, kGutterReachInPaddings}) {
+      const double reach_mm = paddings * padding / (1024.0 * s) * wide.mm_per_unit;
+      double lo = 0.0, hi = 1.0;
+      for (int i = 0; i < 30; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (reflectance_reach_mm(skin, mid) <= reach_mm ? lo : hi) = mid;
+      }
+      std::printf("[ padding ] %u texels, %.1f paddings: %.1f mm, %.0f%% of skin1's reflectance at scale 0.25\n",
+                  padding, paddings, reach_mm, 100.0 * lo);
     }
-    std::printf("[ padding ] %u texels: the gutter reaches %.1f mm, %.0f%% of skin1's reflectance at scale 0.25\n",
-                padding, gutter_mm, 100.0 * lo);
   }
 
   Scene narrow = std::get<Scene>(bunny_scene());
