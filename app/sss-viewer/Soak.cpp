@@ -121,9 +121,12 @@ SoakVerdict judge_soak(const std::vector<SoakSample>& samples, int every, int cy
   if (peaks.size() == 1) {
     v.rss_growth_kb = 0;  // one cycle: nothing to compare, the objects decide
   } else {
-    long smallest_rise = std::numeric_limits<long>::max();
-    for (std::size_t k = 1; k < peaks.size(); ++k) smallest_rise = std::min(smallest_rise, peaks[k] - peaks[k - 1]);
-    v.rss_growth_kb = smallest_rise * long(peaks.size() - 1);
+    std::vector<long> rises;
+    for (std::size_t k = 1; k < peaks.size(); ++k) rises.push_back(peaks[k] - peaks[k - 1]);
+    // The lower median: the smallest of two rises, the 3rd smallest of six.
+    const std::size_t m = (rises.size() - 1) / 2;
+    std::nth_element(rises.begin(), rises.begin() + std::ptrdiff_t(m), rises.end());
+    v.rss_growth_kb = rises[m] * long(rises.size());
   }
   v.rss_ok = warm->rss_kb > 0 && measured && v.rss_growth_kb < max_growth_kb;
 
@@ -327,7 +330,7 @@ int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::Ren
   rss_state = "not judged under AddressSanitizer";
   v.rss_ok = true;
 #endif
-  std::printf("RSS after warm-up: the cycle peaks' smallest rise x rises %+ld kB, "
+  std::printf("RSS after warm-up: the cycle peaks' median rise x rises %+ld kB, "
               "limit %ld kB: %s (end minus warm-up %+ld kB; live heap %+ld kB)\n",
               v.rss_growth_kb, a.soak_max_growth_kb, rss_state,
               v.rss_end_minus_warmup_kb, v.heap_growth_kb);
