@@ -3,6 +3,7 @@
 #include "renderer/CameraSetup.h"
 #include "renderer/reference/Thickness.h"
 #include "renderer/scene/UvAtlas.h"
+#include "renderer/vk/Context.h"
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Sampler.h"
 #include "renderer/vk/Transfer.h"
@@ -10,6 +11,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -69,7 +71,7 @@ int GpuScene::add_texture(const vk::Context& context, const scene::Scene& scene,
 }
 
 GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
-    : instances_(scene.instances), materials_(scene.materials) {
+    : instances_(scene.instances), materials_(scene.materials), mm_per_unit_(scene.mm_per_unit) {
   // Slot 0: white, bound wherever a slot is unused.
   const std::uint8_t white[4] = {255, 255, 255, 255};
   Slot dummy;
@@ -90,40 +92,10 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
     const bool has_tangents = mesh.tangents.size() == mesh.positions.size();
     const bool scatters =
         mesh.material < scene.materials.size() && scene.materials[mesh.material].sss.enabled;
-    const std::vector<glm::vec2>& atlas = scene::sss_uvs(mesh);
-    const bool sss_uvs = scatters && atlas.size() == mesh.positions.size() &&
-                         (!mesh.uv_atlas.empty() || scene::check_uvs(mesh).usable);
-    const scene::UvIslands islands =
-        sss_uvs ? scene::uv_islands(atlas, mesh.indices) : scene::UvIslands{};
-    if (islands.count > 2048)  // the atlases store island + 1 in half floats (exact to 2048)
-      warnings_.push_back("mesh '" + mesh.name + "' has " + std::to_string(islands.count) +
-                          " UV islands: texture-space SSS tells apart 2048, so islands 2048 "
-                          "apart may blur into each other where they are within a kernel");
-    // Every mesh, scattering or not: a material can be given subsurface scattering on a
-    // live renderer (set_materials), and the bake costs a BVH build and a ray per vertex.
-    const std::vector<float> thickness = reference::inward_thickness(mesh);
-    std::vector<GpuVertex> vertices(mesh.positions.size());
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
-      const glm::vec3& p = mesh.positions[i];
-      const glm::vec3& n = mesh.normals[i];
-      GpuVertex& v = vertices[i];
-      v = {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 0.0f}, {},
-           i < thickness.size() ? thickness[i] : -1.0f};
-      if (sss_uvs)
-        for (int c = 0; c < 4; ++c)
-          v.atlas[c] = c < 2 ? atlas[i][c] : c == 2 ? float(islands.vertex_island[i]) : 0.0f;
-      if (has_uv) {
-        v.uv[0] = mesh.uv0[i].x;
-        v.uv[1] = mesh.uv0[i].y;
-      }
-      if (has_tangents)
-        for (int c = 0; c < 4; ++c) v.tangent[c] = mesh.tangents[i][c];
-    }
-    MeshBuffers b;
-    b.sss_uvs = sss_uvs;
-    b.name = mesh.name;
-    b.bounds = mesh.bounds;
-    b.index_count = static_cast<std::uint32_t>(mesh.indices.size());
+    MeshBuffers b = upload_geometry(context, mesh, scatters);
+    // A mesh that does not scatter now and has no SSS UVs: kept to build its atlas if its
+    // material is given subsurface scattering on the live renderer (ensure_sss_uvs).
+    deferred_.push_back(b.sss_uvs || scatters ? std::nullopt : std::optional<scene::Mesh>(mesh));
     b.material = mesh.material;
     if (mesh.material < scene.materials.size()) {
       const scene::Material& m = scene.materials[mesh.material];
@@ -135,40 +107,84 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
       else if (m.normal_texture && !has_tangents)
         warnings_.push_back("mesh '" + mesh.name + "' has no tangents: its normal map is ignored");
     }
-    if (!vertices.empty() && !mesh.indices.empty()) {
-      b.vertices = vk::Buffer(context, {vertices.size() * sizeof(GpuVertex),
-                                        VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
-                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                        vk::MemoryUsage::DeviceLocal, mesh.name + " vertices"});
-      vk::upload_buffer(context, b.vertices, std::span<const GpuVertex>(vertices));
-      b.indices = vk::Buffer(context, {mesh.indices.size() * sizeof(std::uint32_t),
-                                       VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
-                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                       vk::MemoryUsage::DeviceLocal, mesh.name + " indices"});
-      vk::upload_buffer(context, b.indices, std::span<const std::uint32_t>(mesh.indices));
-    }
-    const scene::Mesh::AtlasGutter& g = mesh.uv_atlas_gutter;
-    if (sss_uvs && !mesh.uv_atlas.empty() && !g.vertices.empty()) {
-      std::vector<GpuVertex> gutter;
-      gutter.reserve(g.vertices.size());
-      for (std::size_t k = 0; k < g.vertices.size(); ++k) {
-        GpuVertex v = vertices.at(g.vertices[k]);
-        const float island = float(islands.vertex_island.at(g.host.at(k / 3)));
-        v.atlas[0] = g.uv[k].x;
-        v.atlas[1] = g.uv[k].y;
-        v.atlas[2] = island;
-        v.atlas[3] = g.depth[k];
-        gutter.push_back(v);
-      }
-      b.gutter = vk::Buffer(context, {gutter.size() * sizeof(GpuVertex),
-                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
-                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                      vk::MemoryUsage::DeviceLocal, mesh.name + " gutter"});
-      vk::upload_buffer(context, b.gutter, std::span<const GpuVertex>(gutter));
-      b.gutter_vertices = static_cast<std::uint32_t>(gutter.size());
-    }
     meshes_.push_back(std::move(b));
   }
+}
+
+GpuScene::MeshBuffers GpuScene::upload_geometry(const vk::Context& context, const scene::Mesh& mesh,
+                                                bool scatters) {
+  const bool has_uv = mesh.uv0.size() == mesh.positions.size();
+  const bool has_tangents = mesh.tangents.size() == mesh.positions.size();
+  const std::vector<glm::vec2>& atlas = scene::sss_uvs(mesh);
+  // The SSS UVs of every mesh that has usable ones, scattering or not: a material can be
+  // given subsurface scattering on a live renderer (set_materials). Inert until it is.
+  const bool sss_uvs = atlas.size() == mesh.positions.size() &&
+                       (!mesh.uv_atlas.empty() || scene::check_uvs(mesh).usable);
+  const scene::UvIslands islands =
+      sss_uvs ? scene::uv_islands(atlas, mesh.indices) : scene::UvIslands{};
+  if (scatters && islands.count > 2048)  // the atlases store island + 1 in half floats (exact to 2048)
+    warnings_.push_back("mesh '" + mesh.name + "' has " + std::to_string(islands.count) +
+                        " UV islands: texture-space SSS tells apart 2048, so islands 2048 "
+                        "apart may blur into each other where they are within a kernel");
+  // Every mesh, scattering or not, for the same reason; the bake costs a BVH build and a
+  // ray per vertex.
+  const std::vector<float> thickness = reference::inward_thickness(mesh);
+  std::vector<GpuVertex> vertices(mesh.positions.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const glm::vec3& p = mesh.positions[i];
+    const glm::vec3& n = mesh.normals[i];
+    GpuVertex& v = vertices[i];
+    v = {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 0.0f}, {},
+         i < thickness.size() ? thickness[i] : -1.0f};
+    if (sss_uvs)
+      for (int c = 0; c < 4; ++c)
+        v.atlas[c] = c < 2 ? atlas[i][c] : c == 2 ? float(islands.vertex_island[i]) : 0.0f;
+    if (has_uv) {
+      v.uv[0] = mesh.uv0[i].x;
+      v.uv[1] = mesh.uv0[i].y;
+    }
+    if (has_tangents)
+      for (int c = 0; c < 4; ++c) v.tangent[c] = mesh.tangents[i][c];
+  }
+  MeshBuffers b;
+  b.sss_uvs = sss_uvs;
+  b.name = mesh.name;
+  b.bounds = mesh.bounds;
+  b.index_count = static_cast<std::uint32_t>(mesh.indices.size());
+  b.material = mesh.material;
+  if (!vertices.empty() && !mesh.indices.empty()) {
+    b.vertices = vk::Buffer(context, {vertices.size() * sizeof(GpuVertex),
+                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
+                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                      vk::MemoryUsage::DeviceLocal, mesh.name + " vertices"});
+    vk::upload_buffer(context, b.vertices, std::span<const GpuVertex>(vertices));
+    b.indices = vk::Buffer(context, {mesh.indices.size() * sizeof(std::uint32_t),
+                                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
+                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                     vk::MemoryUsage::DeviceLocal, mesh.name + " indices"});
+    vk::upload_buffer(context, b.indices, std::span<const std::uint32_t>(mesh.indices));
+  }
+  const scene::Mesh::AtlasGutter& g = mesh.uv_atlas_gutter;
+  if (sss_uvs && !mesh.uv_atlas.empty() && !g.vertices.empty()) {
+    std::vector<GpuVertex> gutter;
+    gutter.reserve(g.vertices.size());
+    for (std::size_t k = 0; k < g.vertices.size(); ++k) {
+      GpuVertex v = vertices.at(g.vertices[k]);
+      const float island = float(islands.vertex_island.at(g.host.at(k / 3)));
+      v.atlas[0] = g.uv[k].x;
+      v.atlas[1] = g.uv[k].y;
+      v.atlas[2] = island;
+      v.atlas[3] = g.depth[k];
+      gutter.push_back(v);
+    }
+    b.gutter = vk::Buffer(context, {gutter.size() * sizeof(GpuVertex),
+                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
+                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                    vk::MemoryUsage::DeviceLocal, mesh.name + " gutter"});
+    vk::upload_buffer(context, b.gutter, std::span<const GpuVertex>(gutter));
+    b.gutter_vertices = static_cast<std::uint32_t>(gutter.size());
+  }
+  return b;
 }
 
 void GpuScene::set_materials(const std::vector<scene::Material>& materials) {
@@ -181,6 +197,31 @@ void GpuScene::set_materials(const std::vector<scene::Material>& materials) {
       throw std::invalid_argument("material '" + materials[i].name +
                                   "': textures cannot change on a live renderer");
   materials_ = materials;
+}
+
+bool GpuScene::ensure_sss_uvs(const vk::Context& context, const std::vector<scene::Material>& materials) {
+  bool changed = false;
+  for (std::size_t i = 0; i < meshes_.size(); ++i) {
+    if (!deferred_[i]) continue;
+    const std::uint32_t m = meshes_[i].material;
+    if (m >= materials.size() || !materials[m].sss.enabled) continue;
+    // What load_scene does for a mesh whose material scatters: an atlas sized for the
+    // material's reach (scene::ensure_sss_atlases), on a scene of this mesh alone.
+    scene::Scene one;
+    one.mm_per_unit = mm_per_unit_;
+    one.materials = materials;
+    one.meshes.push_back(*deferred_[i]);
+    scene::ensure_sss_atlases(one, scene::kLoadAtlasOptions);
+    MeshBuffers b = upload_geometry(context, one.meshes[0], true);
+    if (!b.sss_uvs) continue;  // no atlas could be made: drawn without spread, as at load
+    if (!changed) context.wait_idle();  // a frame in flight may still read the old buffers
+    b.base_slot = meshes_[i].base_slot;
+    b.normal_slot = meshes_[i].normal_slot;
+    meshes_[i] = std::move(b);
+    deferred_[i].reset();
+    changed = true;
+  }
+  return changed;
 }
 
 std::vector<VkDescriptorImageInfo> GpuScene::texture_descriptors() const {

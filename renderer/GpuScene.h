@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,7 +70,8 @@ class GpuScene {
   const std::string& mesh_name(std::uint32_t mesh) const { return meshes_[mesh].name; }
   // Whether the mesh's SSS UVs (scene::sss_uvs) can hold an irradiance texture: a
   // generated atlas, or a uv0 that passes scene::check_uvs. Checked at construction for
-  // meshes whose material scatters then; false for the others.
+  // every mesh; a mesh without either gets an atlas when ensure_sss_uvs gives its
+  // material subsurface scattering.
   bool has_sss_uvs(std::uint32_t mesh) const { return meshes_[mesh].sss_uvs; }
 
   // SSS_MAX_TEXTURES descriptors (SHADER_READ_ONLY_OPTIMAL); unused slots hold a white
@@ -82,6 +84,11 @@ class GpuScene {
   // slots are not rebuilt): otherwise std::invalid_argument and nothing changes.
   void set_materials(const std::vector<scene::Material>& materials);
   const std::vector<scene::Material>& materials() const { return materials_; }
+  // For each mesh without SSS UVs whose material did not scatter at construction and
+  // does in `materials`: builds its UV atlas as load_scene would (scene::ensure_sss_atlases)
+  // and uploads its vertices again with it (waiting for the device first). Returns whether
+  // any mesh got one. The atlas build runs on the calling thread (the bunny: 27 ms).
+  bool ensure_sss_uvs(const vk::Context& context, const std::vector<scene::Material>& materials);
 
  private:
   struct MeshBuffers {
@@ -97,6 +104,8 @@ class GpuScene {
     std::string name;
     scene::Bounds bounds;  // the mesh's, local
   };
+  // The mesh's vertex, index and gutter buffers and its SSS UVs (no texture slots).
+  MeshBuffers upload_geometry(const vk::Context& context, const scene::Mesh& mesh, bool scatters);
   void push_constants(VkCommandBuffer cmd, VkPipelineLayout layout, const scene::Instance& instance,
                       int light_index, int object) const;
   void push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const scene::Instance& instance,
@@ -111,6 +120,8 @@ class GpuScene {
   std::vector<MeshBuffers> meshes_;
   std::vector<scene::Instance> instances_;
   std::vector<scene::Material> materials_;
+  std::vector<std::optional<scene::Mesh>> deferred_;  // per mesh: kept for ensure_sss_uvs
+  double mm_per_unit_ = 1000.0;
   std::vector<Slot> slots_;  // slots_[0] is the white dummy
   std::vector<std::string> warnings_;
 };

@@ -336,6 +336,9 @@ void Renderer::set_materials(const std::vector<scene::Material>& materials, Mate
                                 std::to_string(data.profiles.size()) + " materials, got " +
                                 std::to_string(materials.size()));
   scene_.set_materials(materials);  // checks the count and the textures first
+  // A material given subsurface scattering now: its meshes without SSS UVs get an atlas
+  // for the texture path (update_sss_pass then takes them in).
+  scene_.ensure_sss_uvs(context_, materials);
   materials_.replace(context_, std::move(data));
   update_sss_pass();
   if (texture_) texture_->invalidate();

@@ -330,5 +330,56 @@ TEST_F(TextureSpaceTest, TextureSizeOutsideItsRangeIsRefused) {
         << bad;
 }
 
+// A material given subsurface scattering on the live renderer (the panel's "enable
+// subsurface" switch), on a mesh whose uv0 cannot hold an irradiance texture: the
+// renderer builds the atlas load_scene would have built (GpuScene::ensure_sss_uvs) and
+// the frame is the one of a renderer made from the scene loaded with the material on.
+// Same atlas, same vertices, same passes on a deterministic rasterizer: the HDR frames
+// are equal bit for bit. Before the fix the object was "drawn without spread".
+TEST_F(TextureSpaceTest, AMaterialSwitchedOnLiveGetsTheAtlasLoadingWouldGive) {
+  scene::Scene s = scene::edge_scene({});
+  scene::Scene off = s;
+  off.materials[0].sss.enabled = false;  // no atlas at load: the material does not scatter
+  ASSERT_EQ(scene::ensure_sss_atlases(off), 0u);
+  ASSERT_EQ(scene::ensure_sss_atlases(s), 1u);  // the box's uv0 faces overlap
+  const RenderOptions o = texture_options(128, 16, 512);
+
+  Renderer live(ctx(), off, o);
+  live.render_frame();
+  std::vector<scene::Material> on = off.materials;
+  on[0].sss.enabled = true;
+  live.set_materials(on);
+  for (const std::string& w : live.warnings())
+    EXPECT_EQ(w.find("without spread"), std::string::npos) << w;
+  live.render_frame();
+  const image::Image a = live.read_hdr();
+
+  Renderer loaded(ctx(), s, o);
+  loaded.render_frame();
+  const image::Image b = loaded.read_hdr();
+
+  // The same scene without the atlas: drawn without spread, so the frames differ.
+  scene::Scene bare = scene::edge_scene({});
+  Renderer unspread(ctx(), bare, o);
+  ASSERT_TRUE(std::any_of(unspread.warnings().begin(), unspread.warnings().end(),
+                          [](const std::string& w) { return w.find("without spread") != std::string::npos; }));
+  unspread.render_frame();
+  const image::Image c = unspread.read_hdr();
+
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  int differing = 0, differing_unspread = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (int k = 0; k < 3; ++k) {
+        differing += a.pixel(x, y)[k] != b.pixel(x, y)[k];
+        differing_unspread += std::fabs(a.pixel(x, y)[k] - c.pixel(x, y)[k]) > 1e-3f;
+      }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(differing_unspread, 0);
+  std::printf("[ switched on live ] %d channel values differ from the loaded scene's frame, "
+              "%d from the frame without spread\n", differing, differing_unspread);
+}
+
 }  // namespace
 }  // namespace sss::renderer::testing
