@@ -11,6 +11,7 @@ vk::DescriptorSetLayoutBuilder bindings() {
   b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs).add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
   for (uint32_t i : {2, 3, 4, 6}) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
   b.add(7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs).add(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
+  b.add(9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
   return b;
 }
 }  // namespace
@@ -34,13 +35,17 @@ void CompositePass::write_descriptors() {
       .combined_image(6, t.accum, nearest, general)
       .storage_image(7, t.hdr)
       .storage_image(8, t.display)
+      .combined_image(9, r_.environment.background(), nearest)
       .update(r_.context);
 }
 
 void CompositePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
   auto scope = timer.scope(cmd, kName);
   program_.bind(cmd, set_);
-  ComputeProgram::dispatch(cmd, r_.rect);
+  if (full_frame_)  // the environment behind the geometry: every pixel
+    ComputeProgram::dispatch(cmd, r_.targets.display.width(), r_.targets.display.height());
+  else
+    ComputeProgram::dispatch(cmd, r_.rect);
 }
 
 }  // namespace sss::renderer

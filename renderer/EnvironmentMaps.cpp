@@ -4,6 +4,7 @@
 #include "renderer/vk/Context.h"
 #include "renderer/vk/Transfer.h"
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -35,6 +36,21 @@ void EnvironmentMaps::upload(const std::optional<scene::Environment>& environmen
     for (std::size_t i = 0; i < texels; ++i)
       for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = environment->specular[i][c];
   vk::upload_image(context_, specular_, std::as_bytes(std::span(rgba)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+
+  const bool image = environment && !environment->uniform();
+  const std::uint32_t w = image ? std::uint32_t(environment->width) : 1;
+  const std::uint32_t h = image ? std::uint32_t(environment->height) : 1;
+  std::vector<float> radiance(std::size_t(w) * h * 4, 0.0f);
+  for (std::size_t i = 0; i < std::size_t(w) * h; ++i)
+    for (int c = 0; c < 3; ++c)
+      radiance[i * 4 + c] = image ? environment->image[i][c] : environment ? environment->colour[c] : 0.0f;
+  if (!background_ || background_.width() != w || background_.height() != h) {
+    vk::ImageDesc desc(w, h, VK_FORMAT_R32G32B32A32_SFLOAT,
+                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "environment background");
+    desc.view_type = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+    background_ = vk::Image(context_, desc);
+  }
+  vk::upload_image(context_, background_, std::as_bytes(std::span(radiance)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
 }  // namespace sss::renderer

@@ -28,11 +28,18 @@ class EnvironmentMaps {
 
   const vk::Image& specular() const { return specular_; }
   const vk::Image& dfg() const { return dfg_; }
+  // The radiance itself for the display's background (RenderOptions::
+  // background_environment): the environment's image at its own size (rgba32f, a 2D array
+  // of one layer, read as the levels are), one texel of its colour when it is uniform, one
+  // zero texel without one. upload() makes a new image when the size changes: descriptor
+  // sets that hold it must be written again.
+  const vk::Image& background() const { return background_; }
 
  private:
   const vk::Context& context_;
   vk::Image specular_;
   vk::Image dfg_;
+  vk::Image background_;
   bool dfg_uploaded_ = false;  // the table, made at the first environment (zeros before)
 };
 

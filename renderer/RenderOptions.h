@@ -97,6 +97,12 @@ struct RenderOptions {
   // keeps 0 behind the geometry either way. The window sets a grey (sss-viewer
   // --background), so a cube's unlit face does not vanish into the background.
   std::optional<std::array<float, 3>> background;
+  // --background environment: the scene's environment light behind the geometry in the
+  // display image (its radiance in each pixel's view direction, bilinear in the
+  // equirectangular image as scene::Environment::radiance, then exposure, tonemap and
+  // sRGB like the geometry; opaque). Without an environment the background stays as
+  // above. The HDR image keeps 0 there, so comparisons with the references are unchanged.
+  bool background_environment = false;
   DebugView debug_view = DebugView::None;
   // --debug-range LO,HI: the debug view's heat map from LO to HI in the view's unit
   // (kernel-radius: pixels, on a log2 scale; thickness: mm; uv-stretch: mm per unit of UV).

@@ -151,6 +151,8 @@ void Renderer::write_frame_uniforms() {
   uniforms.flags.x = options_.fresnel ? 1.0f : 0.0f;
   uniforms.flags.y = options_.single_scattering ? 1.0f : 0.0f;
   uniforms.flags.z = has_environment_ ? 1.0f : 0.0f;
+  uniforms.flags.w = has_environment_ && options_.background_environment ? 1.0f : 0.0f;
+  if (composite_) composite_->set_full_frame(uniforms.flags.w > 0.5f);
   rect_ = geometry_rect(camera, bounds_, options_.width, options_.height);
   uniforms.rect = {float(rect_.x0), float(rect_.y0), float(rect_.x1), float(rect_.y1)};
   frame_uniforms_.write(&uniforms, sizeof(uniforms));
@@ -298,6 +300,7 @@ void Renderer::store_environment(const std::optional<scene::Environment>& enviro
   }
   context_.wait_idle();  // a frame may still read the levels
   environment_maps_.upload(environment);
+  if (composite_) composite_->write_descriptors();  // the background image may be new
 }
 
 void Renderer::set_environment(const std::optional<scene::Environment>& environment) {

@@ -19,15 +19,34 @@ layout(set = 0, binding = 4) uniform sampler2D specular_tex;
 layout(set = 0, binding = 6) uniform sampler2D accumulated_tex;  // gaussians: R * E
 layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D hdr_img;
 layout(set = 0, binding = 8, rgba8) uniform writeonly image2D display_img;
+// The environment's radiance, equirectangular (EnvironmentMaps::background).
+layout(set = 0, binding = 9) uniform sampler2DArray background_tex;
 
 #include "shared/composite.glsl"
 
+// The environment's radiance seen through pixel p: the view ray from two points of the
+// pixel's line of sight (reversed depth: 1 at the near plane; 0.5 is finite even with an
+// infinite far plane), which serves perspective and orthographic cameras alike.
+vec3 background_radiance(ivec2 p) {
+  vec2 ndc = pixel_ndc(vec2(p) + 0.5, frame.viewport);
+  vec4 a = frame.inv_view_proj * vec4(ndc, 1.0, 1.0);
+  vec4 b = frame.inv_view_proj * vec4(ndc, 0.5, 1.0);
+  return equirect_bilinear(background_tex, 0, normalize(b.xyz / b.w - a.xyz / a.w));
+}
+
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy) + ivec2(frame.rect.xy);  // the geometry's rect
-  if (any(greaterThanEqual(p, ivec2(frame.rect.zw)))) return;
-  vec4 albedo_id = texelFetch(albedo_tex, p, 0);
+  // The geometry's rect, or every pixel when the environment is behind the geometry.
+  bool environment_behind = frame.flags.w > 0.5;
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy) + (environment_behind ? ivec2(0) : ivec2(frame.rect.xy));
+  if (any(greaterThanEqual(p, environment_behind ? ivec2(frame.viewport.xy) : ivec2(frame.rect.zw))))
+    return;
+  bool in_rect = all(greaterThanEqual(p, ivec2(frame.rect.xy))) && all(lessThan(p, ivec2(frame.rect.zw)));
+  vec4 albedo_id = in_rect ? texelFetch(albedo_tex, p, 0) : vec4(0.0);
   int id = material_id(albedo_id);
-  if (id < 0) return;  // background: hdr and display were cleared to 0 (Renderer::record)
+  if (id < 0) {  // background: hdr and display were cleared (Renderer::record)
+    if (environment_behind) imageStore(display_img, p, vec4(display_encode(background_radiance(p)), 1.0));
+    return;
+  }
   vec4 reflectance = materials[id].reflectance;  // not the whole GpuMaterial
   int mode = int(frame.options.y);
   if (reflectance.w > 0.5 && mode == 1) return;  // sss_separable.comp wrote it

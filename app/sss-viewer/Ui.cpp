@@ -308,6 +308,11 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("--background R,G,B: the colour behind the geometry (sRGB, opaque)");
+  ImGui::SameLine();
+  if (ImGui::Checkbox("environment behind", &o.background_environment)) changed = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("--background environment: the environment light behind the geometry,\n"
+                      "as the camera sees it (where there is one; else the colour)");
   const std::string view_label(renderer::debug_view_name(o.debug_view));
   if (ImGui::BeginCombo("debug view", view_label.c_str())) {
     for (const renderer::DebugView v : renderer::all_debug_views()) {

@@ -35,7 +35,8 @@ struct ViewerArgs {
   int taps = 17;
   int shadow_map_size = 1024;  // texels a side (RenderOptions::shadow_map_size)
   float exposure = 1.0f;
-  // --background auto (window: kWindowBackground, headless: none) | none | R,G,B (sRGB)
+  // --background auto (window: the environment if any, else kWindowBackground; headless:
+  // none) | none | environment | R,G,B (sRGB)
   std::string background = "auto";
   std::string aa = "auto";  // --aa auto (window: fxaa, headless: off) | off | fxaa
   std::string debug_view = "none";  // --debug-view: renderer::parse_debug_view names

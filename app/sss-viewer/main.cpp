@@ -114,10 +114,11 @@ int viewer_main(int argc, char** argv) {
                  "the tonemapped image (the EXR is never filtered). auto (default): fxaa in the "
                  "window, off headless, where the PNG is the frame the golden suite compares");
   app.add_option("--background", a.background,
-                 "auto | none | R,G,B: the colour behind the geometry in the displayed frame and "
-                 "the PNG, sRGB in [0, 1], opaque (the EXR keeps 0 there). none: black, and the "
-                 "PNG is transparent there. auto (default): a dark grey in the window, none "
-                 "headless");
+                 "auto | none | environment | R,G,B: what is behind the geometry in the displayed "
+                 "frame and the PNG (the EXR keeps 0 there). R,G,B: a colour, sRGB in [0, 1], "
+                 "opaque. environment: the --environment light as the camera sees it, opaque. "
+                 "none: black, and the PNG is transparent there. auto (default): in the window "
+                 "the environment when there is one, else a dark grey; none headless");
   app.add_option("--debug-view", a.debug_view, debug_view_help());
   app.add_option("--debug-range", a.debug_range,
                  "LO,HI: the debug view's heat map from LO to HI in its unit (kernel-radius: "
@@ -267,7 +268,15 @@ int viewer_main(int argc, char** argv) {
     return usage("--aa: expected auto, off or fxaa, got '" + a.aa + "'");
   }
   if (a.background == "auto") {
-    if (!a.headless) options.background = kWindowBackground;
+    if (!a.headless) {
+      options.background = kWindowBackground;  // where there is no environment
+      options.background_environment = true;
+    }
+  } else if (a.background == "environment") {
+    if (a.environment.environment == "none")
+      return usage("--background environment: no environment to show; give one with "
+                   "--environment R,G,B|FILE.exr");
+    options.background_environment = true;
   } else if (a.background != "none") {
     auto rgb = parse_rgb("--background", a.background);
     if (auto* e = std::get_if<FieldError>(&rgb)) return usage(e->what());

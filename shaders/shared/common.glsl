@@ -9,6 +9,27 @@ int material_id(vec4 albedo_id) { return int(round(albedo_id.a * 255.0)) - 1; }
 
 vec2 pixel_ndc(vec2 pixel_center, vec4 viewport) { return pixel_center * viewport.zw * 2.0 - 1.0; }
 
+// An equirectangular layer of `tex` at direction d (unit), bilinear between texel centres
+// with texelFetch: u wraps, v clamps (scene::equirect_bilinear, scene/Environment.h's
+// convention: u = 1/2 + atan2(d.x, -d.z) / 2 pi, v = acos(d.y) / pi).
+vec3 equirect_bilinear(sampler2DArray tex, int layer, vec3 d) {
+  ivec2 size = textureSize(tex, 0).xy;
+  // atan(0, 0) is undefined in GLSL: straight up or down, u = 1/2 (as in C++).
+  float u = (d.x == 0.0 && d.z == 0.0) ? 0.5 : 0.5 + atan(d.x, -d.z) / (2.0 * kPi);
+  float v = acos(clamp(d.y, -1.0, 1.0)) / kPi;
+  float fx = u * float(size.x) - 0.5;
+  float fy = clamp(v * float(size.y) - 0.5, 0.0, float(size.y - 1));
+  int x0 = int(floor(fx)), y0 = int(floor(fy));
+  float tx = fx - float(x0), ty = fy - float(y0);
+  int xa = (x0 + size.x) % size.x, xb = (x0 + 1 + size.x) % size.x;  // x0 >= -1
+  int ya = y0, yb = min(y0 + 1, size.y - 1);
+  vec3 top = texelFetch(tex, ivec3(xa, ya, layer), 0).rgb * (1.0 - tx) +
+             texelFetch(tex, ivec3(xb, ya, layer), 0).rgb * tx;
+  vec3 bottom = texelFetch(tex, ivec3(xa, yb, layer), 0).rgb * (1.0 - tx) +
+                texelFetch(tex, ivec3(xb, yb, layer), 0).rgb * tx;
+  return top * (1.0 - ty) + bottom * ty;
+}
+
 // Directional Fresnel (issue 18 part 1; Jensen et al. 2001's separable BSSRDF,
 // S_d = F_t(η, ωi) R(r) F_t(η, ωo) / (c π)): the transmittance 1 - Fr of a smooth
 // dielectric for light meeting a medium of index eta (per channel) from outside at cosine

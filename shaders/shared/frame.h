@@ -60,7 +60,8 @@ struct FrameUniforms {
                        // (RenderOptions::fresnel; shading.glsl, composite.glsl); y 1 =
                        // single scattering S(1) per pixel (RenderOptions::
                        // single_scattering; shading.glsl); z 1 = an environment light
-                       // (LightBlock::environment); w 0
+                       // (LightBlock::environment); w 1 = the environment behind
+                       // the geometry in the display image (composite.comp; needs z)
 };
 
 struct GpuLight {

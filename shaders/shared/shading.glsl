@@ -141,23 +141,7 @@ vec3 environment_irradiance(vec3 n) {
 // dfg_tex (sampler2D: A, B over n.v and r at texel centres).
 
 // Bilinear in one level at direction d (unit): u wraps, v clamps (scene::equirect_bilinear).
-vec3 environment_level(int layer, vec3 d) {
-  ivec2 size = textureSize(environment_specular_tex, 0).xy;
-  // atan(0, 0) is undefined in GLSL: straight up or down, u = 1/2 (as in C++).
-  float u = (d.x == 0.0 && d.z == 0.0) ? 0.5 : 0.5 + atan(d.x, -d.z) / (2.0 * kPi);
-  float v = acos(clamp(d.y, -1.0, 1.0)) / kPi;
-  float fx = u * float(size.x) - 0.5;
-  float fy = clamp(v * float(size.y) - 0.5, 0.0, float(size.y - 1));
-  int x0 = int(floor(fx)), y0 = int(floor(fy));
-  float tx = fx - float(x0), ty = fy - float(y0);
-  int xa = (x0 + size.x) % size.x, xb = (x0 + 1 + size.x) % size.x;  // x0 >= -1
-  int ya = y0, yb = min(y0 + 1, size.y - 1);
-  vec3 top = texelFetch(environment_specular_tex, ivec3(xa, ya, layer), 0).rgb * (1.0 - tx) +
-             texelFetch(environment_specular_tex, ivec3(xb, ya, layer), 0).rgb * tx;
-  vec3 bottom = texelFetch(environment_specular_tex, ivec3(xa, yb, layer), 0).rgb * (1.0 - tx) +
-                texelFetch(environment_specular_tex, ivec3(xb, yb, layer), 0).rgb * tx;
-  return top * (1.0 - ty) + bottom * ty;
-}
+vec3 environment_level(int layer, vec3 d) { return equirect_bilinear(environment_specular_tex, layer, d); }
 
 // scene::dfg_lookup: (A, B) bilinear between texel centres, clamped at the edges.
 vec2 dfg_lookup(float n_dot_v, float roughness) {

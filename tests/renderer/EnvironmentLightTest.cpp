@@ -18,6 +18,8 @@
 #include "profiles/Fresnel.h"
 #include "profiles/Profile.h"
 #include "renderer/MaterialTable.h"
+#include "renderer/image/Image.h"
+#include "renderer/image/Tonemap.h"
 #include "renderer/scene/SssExtras.h"
 
 #include <gtest/gtest.h>
@@ -320,6 +322,71 @@ TEST_F(EnvironmentLightTest, AThinSlabTransmitsTheSkyBehindIt) {
       }
     }
   }
+}
+
+// The environment behind the geometry (RenderOptions::background_environment): each
+// background pixel of the display image is the sky's radiance along the pixel's view ray
+// (pixel_ray, from the field of view alone; scene::Environment::radiance, bilinear in the
+// image, in C++), through exposure, filmic and sRGB (image::filmic, image::srgb_encode),
+// as a code of 8 bits. Tolerance, in codes: the code's rounding (1/2) and the GPU's
+// (lavapipe rounds the store: another 1/2), plus the change of the expected code when the
+// ray turns by 2e-3 rad in azimuth or elevation (Vulkan's atan and acos: 1.5e-3 rad at
+// most, as the specular test above). The sky changes along u and v, so a flipped axis or
+// a wrong wrap shows. The geometry's pixels and the whole HDR image are the frame without
+// it, bit for bit: the option touches only the display's background.
+TEST_F(EnvironmentLightTest, TheEnvironmentBehindTheGeometryIsTheSkyAlongEachPixelsRay) {
+  constexpr int kW = 160, kH = 90, kSkyW = 64, kSkyH = 32;
+  std::vector<float> rgba(std::size_t(kSkyW) * kSkyH * 4, 1.0f);
+  for (int y = 0; y < kSkyH; ++y)
+    for (int x = 0; x < kSkyW; ++x) {
+      float* p = &rgba[(std::size_t(y) * kSkyW + x) * 4];
+      const float u = (x + 0.5f) / kSkyW, v = (y + 0.5f) / kSkyH;
+      p[0] = 0.1f + 1.5f * u;
+      p[1] = 0.1f + 1.2f * v;
+      p[2] = 0.05f + 2.0f * u * (1.0f - v);
+    }
+  scene::Scene s = scene::sphere_scene();
+  s.cameras[0].aspect = 0.0f;  // the image's, as pixel_ray assumes
+  s.environment = scene::image_environment("gradient", kSkyW, kSkyH, rgba);
+  const scene::Environment& sky = *s.environment;
+  RenderOptions options = small_options(kW, kH, SssMode::Screen);
+  options.exposure = 1.5f;
+  const Frame plain = render(s, options);
+  options.background_environment = true;
+  const Frame behind = render(s, options);
+
+  const auto code = [&](const glm::vec3& d, int c) {
+    return 255.0 * double(image::srgb_encode(image::filmic(options.exposure * sky.radiance(d)[c])));
+  };
+  const float turn = 2e-3f;
+  int background = 0, geometry_differs = 0;
+  double worst = 0.0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      for (int c = 0; c < 4; ++c)
+        EXPECT_EQ(plain.hdr.pixel(x, y)[c], behind.hdr.pixel(x, y)[c]) << x << "," << y;
+      if (plain.display.pixel(x, y)[3] > 0.0f) {  // geometry
+        for (int c = 0; c < 4; ++c) geometry_differs += plain.display.pixel(x, y)[c] != behind.display.pixel(x, y)[c];
+        continue;
+      }
+      ++background;
+      const glm::vec3 d = pixel_ray(s.cameras[0], x, y, kW, kH);
+      const glm::vec3 around(d.x * std::cos(turn) + d.z * std::sin(turn), d.y, -d.x * std::sin(turn) + d.z * std::cos(turn));
+      const glm::vec3 side = glm::normalize(glm::cross(d, glm::vec3(0.0f, 1.0f, 0.0f)));
+      const glm::vec3 up = glm::normalize(d * std::cos(turn) + glm::cross(side, d) * std::sin(turn));
+      EXPECT_EQ(behind.display.pixel(x, y)[3], 1.0f) << x << "," << y;
+      for (int c = 0; c < 3; ++c) {
+        const double expected = code(d, c);
+        const double tol = 1.0 + std::max(std::fabs(code(around, c) - expected), std::fabs(code(up, c) - expected));
+        const double got = 255.0 * behind.display.pixel(x, y)[c];
+        EXPECT_NEAR(got, expected, tol) << "pixel " << x << "," << y << " channel " << c;
+        worst = std::max(worst, std::fabs(got - expected) / tol);
+      }
+    }
+  EXPECT_EQ(geometry_differs, 0);
+  EXPECT_GT(background, kW * kH / 4);
+  std::printf("[ environment behind ] %d background pixels, worst |code - expected| / tol %.3f\n",
+              background, worst);
 }
 
 }  // namespace

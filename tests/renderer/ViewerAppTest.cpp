@@ -155,6 +155,8 @@ TEST(ViewerApp, DocumentedErrors) {
       {"builtin:sphere --headless --out " + out + " --background 0,1.5,0", 2,
        "--background: each of R, G, B must lie in [0, 1] (sRGB), got 1.5"},
       {"builtin:sphere --headless --out " + out + " --background grey", 2, "--background"},
+      {"builtin:sphere --headless --out " + out + " --background environment", 2,
+       "--background environment: no environment to show"},
       {"builtin:sphere --headless --out " + out + " --environment 1,2", 2,
        "--environment: the environment '1,2' is neither R,G,B"},
       {"builtin:sphere --headless --out " + out + " --environment 1,-1,1", 2,
