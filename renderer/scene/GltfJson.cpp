@@ -189,8 +189,15 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
   facts.file_uris = std::move(file_uris);
   facts.material_count = materials->size();
   facts.material_sss.resize(materials->size());
+  facts.material_khr.resize(materials->size());
   for (std::size_t i = 0; i < materials->size(); ++i) {
     const json& m = (*materials)[i];
+    if (m.contains("extensions")) {
+      auto khr = parse_khr_medium(m["extensions"]);
+      if (auto* e = std::get_if<FieldError>(&khr))
+        return c.fail(at("materials", i), "extensions." + e->field, e->message);
+      if (std::get<KhrMedium>(khr).any()) facts.material_khr[i] = std::get<KhrMedium>(std::move(khr));
+    }
     if (!m.contains("extras") || !m["extras"].is_object() || !m["extras"].contains("sss"))
       continue;
     auto sss = parse_sss_extras(m["extras"]["sss"]);

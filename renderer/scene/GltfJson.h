@@ -5,6 +5,7 @@
 #pragma once
 
 #include "renderer/scene/LoadError.h"
+#include "renderer/scene/KhrMaterials.h"
 #include "renderer/scene/Material.h"
 
 #include <nlohmann/json_fwd.hpp>
@@ -29,6 +30,8 @@ std::optional<std::string> check_json_depth(std::string_view text, int max_depth
 struct GltfJsonFacts {
   std::size_t material_count = 0;
   std::vector<std::optional<SssMaterial>> material_sss;  // materials[i].extras.sss
+  // materials[i].extensions' medium extensions (KhrMaterials.h), when it has any.
+  std::vector<std::optional<KhrMedium>> material_khr;
   // images[i]'s declared media type ("image/png", "image/jpeg"): its data URI's type or
   // its mimeType; empty when it declares none (a file URI without mimeType).
   std::vector<std::string> image_media_type;
@@ -45,7 +48,8 @@ std::optional<LoadError> check_gltf_schema(const nlohmann::json& root, const std
 // byteLength); a buffer without uri only as a GLB's buffers[0], no longer than the BIN
 // chunk (`glb_bin_bytes`: the BIN chunk's size for a GLB, nullopt for a .gltf); every
 // bufferViews[i] (byte range with 64-bit arithmetic, stride); images[i].bufferView;
-// materials[i].extras.sss (parse_sss_extras). The error names the file, the object and
+// materials[i].extras.sss (parse_sss_extras) and the medium extensions in
+// materials[i].extensions (parse_khr_medium). The error names the file, the object and
 // the field.
 std::variant<GltfJsonFacts, LoadError> check_gltf_json(
     std::string_view text, const std::string& file,

@@ -117,6 +117,7 @@ Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts) {
                                          std::to_string(facts.material_count));
   ctx.texture_map.assign(ctx.model.textures.size(), std::nullopt);
   ctx.images.assign(ctx.model.images.size(), nullptr);
+  std::vector<std::string> both;  // materials with extras.sss and a KHR scatter extension
   for (std::size_t i = 0; i < materials.size(); ++i) {
     const tinygltf::Material& gm = materials[i];
     const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
@@ -149,8 +150,28 @@ Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts) {
                       "must be a finite number, got " + number_text(gm.normalTexture.scale));
     m.normal_scale = static_cast<float>(gm.normalTexture.scale);
     m.double_sided = gm.doubleSided;
-    if (facts.material_sss[i]) m.sss = *facts.material_sss[i];
+    const std::optional<KhrMedium>& khr = facts.material_khr[i];
+    if (facts.material_sss[i]) {
+      m.sss = *facts.material_sss[i];
+      if (khr && khr->scatter != KhrMedium::Scatter::None) both.push_back(object);
+    } else if (khr) {
+      std::string why_not;
+      if (auto sss = khr_sss_material(*khr, ctx.options.mm_per_unit, why_not)) m.sss = std::move(*sss);
+      if (!why_not.empty()) ctx.scene.warnings.push_back(ctx.file + ": " + object + ": " + why_not);
+    }
+    if (khr && khr->ior && *khr->ior >= 1.0) m.specular = float(ior_f0(*khr->ior) / 0.04);  // F0 = 0.04 specular
+    if (khr && !khr->ignored.empty()) {
+      std::string list;
+      for (const std::string& f : khr->ignored) list += (list.empty() ? "" : ", ") + f;
+      ctx.scene.warnings.push_back(ctx.file + ": " + object + ": not read (the medium is one per material): " + list);
+    }
     ctx.scene.materials.push_back(std::move(m));
+  }
+  if (!both.empty()) {
+    std::string list;
+    for (const std::string& o : both) list += (list.empty() ? "" : ", ") + o;
+    ctx.scene.warnings.push_back(ctx.file + ": " + list + ": extras.sss and a KHR scatter extension "
+                                 "both describe the medium; extras.sss is used");
   }
   return std::nullopt;
 }

@@ -1,0 +1,80 @@
+// The glTF material extensions that describe a participating medium (issue 21), read
+// into the project's SssMaterial so that an artist's file from Blender, Babylon.js or the
+// Khronos sample viewer scatters here without extras.sss. Facts and sources:
+// ../shared/research/materials-standards.md; the extensions' READMEs in KhronosGroup/glTF.
+//
+//   KHR_materials_volume (ratified): thicknessFactor (mesh space; 0 = thin-walled, > 0 a
+//     volume), attenuationDistance d (world units, > 0; absent = infinite) and
+//     attenuationColor c (each in (0, 1]): the extinction σt = -ln(c) / d per channel.
+//   KHR_materials_volume_scatter (draft, KhronosGroup/glTF PR #2453): the multi-scatter
+//     albedo ρms as multiscatterColorFactor, multiscatterColor or scatterAlbedo (the
+//     names its drafts have used; default 0), scatterAnisotropy g (HG, |g| < 1). Its
+//     σt covers absorption and scattering; the single-scattering albedo by its g-free
+//     inversion (Kulla & Conty 2017), ρss = 1 - s².
+//   KHR_materials_scatter (draft, PR #2579, aligned with OpenPBR): scatterStrengthFactor,
+//     scatterFactor or scatterWeight (default 0), multiscatterColorFactor (default 1),
+//     scatterAnisotropy; volumetric when KHR_materials_volume has thicknessFactor > 0,
+//     else thin-walled. ρms* = strength x ρms, ρss by the g-aware inversion
+//     ρss = (1 - s²) / (1 - g s²).
+//   KHR_materials_ior: ior (default 1.5, >= 1; 0 = spec-gloss compatibility), the
+//     medium's η and the specular F0 = ((ior - 1) / (ior + 1))².
+//
+// s = 4.09712 + 4.20863 ρms - sqrt(9.59217 + 41.6808 ρms + 17.7126 ρms²) is the root of
+// van de Hulst's relation ρms = (1 - s)(1 - 0.139 s) / (1 + 1.17 s), s² = (1 - ρss) /
+// (1 - g ρss) (OpenPBR v1.1.1 "Subsurface"), solved for s: 4.09712 = 1.139 / 0.278,
+// 4.20863 = 1.17 / 0.278 (derived).
+//
+// Then σs = ρss σt, σa = (1 - ρss) σt, in mm^-1 (σt per scene unit / mm per unit).
+// Textures (thickness, colour, strength) are not read: the medium is one per material; a
+// warning says so.
+#pragma once
+
+#include "renderer/scene/Material.h"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace sss::scene {
+
+// What materials[i].extensions holds of the medium extensions, checked. Field errors name
+// "KHR_materials_volume.attenuationDistance", "KHR_materials_scatter.multiscatterColorFactor[1]".
+struct KhrMedium {
+  bool volume = false;         // KHR_materials_volume is present
+  double thickness_factor = 0.0;
+  double attenuation_distance = 0.0;  // 0: absent (infinite)
+  Rgb attenuation_color{1.0, 1.0, 1.0};
+  enum class Scatter { None, VolumeScatter, Scatter };
+  Scatter scatter = Scatter::None;
+  Rgb multiscatter{0.0, 0.0, 0.0};  // ρms as the file gives it
+  double strength = 1.0;             // KHR_materials_scatter's scatterStrength; 1 otherwise
+  double anisotropy = 0.0;
+  std::optional<double> ior;         // KHR_materials_ior
+  std::vector<std::string> ignored;  // textures and drafts' fields not read, for a warning
+  bool any() const { return volume || scatter != Scatter::None || ior.has_value(); }
+};
+
+std::variant<KhrMedium, FieldError> parse_khr_medium(const nlohmann::json& extensions);
+
+// The single-scattering albedo of a multi-scatter albedo (both in [0, 1]) under the HG
+// anisotropy g: the inverse of van de Hulst's relation, clamped to [0, 1].
+double single_scattering_albedo(double multiscatter, double g);
+// van de Hulst's forward relation: the multi-scatter albedo of ρss under g.
+double multiscatter_albedo(double single_scattering, double g);
+
+// The material the extensions describe: an enabled SssMaterial with coefficients (σa, σs,
+// g, η; the project's default model and fit), or nullopt when they give no scattering
+// medium; `why_not` then says why (thin-walled, no attenuationDistance, a channel with no
+// extinction, no absorption at all, an ior outside the models' η range) or is empty when
+// there is nothing to say (no scatter extension: a clear or tinted volume). What
+// parse_khr_medium accepted is never an error here.
+std::optional<SssMaterial> khr_sss_material(const KhrMedium& khr, double mm_per_unit,
+                                            std::string& why_not);
+
+// The dielectric F0 of an ior (KHR_materials_ior): ((ior - 1) / (ior + 1))².
+double ior_f0(double ior);
+
+}  // namespace sss::scene
