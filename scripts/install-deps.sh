@@ -23,11 +23,25 @@ if [ "${1:-}" = "--fuzz" ]; then
   PACKAGES+=(clang-14 libclang-rt-14-dev zlib1g-dev)
 fi
 
+# The Khronos glTF-Validator (npm gltf-validator, pinned in tools/gltf-validator's
+# package-lock.json): the tests run it over every glTF the project writes. Node and npm
+# from Debian (nodejs, npm) unless a node with npm is there already.
+VALIDATOR_DIR="$(cd "$(dirname "$0")/../tools/gltf-validator" && pwd)"
+install_validator() {
+  [ -f "$VALIDATOR_DIR/node_modules/gltf-validator/package.json" ] && return 0
+  (cd "$VALIDATOR_DIR" && npm ci --no-audit --no-fund --loglevel=error)
+}
+if ! command -v npm >/dev/null 2>&1; then
+  command -v node >/dev/null 2>&1 || PACKAGES+=(nodejs)
+  PACKAGES+=(npm)
+fi
+
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -eq 0 ]; then
+  install_validator
   exit 0
 fi
 
@@ -37,3 +51,4 @@ echo "Installing: ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+install_validator

@@ -3,6 +3,7 @@
 #include "renderer/scene/GltfFile.h"
 #include "renderer/scene/GltfJson.h"
 #include "renderer/scene/GltfLoader.h"
+#include "renderer/scene/KhrMaterials.h"
 #include "renderer/scene/SssExtras.h"
 
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <set>
 #include <system_error>
 
 namespace sss::scene {
@@ -17,6 +19,7 @@ namespace sss::scene {
 namespace {
 
 namespace fs = std::filesystem;
+using json = nlohmann::json;
 using ordered_json = nlohmann::ordered_json;
 
 bool same_file(const fs::path& a, const fs::path& b) {
@@ -41,7 +44,8 @@ bool has_relative_uris(const ordered_json& doc) {
 
 std::variant<std::string, LoadError> gltf_with_sss_materials(const std::string& input,
                                                              const std::vector<Material>& materials,
-                                                             const std::string& output) {
+                                                             const std::string& output,
+                                                             double mm_per_unit) {
   const auto fail = [&](std::string object, std::string field, std::string message) {
     return LoadError{input, std::move(object), std::move(field), std::move(message)};
   };
@@ -78,6 +82,7 @@ std::variant<std::string, LoadError> gltf_with_sss_materials(const std::string& 
     return fail("materials", "", "the file has no materials to write SSS into");
   ordered_json& list = doc["materials"];
   const std::size_t count = std::min(list.size(), materials.size());
+  std::set<std::string> used;  // the KHR extensions written
   for (std::size_t i = 0; i < count; ++i) {
     ordered_json& m = list[i];
     if (!m.is_object())
@@ -89,6 +94,27 @@ std::variant<std::string, LoadError> gltf_with_sss_materials(const std::string& 
       return fail("materials[" + std::to_string(i) + "]", "extras",
                   "is not a JSON object, so extras.sss cannot be added");
     m["extras"]["sss"] = ordered_json::parse(sss_extras_json(materials[i].sss).dump());
+    if (!materials[i].sss.enabled) continue;
+    // The standard extensions beside it, for other tools (extras.sss still wins here).
+    const json khr = khr_extensions_json(materials[i].sss, mm_per_unit);
+    if (khr.empty()) continue;
+    if (!m.contains("extensions")) m["extensions"] = ordered_json::object();
+    if (!m["extensions"].is_object())
+      return fail("materials[" + std::to_string(i) + "]", "extensions",
+                  "is not a JSON object, so the KHR material extensions cannot be added");
+    for (const auto& [name, value] : khr.items()) {
+      m["extensions"][name] = ordered_json::parse(value.dump());
+      used.insert(name);
+    }
+  }
+  // Listed as used, never as required: drafts among them, and extras.sss holds it all.
+  if (!used.empty()) {
+    if (!doc.contains("extensionsUsed") || !doc["extensionsUsed"].is_array())
+      doc["extensionsUsed"] = ordered_json::array();
+    for (const std::string& name : used)
+      if (std::find(doc["extensionsUsed"].begin(), doc["extensionsUsed"].end(), name) ==
+          doc["extensionsUsed"].end())
+        doc["extensionsUsed"].push_back(name);
   }
 
   std::string text = doc.dump(2);

@@ -21,10 +21,14 @@ namespace sss::scene {
 // the file and are skipped). `output` is where the bytes will go: it must not be
 // `input` itself (never overwrite the source), and when the file refers to external
 // files by relative URI it must lie in the same folder, since those URIs are relative
-// to it and the loader accepts no "..". Errors name the file and the field.
+// to it and the loader accepts no "..". Each enabled single-medium material also gets
+// the KHR material extensions of khr_extensions_json (KhrMaterials.h; lengths in scene
+// units, `mm_per_unit` mm each: glTF's metres by default), listed in extensionsUsed and
+// never in extensionsRequired. Errors name the file and the field.
 std::variant<std::string, LoadError> gltf_with_sss_materials(const std::string& input,
                                                              const std::vector<Material>& materials,
-                                                             const std::string& output);
+                                                             const std::string& output,
+                                                             double mm_per_unit = 1000.0);
 
 // A path that does not exist yet: `wanted` if it is free, else "stem-2.ext",
 // "stem-3.ext", ... in the same folder.

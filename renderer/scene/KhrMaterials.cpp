@@ -129,6 +129,34 @@ double multiscatter_albedo(double single_scattering, double g) {
   return (1.0 - s) * (1.0 - 0.139 * s) / (1.0 + 1.17 * s);
 }
 
+json khr_extensions_json(const SssMaterial& material, double mm_per_unit) {
+  json out = json::object();
+  if (!material.layers.empty()) return out;
+  const profiles::Medium m = material.effective_medium();
+  double st_max = 0.0, g = 0.0, eta = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    st_max = std::max(st_max, m.sigma_a[c] + m.sigma_s[c]);
+    g += m.g[c] / 3.0;
+    eta += m.eta[c] / 3.0;
+  }
+  if (!(st_max > 0.0)) return out;
+  const double d_mm = 1.0 / st_max;
+  json colour = json::array(), multiscatter = json::array();
+  for (int c = 0; c < 3; ++c) {
+    const double st = m.sigma_a[c] + m.sigma_s[c];
+    colour.push_back(std::exp(-st * d_mm));
+    multiscatter.push_back(multiscatter_albedo(m.sigma_s[c] / st, 0.0));
+  }
+  const double thickness_mm = m.is_slab() ? m.thickness_mm : d_mm;
+  out[kVolume] = {{"thicknessFactor", thickness_mm / mm_per_unit},
+                  {"attenuationDistance", d_mm / mm_per_unit},
+                  {"attenuationColor", colour}};
+  out[kVolumeScatter] = {{"multiscatterColorFactor", multiscatter}, {"scatterAnisotropy", g}};
+  out[kIor] = {{"ior", eta}};
+  out["KHR_materials_diffuse_transmission"] = {{"diffuseTransmissionFactor", 1.0}};
+  return out;
+}
+
 double ior_f0(double ior) {
   const double r = (ior - 1.0) / (ior + 1.0);
   return r * r;

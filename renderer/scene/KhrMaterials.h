@@ -74,6 +74,23 @@ double multiscatter_albedo(double single_scattering, double g);
 std::optional<SssMaterial> khr_sss_material(const KhrMedium& khr, double mm_per_unit,
                                             std::string& why_not);
 
+// What an exported material carries besides extras.sss, so that other tools see its
+// medium (an object of extensions; empty for a layered material, which they cannot
+// hold): KHR_materials_volume (attenuationDistance d = 1 / max σt, the longest channel's
+// mean free path, in scene units, and attenuationColor c = exp(-σt d) in [1/e, 1);
+// thicknessFactor the slab's thickness, or d where the medium is semi-infinite: > 0 marks
+// it a volume), KHR_materials_volume_scatter (multiscatterColorFactor = van de Hulst's
+// colour of σs/σt with g = 0, the g-free relation its draft inverts; scatterAnisotropy
+// the channels' mean g), KHR_materials_ior (the channels' mean η) and
+// KHR_materials_diffuse_transmission (factor 1: the volume extension needs a transmission
+// extension, and Khronos' sample renderer draws volume_scatter only with it). The medium
+// is the effective one (the material's scale applied). parse_khr_medium and
+// khr_sss_material read it back to the same σa, σs within the inversion's rounding.
+nlohmann::json khr_extensions_json(const SssMaterial& material, double mm_per_unit);
+// The names khr_extensions_json writes.
+inline constexpr const char* kKhrWritten[] = {"KHR_materials_volume", "KHR_materials_volume_scatter",
+                                              "KHR_materials_ior", "KHR_materials_diffuse_transmission"};
+
 // The dielectric F0 of an ior (KHR_materials_ior): ((ior - 1) / (ior + 1))².
 double ior_f0(double ior);
 

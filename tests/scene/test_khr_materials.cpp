@@ -5,14 +5,22 @@
 #include "GltfTestWriter.h"
 
 #include "renderer/scene/BuiltinScenes.h"
+#include "renderer/scene/GltfExport.h"
 #include "renderer/scene/KhrMaterials.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
 #include <string>
+#include <limits>
 #include <variant>
+
+#include <sys/wait.h>
 
 namespace sss::scene {
 namespace {
@@ -238,6 +246,90 @@ TEST(KhrMaterials, AFileWithTheExtensionsLoadsAsAScatteringMaterial) {
   EXPECT_NE(msg.find("bad.gltf"), std::string::npos) << msg;
   EXPECT_NE(msg.find("materials[0]"), std::string::npos) << msg;
   EXPECT_NE(msg.find("extensions.KHR_materials_volume.attenuationDistance"), std::string::npos) << msg;
+}
+
+// What Export writes for other tools reads back as the same medium: σt exactly (exp and
+// log), the albedo within the inversion's rounding, 2e-5 for the g-free relation (the
+// round-trip test's bound at g = 0), so |Δσs| = |Δσa| <= 2e-5 σt; g and η as written
+// (each the mean of equal channels here). The effective medium: the scale is in it. A
+// slab's thickness becomes thicknessFactor; a layered material writes none.
+TEST(KhrMaterials, WhatExportWritesReadsBackAsTheSameMedium) {
+  std::vector<SssMaterial> materials;
+  for (const char* preset : {"skin1", "marble", "ketchup", "apple"}) materials.push_back(preset_sss_material(preset));
+  materials[1].scale = 2.5;
+  materials[2].medium.thickness_mm = 3.0;
+  for (const SssMaterial& m : materials) {
+    const json ext = khr_extensions_json(m, 1000.0);
+    ASSERT_TRUE(ext.contains("KHR_materials_volume")) << ext.dump();
+    std::string why;
+    const auto back = khr_sss_material(parsed(ext), 1000.0, why);
+    ASSERT_TRUE(back) << why;
+    const profiles::Medium want = m.effective_medium();
+    for (int c = 0; c < 3; ++c) {
+      const double st = want.sigma_a[c] + want.sigma_s[c];
+      EXPECT_NEAR(back->medium.sigma_a[c] + back->medium.sigma_s[c], st, 1e-12 * st) << ext.dump();
+      EXPECT_NEAR(back->medium.sigma_s[c], want.sigma_s[c], 2e-5 * st) << ext.dump();
+      EXPECT_NEAR(back->medium.g[c], want.g[c], 1e-12);
+      EXPECT_NEAR(back->medium.eta[c], want.eta[c], 1e-12);
+    }
+    if (want.is_slab()) {
+      EXPECT_DOUBLE_EQ(ext["KHR_materials_volume"]["thicknessFactor"].get<double>(), 3.0e-3);
+    }
+  }
+  SssMaterial layered = preset_sss_material("skin1");
+  profiles::Medium top = preset_sss_material("skin1").medium;
+  top.thickness_mm = 0.5;
+  layered.layers = {top, preset_sss_material("marble").medium};
+  EXPECT_TRUE(khr_extensions_json(layered, 1000.0).empty());
+}
+
+// The Khronos glTF-Validator (npm gltf-validator, installed by scripts/install-deps.sh
+// into tools/gltf-validator) on a file Export wrote: 0 errors. Its output is printed.
+int validate(const std::filesystem::path& file, std::string& out) {
+  const std::string cmd = "node " SSS_SOURCE_DIR "/tools/gltf-validator/validate.mjs '" + file.string() + "' 2>&1";
+  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
+  if (!p) return -1;
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, p.get())) out += buf;
+  const int status = pclose(p.release());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(KhrMaterials, ExportWritesTheExtensionsAndTheValidatorFindsNoError) {
+  // The shipped bunny (valid: the validator's verdict on it is checked first), its skin1
+  // written back with the extensions, as the viewer's Export does.
+  const TempDir dir("khr_export");
+  const std::filesystem::path in = dir / "bunny.glb", exported = dir / "out.glb";
+  std::filesystem::copy_file(SSS_SOURCE_DIR "/assets/bunny.glb", in);
+  std::string before;
+  ASSERT_EQ(validate(in, before), 0) << before;
+  auto loaded = load_scene(in.string());
+  ASSERT_TRUE(std::holds_alternative<Scene>(loaded));
+  const Scene& s = std::get<Scene>(loaded);
+  ASSERT_TRUE(s.materials[0].sss.enabled);
+  auto bytes = gltf_with_sss_materials(in.string(), s.materials, exported.string());
+  ASSERT_TRUE(std::holds_alternative<std::string>(bytes)) << std::get<LoadError>(bytes).what();
+  const std::string& glb = std::get<std::string>(bytes);
+  std::ofstream(exported, std::ios::binary) << glb;
+  // The JSON chunk: length at byte 12, text from byte 20.
+  std::uint32_t length = 0;
+  std::memcpy(&length, glb.data() + 12, 4);
+  const json doc = json::parse(glb.substr(20, length));
+  for (const char* name : kKhrWritten) {
+    EXPECT_TRUE(doc["materials"][0]["extensions"].contains(name)) << name;
+    EXPECT_NE(std::find(doc["extensionsUsed"].begin(), doc["extensionsUsed"].end(), name), doc["extensionsUsed"].end()) << name;
+  }
+  EXPECT_FALSE(doc.contains("extensionsRequired"));
+  EXPECT_TRUE(doc["materials"][0]["extras"].contains("sss"));
+  // Read back: extras.sss wins (the same preset), the extensions give the same medium.
+  auto again = load_scene(exported.string());
+  ASSERT_TRUE(std::holds_alternative<Scene>(again));
+  EXPECT_TRUE(std::holds_alternative<PresetSource>(std::get<Scene>(again).materials[0].sss.source));
+  std::string out;
+  const int code = validate(exported, out);
+  std::printf("%s", out.c_str());
+  EXPECT_EQ(code, 0) << out;
+  EXPECT_NE(out.find(" 0 errors"), std::string::npos) << out;
 }
 
 }  // namespace
