@@ -96,7 +96,6 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
     // A mesh that does not scatter now and has no SSS UVs: kept to build its atlas if its
     // material is given subsurface scattering on the live renderer (ensure_sss_uvs).
     deferred_.push_back(b.sss_uvs || scatters ? std::nullopt : std::optional<scene::Mesh>(mesh));
-    b.material = mesh.material;
     if (mesh.material < scene.materials.size()) {
       const scene::Material& m = scene.materials[mesh.material];
       if (m.base_color_texture && has_uv) b.base_slot = slot_for(*m.base_color_texture, true);
@@ -199,8 +198,8 @@ void GpuScene::set_materials(const std::vector<scene::Material>& materials) {
   materials_ = materials;
 }
 
-bool GpuScene::ensure_sss_uvs(const vk::Context& context, const std::vector<scene::Material>& materials) {
-  bool changed = false;
+void GpuScene::ensure_sss_uvs(const vk::Context& context, const std::vector<scene::Material>& materials) {
+  bool waited = false;
   for (std::size_t i = 0; i < meshes_.size(); ++i) {
     if (!deferred_[i]) continue;
     const std::uint32_t m = meshes_[i].material;
@@ -214,14 +213,13 @@ bool GpuScene::ensure_sss_uvs(const vk::Context& context, const std::vector<scen
     scene::ensure_sss_atlases(one, scene::kLoadAtlasOptions);
     MeshBuffers b = upload_geometry(context, one.meshes[0], true);
     if (!b.sss_uvs) continue;  // no atlas could be made: drawn without spread, as at load
-    if (!changed) context.wait_idle();  // a frame in flight may still read the old buffers
+    if (!waited) context.wait_idle();  // a frame in flight may still read the old buffers
+    waited = true;
     b.base_slot = meshes_[i].base_slot;
     b.normal_slot = meshes_[i].normal_slot;
     meshes_[i] = std::move(b);
     deferred_[i].reset();
-    changed = true;
   }
-  return changed;
 }
 
 std::vector<VkDescriptorImageInfo> GpuScene::texture_descriptors() const {

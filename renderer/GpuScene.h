@@ -86,9 +86,9 @@ class GpuScene {
   const std::vector<scene::Material>& materials() const { return materials_; }
   // For each mesh without SSS UVs whose material did not scatter at construction and
   // does in `materials`: builds its UV atlas as load_scene would (scene::ensure_sss_atlases)
-  // and uploads its vertices again with it (waiting for the device first). Returns whether
-  // any mesh got one. The atlas build runs on the calling thread (the bunny: 27 ms).
-  bool ensure_sss_uvs(const vk::Context& context, const std::vector<scene::Material>& materials);
+  // and uploads its vertices again with it (waiting for the device first). The atlas build
+  // runs on the calling thread (the bunny: 27 ms).
+  void ensure_sss_uvs(const vk::Context& context, const std::vector<scene::Material>& materials);
 
  private:
   struct MeshBuffers {

@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <limits>
 #include <variant>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -35,6 +36,33 @@
 
 namespace sss::renderer::testing {
 namespace {
+
+// A 64 x 32 equirectangular sky that changes along u and v (so a flipped axis, a wrong
+// wrap or swapped levels would show): r = base + slope u, g = base + slope v,
+// b = base + slope u (1 - v), at texel centres.
+scene::Environment gradient_sky(const glm::vec3& base, const glm::vec3& slope) {
+  constexpr int kSkyW = 64, kSkyH = 32;
+  std::vector<float> rgba(std::size_t(kSkyW) * kSkyH * 4, 1.0f);
+  for (int y = 0; y < kSkyH; ++y)
+    for (int x = 0; x < kSkyW; ++x) {
+      float* p = &rgba[(std::size_t(y) * kSkyW + x) * 4];
+      const float u = (x + 0.5f) / kSkyW, v = (y + 0.5f) / kSkyH;
+      p[0] = base.x + slope.x * u;
+      p[1] = base.y + slope.y * v;
+      p[2] = base.z + slope.z * u * (1.0f - v);
+    }
+  return scene::image_environment("gradient", kSkyW, kSkyH, rgba);
+}
+
+// d (unit) turned by `turn` rad about +y (azimuth), and towards +y (elevation): what the
+// GPU's atan and acos may move a lookup by.
+std::pair<glm::vec3, glm::vec3> turned(const glm::vec3& d, float turn) {
+  const glm::vec3 around(d.x * std::cos(turn) + d.z * std::sin(turn), d.y,
+                         -d.x * std::sin(turn) + d.z * std::cos(turn));
+  const glm::vec3 side = glm::normalize(glm::cross(d, glm::vec3(0.0f, 1.0f, 0.0f)));
+  const glm::vec3 up = glm::normalize(d * std::cos(turn) + glm::cross(side, d) * std::sin(turn));
+  return {around, up};
+}
 
 class EnvironmentLightTest : public RenderTest {};
 
@@ -209,17 +237,8 @@ TEST_F(EnvironmentLightTest, AUniformSkysSpecularIsTheSplitSumOfItsRadiance) {
 // the larger change of Lp when R turns by 2e-3 rad in azimuth or in elevation, computed
 // per pixel; plus 1e-5 of the sky's largest radiance for n.v (as above).
 TEST_F(EnvironmentLightTest, AnImageSkysSpecularIsThePrefilteredLookup) {
-  constexpr int kW = 160, kH = 90, kSkyW = 64, kSkyH = 32;
-  std::vector<float> rgba(std::size_t(kSkyW) * kSkyH * 4, 1.0f);
-  for (int y = 0; y < kSkyH; ++y)
-    for (int x = 0; x < kSkyW; ++x) {
-      float* p = &rgba[(std::size_t(y) * kSkyW + x) * 4];
-      const float u = (x + 0.5f) / kSkyW, v = (y + 0.5f) / kSkyH;
-      p[0] = 0.2f + 0.6f * u;
-      p[1] = 0.2f + 0.6f * v;
-      p[2] = 0.1f + 0.8f * u * (1.0f - v);
-    }
-  const scene::Environment sky = scene::image_environment("gradient", kSkyW, kSkyH, rgba);
+  constexpr int kW = 160, kH = 90;
+  const scene::Environment sky = gradient_sky({0.2f, 0.2f, 0.1f}, {0.6f, 0.6f, 0.8f});
   for (const float roughness : {0.25f, 0.5f, 0.8f}) {
     const scene::Scene plain = specular_slab(roughness, double(kW) / kH);
     const scene::Camera& cam = plain.cameras[0];
@@ -239,10 +258,7 @@ TEST_F(EnvironmentLightTest, AnImageSkysSpecularIsThePrefilteredLookup) {
         const double k = f0 * ab.x + ab.y;
         const glm::vec3 lp = sky.specular_radiance(r, roughness);
         // Lp's change when r turns by 2e-3 rad about +y, or towards / away from +y.
-        const float turn = 2e-3f;
-        const glm::vec3 around(r.x * std::cos(turn) + r.z * std::sin(turn), r.y, -r.x * std::sin(turn) + r.z * std::cos(turn));
-        const glm::vec3 side = glm::normalize(glm::cross(r, glm::vec3(0.0f, 1.0f, 0.0f)));
-        const glm::vec3 up = glm::normalize(r * std::cos(turn) + glm::cross(side, r) * std::sin(turn));
+        const auto [around, up] = turned(r, 2e-3f);
         const glm::vec3 moved = glm::max(glm::abs(sky.specular_radiance(around, roughness) - lp),
                                          glm::abs(sky.specular_radiance(up, roughness) - lp));
         for (int c = 0; c < 3; ++c) {
@@ -335,19 +351,10 @@ TEST_F(EnvironmentLightTest, AThinSlabTransmitsTheSkyBehindIt) {
 // a wrong wrap shows. The geometry's pixels and the whole HDR image are the frame without
 // it, bit for bit: the option touches only the display's background.
 TEST_F(EnvironmentLightTest, TheEnvironmentBehindTheGeometryIsTheSkyAlongEachPixelsRay) {
-  constexpr int kW = 160, kH = 90, kSkyW = 64, kSkyH = 32;
-  std::vector<float> rgba(std::size_t(kSkyW) * kSkyH * 4, 1.0f);
-  for (int y = 0; y < kSkyH; ++y)
-    for (int x = 0; x < kSkyW; ++x) {
-      float* p = &rgba[(std::size_t(y) * kSkyW + x) * 4];
-      const float u = (x + 0.5f) / kSkyW, v = (y + 0.5f) / kSkyH;
-      p[0] = 0.1f + 1.5f * u;
-      p[1] = 0.1f + 1.2f * v;
-      p[2] = 0.05f + 2.0f * u * (1.0f - v);
-    }
+  constexpr int kW = 160, kH = 90;
   scene::Scene s = scene::sphere_scene();
   s.cameras[0].aspect = 0.0f;  // the image's, as pixel_ray assumes
-  s.environment = scene::image_environment("gradient", kSkyW, kSkyH, rgba);
+  s.environment = gradient_sky({0.1f, 0.1f, 0.05f}, {1.5f, 1.2f, 2.0f});
   const scene::Environment& sky = *s.environment;
   RenderOptions options = small_options(kW, kH, SssMode::Screen);
   options.exposure = 1.5f;
@@ -371,9 +378,7 @@ TEST_F(EnvironmentLightTest, TheEnvironmentBehindTheGeometryIsTheSkyAlongEachPix
       }
       ++background;
       const glm::vec3 d = pixel_ray(s.cameras[0], x, y, kW, kH);
-      const glm::vec3 around(d.x * std::cos(turn) + d.z * std::sin(turn), d.y, -d.x * std::sin(turn) + d.z * std::cos(turn));
-      const glm::vec3 side = glm::normalize(glm::cross(d, glm::vec3(0.0f, 1.0f, 0.0f)));
-      const glm::vec3 up = glm::normalize(d * std::cos(turn) + glm::cross(side, d) * std::sin(turn));
+      const auto [around, up] = turned(d, turn);
       EXPECT_EQ(behind.display.pixel(x, y)[3], 1.0f) << x << "," << y;
       for (int c = 0; c < 3; ++c) {
         const double expected = code(d, c);

@@ -2,13 +2,13 @@
 // must fail with a LoadError whose message names the file, the object/field given in
 // expected.json, and the phrase given there.
 #include "renderer/scene/GltfLoader.h"
+#include "tests/common/CliRun.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
@@ -87,13 +87,7 @@ TEST(BadCorpus, TheValidatorDisagreesOnlyWhereListed) {
     cmd += " '" + entry.path().string() + "'";
     ++files;
   }
-  cmd += " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
-  ASSERT_TRUE(p);
-  std::string out;
-  char buf[1024];
-  while (std::fgets(buf, sizeof buf, p.get())) out += buf;
-  pclose(p.release());
+  const std::string out = sss::testing::run_shell(cmd).out;
   std::set<std::string> accepted;
   int verdicts = 0;
   std::istringstream lines(out);

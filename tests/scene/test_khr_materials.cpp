@@ -3,6 +3,7 @@
 // thin-walled and extinction-free cases, errors that name the extension's field, and a
 // file that carries them loading as a scattering material.
 #include "GltfTestWriter.h"
+#include "tests/common/CliRun.h"
 
 #include "renderer/scene/BuiltinScenes.h"
 #include "renderer/scene/GltfExport.h"
@@ -15,12 +16,10 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <memory>
 #include <string>
 #include <limits>
 #include <variant>
 
-#include <sys/wait.h>
 
 namespace sss::scene {
 namespace {
@@ -286,13 +285,10 @@ TEST(KhrMaterials, WhatExportWritesReadsBackAsTheSameMedium) {
 // The Khronos glTF-Validator (npm gltf-validator, installed by scripts/install-deps.sh
 // into tools/gltf-validator) on a file Export wrote: 0 errors. Its output is printed.
 int validate(const std::filesystem::path& file, std::string& out) {
-  const std::string cmd = "node " SSS_SOURCE_DIR "/tools/gltf-validator/validate.mjs '" + file.string() + "' 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
-  if (!p) return -1;
-  char buf[512];
-  while (std::fgets(buf, sizeof buf, p.get())) out += buf;
-  const int status = pclose(p.release());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const sss::testing::CliRun r =
+      sss::testing::run_shell("node " SSS_SOURCE_DIR "/tools/gltf-validator/validate.mjs '" + file.string() + "'");
+  out += r.out;
+  return r.code;
 }
 
 TEST(KhrMaterials, ExportWritesTheExtensionsAndTheValidatorFindsNoError) {
