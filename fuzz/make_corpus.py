@@ -173,6 +173,14 @@ SSS_BLOCKS = {
     "scalars.json": {"sigma_a": 0.01, "sigma_s": 1, "model": "pbd", "enabled": False},
     "mc.json": {"preset": "marble", "model": "mc", "gaussians": 1, "albedo_mode": "post-scatter"},
     "dipole.json": {"color": 0.5, "mfp": 2, "model": "dipole", "gaussians": 8, "eta": 1.0},
+    "openpbr.json": {"openpbr": {"subsurface_color": [0.671, 0.505, 0.371], "subsurface_radius": 1,
+                                 "subsurface_radius_scale": [0.482, 0.169, 0.109],
+                                 "subsurface_scatter_anisotropy": 0.2, "specular_ior": 1.4,
+                                 "subsurface_weight": 1},
+                     "albedo_inversion": "model", "model": "better-dipole"},
+    "standard_surface.json": {"standard_surface": {"subsurface_color": 0.6, "subsurface_radius": [1, 0.5, 0.25],
+                                                   "subsurface_scale": 2, "subsurface_anisotropy": 0,
+                                                   "specular_IOR": 1.5, "subsurface": 1}},
 }
 
 ARGS = {
@@ -183,6 +191,9 @@ ARGS = {
     "overrides.txt": "--gaussians 3 --albedo pre-post --preset skin2 --eta 1.33",
     "nul_separated.txt": "--sigma-a\x000.1\x00--sigma-s\x001e-3\x00--model\x00mc",
     "equals.txt": "--color=0.9 --mfp=0.5 --model=dipole --gaussians=8",
+    "openpbr.txt": "--subsurface-color 0.671,0.505,0.371 --subsurface-radius 1 "
+                   "--subsurface-radius-scale 0.482,0.169,0.109 --eta 1.4 --albedo-inversion model",
+    "standard_surface.txt": "--subsurface-color 0.6 --subsurface-radius 1,0.5,0.25 --subsurface-scale 2",
 }
 
 

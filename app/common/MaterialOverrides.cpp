@@ -17,13 +17,26 @@ const char* first_medium_option(const MediumArgs& m) {
   const std::pair<const std::string*, const char*> options[] = {
       {&m.preset, "--preset"}, {&m.sigma_a, "--sigma-a"}, {&m.sigma_s, "--sigma-s"},
       {&m.color, "--color"},   {&m.mfp, "--mfp"},         {&m.g, "--g"},
-      {&m.eta, "--eta"},       {&m.thickness, "--thickness"}};
+      {&m.eta, "--eta"},       {&m.thickness, "--thickness"},
+      {&m.subsurface_color, "--subsurface-color"}, {&m.subsurface_radius, "--subsurface-radius"},
+      {&m.subsurface_radius_scale, "--subsurface-radius-scale"},
+      {&m.subsurface_scale, "--subsurface-scale"}, {&m.albedo_inversion, "--albedo-inversion"}};
   for (const auto& [value, name] : options)
     if (!value->empty()) return name;
   return nullptr;
 }
 
 bool any_medium(const MediumArgs& m) { return first_medium_option(m) != nullptr; }
+
+// A medium given as OpenPBR's or Standard Surface's parameters keeps them as its source.
+scene::OpenPbrSource openpbr_source(const ResolvedMedium& r) {
+  scene::OpenPbrSource s;
+  s.parameters = *r.openpbr;
+  s.inversion = r.inversion;
+  s.standard_surface = r.standard_surface;
+  s.thickness_mm = r.medium.thickness_mm;
+  return s;
+}
 
 // SssMaterial::scale's range, as make_sss_material checks it: checked here first so that
 // the message names the option.
@@ -42,7 +55,8 @@ std::string trim(const std::string& s) {
 }
 
 constexpr const char* kSpecKeys =
-    "preset, sigma-a, sigma-s, color, mfp, g, eta, thickness, model, gaussians, albedo, scale";
+    "preset, sigma-a, sigma-s, color, mfp, g, eta, thickness, subsurface-color, subsurface-radius, "
+    "subsurface-radius-scale, subsurface-scale, albedo-inversion, model, gaussians, albedo, scale";
 
 std::variant<double, FieldError> parse_scale(const std::string& option, const std::string& text) {
   auto v = parse_number(option, text);
@@ -137,6 +151,8 @@ std::variant<scene::SssMaterial, FieldError> material_from_spec(
     p.g = r.g[0];
     p.thickness_mm = r.thickness_mm;
     source = scene::ArtistSource{p};
+  } else if (const auto& r = std::get<ResolvedMedium>(resolved); r.openpbr) {
+    source = openpbr_source(r);
   }
   auto made = scene::make_sss_material(std::move(source), use, gaussians, scale, albedo_mode);
   if (auto* e = std::get_if<FieldError>(&made)) return named(*e);
@@ -185,6 +201,11 @@ std::variant<SssMaterialSpec, FieldError> parse_sss_material_spec(const std::str
     else if (key == "g") m.g = value;
     else if (key == "eta") m.eta = value;
     else if (key == "thickness") m.thickness = value;
+    else if (key == "subsurface-color") m.subsurface_color = value;
+    else if (key == "subsurface-radius") m.subsurface_radius = value;
+    else if (key == "subsurface-radius-scale") m.subsurface_radius_scale = value;
+    else if (key == "subsurface-scale") m.subsurface_scale = value;
+    else if (key == "albedo-inversion") m.albedo_inversion = value;
     else if (key == "model") spec.model = value;
     else if (key == "albedo") spec.albedo = value;
     else if (key == "scale") {
@@ -357,7 +378,8 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
       profiles::ModelOptions options;
       auto resolved = resolve_medium(args.medium, use_model, options);
       if (auto* e = std::get_if<FieldError>(&resolved)) return *e;
-      source = scene::CoefficientSource{std::get<ResolvedMedium>(resolved).medium};
+      const auto& r = std::get<ResolvedMedium>(resolved);
+      source = r.openpbr ? openpbr_source(r) : scene::SssSource{scene::CoefficientSource{r.medium}};
     }
     auto made = scene::make_sss_material(source, use_model, args.gaussians.value_or(m.sss.gaussians),
                                          scale, albedo.value_or(m.sss.albedo_mode));

@@ -33,7 +33,8 @@ struct MaterialOverrideArgs {
 // One --sss-material value, parsed. TARGET is a material name, its index in the file, or
 // `all`; SPEC is `off`, a preset name, or `;`-separated key=value items whose keys are the
 // MEDIUM options' names without the dashes (preset, sigma-a, sigma-s, color, mfp, g, eta,
-// thickness) and model, gaussians, albedo, scale. A bare preset name may come first.
+// thickness, subsurface-color, subsurface-radius, subsurface-radius-scale, subsurface-scale,
+// albedo-inversion) and model, gaussians, albedo, scale. A bare preset name may come first.
 struct SssMaterialSpec {
   std::string text;    // as given, for messages
   std::string target;

@@ -1,9 +1,12 @@
 #include "MediumArgs.h"
 
 #include "profiles/ArtistMapping.h"
+#include "profiles/OpenPbr.h"
 #include "profiles/Presets.h"
 
 #include <cerrno>
+#include <cmath>
+#include <cstring>
 #include <cstdlib>
 #include <sstream>
 
@@ -18,6 +21,18 @@ void add_medium_options(CLI::App& cmd, MediumArgs& a) {
   cmd.add_option("--color", a.color,
                  "Artist mode: diffuse colour (total reflectance) R,G,B in (0,1)");
   cmd.add_option("--mfp", a.mfp, "Artist mode: reduced mean free path 1/sigma_t', mm, [1e-5, 1e6]: R,G,B");
+  cmd.add_option("--subsurface-color", a.subsurface_color,
+                 "OpenPBR / Standard Surface mode: subsurface_color R,G,B in (0,1), linear Rec.709");
+  cmd.add_option("--subsurface-radius", a.subsurface_radius,
+                 "OpenPBR: subsurface_radius, mm (one number); Standard Surface: subsurface_radius "
+                 "R,G,B (the mean free path per channel, times --subsurface-scale)");
+  cmd.add_option("--subsurface-radius-scale", a.subsurface_radius_scale,
+                 "OpenPBR: subsurface_radius_scale R,G,B in (0,1] (default 1,0.5,0.25)");
+  cmd.add_option("--subsurface-scale", a.subsurface_scale,
+                 "Standard Surface: subsurface_scale, mm (default 1)");
+  cmd.add_option("--albedo-inversion", a.albedo_inversion,
+                 "How --subsurface-color becomes an albedo: van-de-hulst (the spec's, default) or "
+                 "model (the model's total reflectance at --eta)");
   cmd.add_option("--g", a.g, "Henyey-Greenstein anisotropy in (-1,1) (default 0)");
   cmd.add_option("--eta", a.eta, "Refractive index of the medium, 1..2.5 (default 1.3; preset's own)");
   cmd.add_option("--thickness", a.thickness, "Slab thickness, mm (default: semi-infinite)");
@@ -69,10 +84,16 @@ std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
   const bool by_preset = !a.preset.empty();
   const bool by_coeff = !a.sigma_a.empty() || !a.sigma_s.empty();
   const bool by_artist = !a.color.empty() || !a.mfp.empty();
-  if (by_preset + by_coeff + by_artist == 0)
-    return FieldError{"MEDIUM", "give --preset NAME, or --sigma-a and --sigma-s, or --color and --mfp"};
-  if (by_preset + by_coeff + by_artist > 1)
-    return FieldError{"MEDIUM", "--preset, --sigma-a/--sigma-s and --color/--mfp exclude each other"};
+  const bool by_openpbr = !a.subsurface_color.empty() || !a.subsurface_radius.empty() ||
+                          !a.subsurface_radius_scale.empty() || !a.subsurface_scale.empty();
+  if (by_preset + by_coeff + by_artist + by_openpbr == 0)
+    return FieldError{"MEDIUM", "give --preset NAME, or --sigma-a and --sigma-s, or --color and --mfp, "
+                                "or --subsurface-color and --subsurface-radius"};
+  if (by_preset + by_coeff + by_artist + by_openpbr > 1)
+    return FieldError{"MEDIUM", "--preset, --sigma-a/--sigma-s, --color/--mfp and --subsurface-* "
+                                "exclude each other"};
+  if (!a.albedo_inversion.empty() && !by_openpbr)
+    return FieldError{"--albedo-inversion", "applies only to --subsurface-color"};
 
   double g = 0.0, eta = 1.3, thickness = std::numeric_limits<double>::infinity();
   if (!a.g.empty()) {
@@ -119,6 +140,84 @@ std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
     out.medium.eta = {eta, eta, eta};
     desc << "sigma_a " << rgb_text(out.medium.sigma_a) << " sigma_s "
          << rgb_text(out.medium.sigma_s) << " /mm, g " << g << ", eta " << eta;
+  } else if (by_openpbr) {
+    if (a.subsurface_color.empty()) return FieldError{"--subsurface-color", "is required with --subsurface-radius"};
+    if (a.subsurface_radius.empty()) return FieldError{"--subsurface-radius", "is required with --subsurface-color"};
+    auto col = parse_rgb("--subsurface-color", a.subsurface_color);
+    if (auto* e = std::get_if<FieldError>(&col)) return *e;
+    auto radius = parse_rgb("--subsurface-radius", a.subsurface_radius);
+    if (auto* e = std::get_if<FieldError>(&radius)) return *e;
+    // Standard Surface's radius is a colour; OpenPBR's one length.
+    const bool standard_surface =
+        !a.subsurface_scale.empty() || a.subsurface_radius.find(',') != std::string::npos;
+    if (standard_surface && !a.subsurface_radius_scale.empty())
+      return FieldError{"--subsurface-radius-scale",
+                        "is OpenPBR's; with Standard Surface's --subsurface-radius R,G,B or "
+                        "--subsurface-scale the radius is the colour"};
+    profiles::AlbedoInversion inversion = profiles::AlbedoInversion::VanDeHulst;
+    if (!a.albedo_inversion.empty()) {
+      const auto parsed = profiles::parse_albedo_inversion(a.albedo_inversion);
+      if (!parsed)
+        return FieldError{"--albedo-inversion", "expected van-de-hulst or model, got '" + a.albedo_inversion + "'"};
+      inversion = *parsed;
+    }
+    profiles::OpenPbrSubsurface p;
+    if (standard_surface) {
+      profiles::StandardSurfaceSubsurface ss;
+      ss.color = std::get<Rgb>(col);
+      ss.radius = std::get<Rgb>(radius);
+      for (int c = 0; c < 3; ++c)
+        if (!(ss.radius[c] > 0.0))
+          return FieldError{"--subsurface-radius", "must be > 0 in every channel, got '" + a.subsurface_radius + "'"};
+      if (!a.subsurface_scale.empty()) {
+        auto v = parse_number("--subsurface-scale", a.subsurface_scale);
+        if (auto* e = std::get_if<FieldError>(&v)) return *e;
+        ss.scale = std::get<double>(v);
+        if (!(ss.scale > 0.0 && std::isfinite(ss.scale)))
+          return FieldError{"--subsurface-scale", "must be a number of mm > 0, got '" + a.subsurface_scale + "'"};
+      }
+      ss.anisotropy = g;
+      ss.ior = eta_given ? eta : 1.5;
+      p = profiles::openpbr_from_standard_surface(ss);
+    } else {
+      p.color = std::get<Rgb>(col);
+      p.radius_mm = std::get<Rgb>(radius)[0];
+      if (!a.subsurface_radius_scale.empty()) {
+        auto v = parse_rgb("--subsurface-radius-scale", a.subsurface_radius_scale);
+        if (auto* e = std::get_if<FieldError>(&v)) return *e;
+        p.radius_scale = std::get<Rgb>(v);
+      }
+      p.anisotropy = g;
+      p.ior = eta_given ? eta : 1.5;  // OpenPBR's default specular_ior
+    }
+    auto m = profiles::medium_from_openpbr(p, inversion, model, opt);
+    if (auto* e = std::get_if<FieldError>(&m)) {
+      // The spec's field → the option that set it.
+      static const std::pair<const char*, const char*> kOptions[] = {
+          {"subsurface_color", "--subsurface-color"}, {"subsurface_radius_scale", "--subsurface-radius-scale"},
+          {"subsurface_radius", "--subsurface-radius"}, {"subsurface_scatter_anisotropy", "--g"},
+          {"specular_ior", "--eta"}};
+      for (const auto& [spec, option] : kOptions)
+        if (e->field.rfind(spec, 0) == 0) {
+          e->field = option + e->field.substr(std::strlen(spec));
+          break;
+        }
+      if (standard_surface && e->field.rfind("--subsurface-radius-scale", 0) == 0)
+        e->field = "--subsurface-radius" + e->field.substr(25);
+      return *e;
+    }
+    out.medium = std::get<Medium>(m);
+    out.openpbr = p;
+    out.inversion = inversion;
+    out.standard_surface = standard_surface;
+    const Rgb mfp = p.mean_free_path_mm();
+    desc << (standard_surface ? "Standard Surface" : "OpenPBR") << " subsurface color "
+         << rgb_text(p.color) << ", mean free path " << rgb_text(mfp) << " mm via "
+         << profiles::albedo_inversion_name(inversion);
+    if (inversion == profiles::AlbedoInversion::Model)
+      desc << " (" << profiles::model_name(model == profiles::Model::MonteCarlo ? profiles::Model::McTable : model) << ")";
+    desc << ", g " << p.anisotropy << ", ior " << p.ior << " = sigma_a " << rgb_text(out.medium.sigma_a)
+         << " sigma_s " << rgb_text(out.medium.sigma_s) << " /mm";
   } else {
     if (a.color.empty()) return FieldError{"--color", "is required with --mfp"};
     if (a.mfp.empty()) return FieldError{"--mfp", "is required with --color"};

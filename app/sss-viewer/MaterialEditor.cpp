@@ -1,5 +1,6 @@
 #include "MaterialEditor.h"
 
+#include "profiles/OpenPbr.h"
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"
 #include "renderer/scene/ScatterScale.h"
@@ -97,6 +98,11 @@ MaterialEditor::MaterialEditor(const scene::Scene& scene, int separable_taps,
         e.mfp_mm[c] = static_cast<float>(a->parameters.mfp_mm[c]);
       }
       e.artist_eta = static_cast<float>(a->parameters.eta);
+    } else if (const auto* o = std::get_if<scene::OpenPbrSource>(&s.source)) {
+      e.kind = SourceKind::OpenPbr;
+      fill_openpbr(e, o->parameters);
+      e.pbr_inversion = o->inversion == profiles::AlbedoInversion::Model ? 1 : 0;
+      e.pbr_standard_surface = o->standard_surface;
     } else {
       e.kind = SourceKind::Coefficients;
     }
@@ -121,6 +127,16 @@ void MaterialEditor::fill_notes(MaterialEdit& e) const {
   e.scale_note = scene::scatter_scale_readout(s);
   e.warnings = m.sss.model_warnings();
   if (auto w = scene::scatter_scale_warning(m, s)) e.warnings.push_back(*w);
+}
+
+void MaterialEditor::fill_openpbr(MaterialEdit& e, const profiles::OpenPbrSubsurface& p) {
+  for (int c = 0; c < 3; ++c) {
+    e.pbr_color[c] = static_cast<float>(p.color[c]);
+    e.pbr_radius_scale[c] = static_cast<float>(p.radius_scale[c]);
+  }
+  e.pbr_radius_mm = static_cast<float>(p.radius_mm);
+  e.pbr_anisotropy = static_cast<float>(p.anisotropy);
+  e.pbr_ior = static_cast<float>(p.ior);
 }
 
 void MaterialEditor::fill_coefficients(MaterialEdit& e, const profiles::Medium& m) {
@@ -188,9 +204,10 @@ bool MaterialEditor::add_layer(std::size_t edit, std::size_t at) {
   MaterialEdit& e = edits_.at(edit);
   const bool one_medium = e.layers.empty();
   if (one_medium) {  // the one medium becomes the stack's only layer first
-    if (e.kind == SourceKind::Artist) {
-      e.error = "add layer: an artist colour + mfp describes one medium; switch to "
-                "coefficients first";
+    if (e.kind == SourceKind::Artist || e.kind == SourceKind::OpenPbr) {
+      e.error = std::string("add layer: ") +
+                (e.kind == SourceKind::Artist ? "an artist colour + mfp" : "OpenPBR's subsurface") +
+                " describes one medium; switch to coefficients first";
       return false;
     }
     LayerEdit l{e.sigma_a, e.sigma_s, e.g, e.thickness_mm > 0.0f ? e.thickness_mm : 0.0f};
@@ -302,9 +319,9 @@ bool MaterialEditor::select_model(std::size_t edit, int model) {
 bool MaterialEditor::set_source_kind(std::size_t edit, SourceKind kind) {
   MaterialEdit& e = edits_.at(edit);
   if (kind == e.kind) return true;
-  if (!e.layers.empty() && kind == SourceKind::Artist) {
-    e.error = "artist: a colour + mfp describes one medium, not a stack; edit the layers' "
-              "coefficients";
+  if (!e.layers.empty() && (kind == SourceKind::Artist || kind == SourceKind::OpenPbr)) {
+    e.error = std::string(kind == SourceKind::Artist ? "artist: a colour + mfp" : "openpbr: OpenPBR's subsurface") +
+              " describes one medium, not a stack; edit the layers' coefficients";
     return false;
   }
   const scene::Material& current = applied_[e.index];
@@ -324,6 +341,13 @@ bool MaterialEditor::set_source_kind(std::size_t edit, SourceKind kind) {
     } catch (const std::exception&) {
       // keep the fields as they were
     }
+  } else if (kind == SourceKind::OpenPbr) {
+    // The spec's forward map of the current medium: with the spec's inversion it is the
+    // same medium (within its rounded constants), so the look stays.
+    const profiles::OpenPbrSubsurface p = profiles::openpbr_from_medium(m);
+    fill_openpbr(e, p);
+    for (int c = 0; c < 3; ++c) e.pbr_color[c] = std::clamp(e.pbr_color[c], 0.001f, 0.999f);
+    e.pbr_inversion = 0;
   } else if (kind == SourceKind::Preset) {
     return select_preset(edit, e.preset >= 0 ? e.preset : preset_index("skin1"));
   } else {
@@ -356,6 +380,23 @@ std::optional<SssSpec> MaterialEditor::spec_from_fields(MaterialEdit& e) {
       return std::nullopt;
     }
     s.source = scene::ArtistSource{p};
+  } else if (e.kind == SourceKind::OpenPbr) {
+    scene::OpenPbrSource o;
+    for (int c = 0; c < 3; ++c) {
+      o.parameters.color[c] = e.pbr_color[c];
+      o.parameters.radius_scale[c] = e.pbr_radius_scale[c];
+    }
+    o.parameters.radius_mm = e.pbr_radius_mm;
+    o.parameters.anisotropy = e.pbr_anisotropy;
+    o.parameters.ior = e.pbr_ior;
+    o.inversion = e.pbr_inversion == 1 ? profiles::AlbedoInversion::Model : profiles::AlbedoInversion::VanDeHulst;
+    o.standard_surface = e.pbr_standard_surface;
+    o.thickness_mm = thickness;
+    if (auto err = profiles::validate(o.parameters)) {
+      e.error = err->what();
+      return std::nullopt;
+    }
+    s.source = o;
   } else {
     e.kind = SourceKind::Coefficients;
     profiles::Medium m;
@@ -370,7 +411,8 @@ std::optional<SssSpec> MaterialEditor::spec_from_fields(MaterialEdit& e) {
   }
   // Everything but the artist inversion is cheap: check it here, so that bad input never
   // reaches the worker (and the frame stays as it is).
-  if (e.kind != SourceKind::Artist) {
+  const bool inverts = e.kind == SourceKind::Artist || (e.kind == SourceKind::OpenPbr && e.pbr_inversion == 1);
+  if (!inverts) {
     auto made = scene::make_sss_material(s.source, s.model, s.gaussians, s.scale, s.albedo_mode);
     if (auto* err = std::get_if<FieldError>(&made)) {
       e.error = err->what();

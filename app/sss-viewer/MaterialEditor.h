@@ -11,6 +11,7 @@
 #include "FitWorker.h"
 #include "ProfilePlot.h"
 
+#include "profiles/OpenPbr.h"
 #include "renderer/Renderer.h"
 #include "renderer/scene/Scene.h"
 
@@ -23,7 +24,7 @@
 
 namespace sss::app {
 
-enum class SourceKind { Preset, Coefficients, Artist };
+enum class SourceKind { Preset, Coefficients, Artist, OpenPbr };
 
 // One layer of a stack as the editor shows it (issue 19): σa, σs, g per channel R, G, B in
 // mm^-1, and the thickness in mm (0: semi-infinite, the last layer only). The stack's η is
@@ -56,6 +57,14 @@ struct MaterialEdit {
   // The artist fields: diffuse colour (total reflectance) and reduced mfp in mm.
   std::array<float, 3> color{0.5f, 0.5f, 0.5f}, mfp_mm{1.0f, 1.0f, 1.0f};
   float artist_eta = 1.3f;
+  // OpenPBR's subsurface fields (profiles/OpenPbr.h): colour (linear Rec.709), radius mm,
+  // radius scale, anisotropy, specular ior; the inversion 0 van de Hulst (the spec's),
+  // 1 the model's total reflectance. A Standard Surface source is shown as OpenPBR's
+  // equivalent and written back as Standard Surface's.
+  std::array<float, 3> pbr_color{0.8f, 0.8f, 0.8f}, pbr_radius_scale{1.0f, 0.5f, 0.25f};
+  float pbr_radius_mm = 1.0f, pbr_anisotropy = 0.0f, pbr_ior = 1.5f;
+  int pbr_inversion = 0;
+  bool pbr_standard_surface = false;
   Rgb total_reflectance{};          // of the material the frame shows (0: not known yet)
   std::string error;                // the last edit's FieldError, shown in red
   // The material's scale against its object (issue 20): the bounding diameter of what it
@@ -152,6 +161,7 @@ class MaterialEditor {
 
  private:
   void fill_coefficients(MaterialEdit& e, const profiles::Medium& m);
+  static void fill_openpbr(MaterialEdit& e, const profiles::OpenPbrSubsurface& p);
   void fill_layers(MaterialEdit& e, const profiles::LayerStack& stack);
   void fill_notes(MaterialEdit& e) const;  // from applied_[e.index]
   std::optional<SssSpec> spec_from_fields(MaterialEdit& e);

@@ -1,5 +1,6 @@
 #include "Tools.h"
 
+
 #include "CliSupport.h"
 #include "InputFiles.h"
 #include "PanelWindow.h"
@@ -75,6 +76,9 @@ std::string describe(const scene::Material& m) {
     out << "preset " << p->name;
   else if (std::holds_alternative<scene::CoefficientSource>(m.sss.source))
     out << "coefficients";
+  else if (const auto* o = std::get_if<scene::OpenPbrSource>(&m.sss.source))
+    out << (o->standard_surface ? "Standard Surface" : "OpenPBR") << " subsurface ("
+        << profiles::albedo_inversion_name(o->inversion) << " inversion)";
   else
     out << "artist colour + mfp";
   const profiles::Medium e = m.sss.effective_medium();

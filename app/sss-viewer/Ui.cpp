@@ -567,10 +567,15 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
       if (ImGui::Selectable(model_label(m).c_str(), m == e.model)) editor_.select_model(i, m);
     ImGui::EndCombo();
   }
-  int kind = e.kind == SourceKind::Artist ? 1 : 0;
+  int kind = e.kind == SourceKind::Artist ? 1 : e.kind == SourceKind::OpenPbr ? 2 : 0;
   if (ImGui::RadioButton("coefficients", &kind, 0)) editor_.set_source_kind(i, SourceKind::Coefficients);
   ImGui::SameLine();
   if (ImGui::RadioButton("artist", &kind, 1)) editor_.set_source_kind(i, SourceKind::Artist);
+  ImGui::SameLine();
+  if (ImGui::RadioButton("OpenPBR", &kind, 2)) editor_.set_source_kind(i, SourceKind::OpenPbr);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("OpenPBR's subsurface parameters (Standard Surface's map onto them): the "
+                      "colour seen, linear Rec.709; mean free path = radius x radius scale");
   ImGui::EndDisabled();
 
   // Typed fields apply when the edit ends (Enter, Tab, click away); drags, sliders and
@@ -579,6 +584,20 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
   const ImGuiInputTextFlags typed = ImGuiInputTextFlags_CharsScientific;
   if (layered) {
     apply |= draw_layers(e, i);
+  } else if (e.kind == SourceKind::OpenPbr) {
+    apply |= ImGui::ColorEdit3("colour##pbr", e.pbr_color.data(), ImGuiColorEditFlags_Float);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("subsurface_color, linear Rec.709, in (0, 1)");
+    apply |= ImGui::DragFloat("radius mm", &e.pbr_radius_mm, 0.01f, 0.0f, 0.0f, "%.3g");
+    apply |= ImGui::DragFloat3("radius scale", e.pbr_radius_scale.data(), 0.005f, 0.001f, 1.0f, "%.3g");
+    apply |= ImGui::SliderFloat("anisotropy", &e.pbr_anisotropy, -0.95f, 0.95f, "%.2f");
+    ImGui::InputFloat("specular ior", &e.pbr_ior, 0.0f, 0.0f, "%.3g", typed);
+    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    const char* inversions[] = {"van de Hulst (spec)", "model's total"};
+    apply |= ImGui::Combo("inversion", &e.pbr_inversion, inversions, 2);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("van de Hulst: the spec's index-matched relation, as the Khronos sample "
+                        "viewer draws it; model's total: the albedo whose total reflectance "
+                        "under the chosen model, with this ior's boundary, is the colour");
   } else if (e.kind != SourceKind::Artist) {
     ImGui::InputFloat3("sigma_a 1/mm", e.sigma_a.data(), "%.4g", typed);
     if (ImGui::IsItemDeactivatedAfterEdit()) { e.kind = SourceKind::Coefficients; apply = true; }
@@ -601,7 +620,7 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
       if (e.kind == SourceKind::Preset) e.kind = SourceKind::Coefficients;
       apply = true;
     }
-    ImGui::BeginDisabled(e.kind == SourceKind::Artist);
+    ImGui::BeginDisabled(e.kind == SourceKind::Artist || e.kind == SourceKind::OpenPbr);
     if (ImGui::SmallButton("add layer")) editor_.add_layer(i, 0);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("make this medium a stack of two identical layers (the look stays); then "

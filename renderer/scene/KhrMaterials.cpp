@@ -117,18 +117,6 @@ std::variant<KhrMedium, FieldError> parse_khr_medium(const json& extensions) {
   return k;
 }
 
-double single_scattering_albedo(double multiscatter, double g) {
-  const double c = std::clamp(multiscatter, 0.0, 1.0);
-  const double s = 4.09712 + 4.20863 * c - std::sqrt(9.59217 + 41.6808 * c + 17.7126 * c * c);
-  return std::clamp((1.0 - s * s) / (1.0 - g * s * s), 0.0, 1.0);
-}
-
-double multiscatter_albedo(double single_scattering, double g) {
-  const double a = std::clamp(single_scattering, 0.0, 1.0);
-  const double s = std::sqrt((1.0 - a) / (1.0 - a * g));
-  return (1.0 - s) * (1.0 - 0.139 * s) / (1.0 + 1.17 * s);
-}
-
 json khr_extensions_json(const SssMaterial& material, double mm_per_unit) {
   json out = json::object();
   if (!material.layers.empty()) return out;

@@ -30,6 +30,7 @@
 #pragma once
 
 #include "renderer/scene/Material.h"
+#include "profiles/OpenPbr.h"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -59,11 +60,9 @@ struct KhrMedium {
 
 std::variant<KhrMedium, FieldError> parse_khr_medium(const nlohmann::json& extensions);
 
-// The single-scattering albedo of a multi-scatter albedo (both in [0, 1]) under the HG
-// anisotropy g: the inverse of van de Hulst's relation, clamped to [0, 1].
-double single_scattering_albedo(double multiscatter, double g);
-// van de Hulst's forward relation: the multi-scatter albedo of ρss under g.
-double multiscatter_albedo(double single_scattering, double g);
+// van de Hulst's relation and its inverse (profiles/OpenPbr.h, which OpenPBR shares).
+using profiles::multiscatter_albedo;
+using profiles::single_scattering_albedo;
 
 // The material the extensions describe: an enabled SssMaterial with coefficients (σa, σs,
 // g, η; the project's default model and fit), or nullopt when they give no scattering

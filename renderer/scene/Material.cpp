@@ -87,6 +87,13 @@ std::variant<profiles::Medium, FieldError> resolve_medium(const SssSource& sourc
     if (auto e = c->medium.validate()) return *e;
     return c->medium;
   }
+  if (const auto* o = std::get_if<OpenPbrSource>(&source)) {
+    auto m = profiles::medium_from_openpbr(o->parameters, o->inversion, model);
+    if (auto* e = std::get_if<FieldError>(&m)) return *e;
+    auto medium = std::get<profiles::Medium>(m);
+    medium.thickness_mm = o->thickness_mm;
+    return medium;
+  }
   const auto& artist = std::get<ArtistSource>(source);
   auto m = profiles::medium_from_artist(model, artist.parameters);
   if (auto* e = std::get_if<FieldError>(&m)) return *e;

@@ -9,11 +9,13 @@
 #include "profiles/ArtistMapping.h"
 #include "profiles/Layered.h"
 #include "profiles/Medium.h"
+#include "profiles/OpenPbr.h"
 #include "profiles/Profile.h"
 
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -41,7 +43,16 @@ struct CoefficientSource {
 struct ArtistSource {
   profiles::ArtistParameters parameters;  // colour in (0,1), reduced mfp in mm
 };
-using SssSource = std::variant<PresetSource, CoefficientSource, ArtistSource>;
+// OpenPBR's (or Autodesk Standard Surface's) subsurface parameters, profiles/OpenPbr.h:
+// colours linear Rec.709, lengths in mm; the colour inverted by `inversion` (the spec's
+// van de Hulst by default, or the material's model's total reflectance).
+struct OpenPbrSource {
+  profiles::OpenPbrSubsurface parameters;
+  profiles::AlbedoInversion inversion = profiles::AlbedoInversion::VanDeHulst;
+  bool standard_surface = false;  // given (and written back) as Standard Surface's
+  double thickness_mm = std::numeric_limits<double>::infinity();  // a slab's, as extras.sss "thickness"
+};
+using SssSource = std::variant<PresetSource, CoefficientSource, ArtistSource, OpenPbrSource>;
 
 struct SssMaterial {
   bool enabled = false;

@@ -9,6 +9,7 @@
 #include <array>
 #include <limits>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 namespace sss::scene {
@@ -17,9 +18,20 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::array<std::string_view, 14> kKeys = {
+constexpr std::array<std::string_view, 17> kKeys = {
     "enabled", "preset", "sigma_a", "sigma_s", "g", "eta", "color",
-    "mfp", "thickness", "model", "gaussians", "scale", "albedo_mode", "layers"};
+    "mfp", "thickness", "model", "gaussians", "scale", "albedo_mode", "layers",
+    "openpbr", "standard_surface", "albedo_inversion"};
+
+// The keys of extras.sss.openpbr and extras.sss.standard_surface: the specs' own names.
+// [0] the weight, [1] colour, [2] radius, [3] radius scale (OpenPBR) or scale (Standard
+// Surface), [4] anisotropy, [5] ior.
+constexpr std::array<const char*, 6> kOpenPbrKeys = {
+    "subsurface_weight", "subsurface_color", "subsurface_radius", "subsurface_radius_scale",
+    "subsurface_scatter_anisotropy", "specular_ior"};
+constexpr std::array<const char*, 6> kStandardSurfaceKeys = {
+    "subsurface", "subsurface_color", "subsurface_radius", "subsurface_scale",
+    "subsurface_anisotropy", "specular_IOR"};
 
 const auto str = sss::message_number;
 
@@ -90,6 +102,91 @@ std::optional<FieldError> read_thickness(const json& o, const char* key, double&
 using detail::as_written;
 using detail::read_rgb;
 
+namespace {
+
+// extras.sss.openpbr / extras.sss.standard_surface: every key optional (the spec's
+// default), colours as 3 numbers (or one for all), errors named "openpbr.subsurface_color[1]".
+// `enabled` is cleared by a weight of 0.
+std::variant<OpenPbrSource, FieldError> read_openpbr(const json& o, bool standard_surface,
+                                                     bool& enabled) {
+  const char* block = standard_surface ? "standard_surface" : "openpbr";
+  const auto& keys = standard_surface ? kStandardSurfaceKeys : kOpenPbrKeys;
+  const auto named = [&](FieldError e) {
+    e.field = std::string(block) + "." + e.field;
+    return e;
+  };
+  if (!o.is_object()) return FieldError{block, "must be a JSON object of the spec's subsurface parameters"};
+  for (const auto& item : o.items())
+    if (std::find(keys.begin(), keys.end(), item.key()) == keys.end()) {
+      std::string list;
+      for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+      return named({item.key(), "unknown field; expected one of " + list});
+    }
+  const auto number = [&](const char* key, double& out) -> std::optional<FieldError> {
+    if (!o.contains(key)) return std::nullopt;
+    if (!o[key].is_number() || !std::isfinite(o[key].get<double>()))
+      return named({key, "must be a finite number"});
+    out = o[key].get<double>();
+    return std::nullopt;
+  };
+  const auto colour = [&](const char* key, Rgb& out) -> std::optional<FieldError> {
+    if (!o.contains(key)) return std::nullopt;
+    bool scalar = false;
+    if (auto e = read_rgb(o, key, out, scalar)) return named(*e);
+    return std::nullopt;
+  };
+  double weight = 1.0;
+  if (auto e = number(keys[0], weight)) return *e;
+  if (!(weight >= 0.0 && weight <= 1.0)) return named({keys[0], "must lie in [0, 1], got " + str(weight)});
+  if (weight != 0.0 && weight != 1.0)
+    return named({keys[0], "must be 0 (no subsurface) or 1: the renderer does not mix a diffuse "
+                           "and a subsurface lobe, got " + str(weight)});
+  OpenPbrSource source;
+  if (weight == 0.0) {
+    enabled = false;
+    return source;
+  }
+  source.standard_surface = standard_surface;
+  profiles::OpenPbrSubsurface& p = source.parameters;
+  if (standard_surface) {
+    profiles::StandardSurfaceSubsurface s;
+    if (!o.contains(keys[1]))
+      return named({keys[1], "is required: Standard Surface's default (1, 1, 1) absorbs nothing, "
+                             "which has no finite diffusion length"});
+    if (auto e = colour(keys[1], s.color)) return *e;
+    if (auto e = colour(keys[2], s.radius)) return *e;
+    if (auto e = number(keys[3], s.scale)) return *e;
+    if (auto e = number(keys[4], s.anisotropy)) return *e;
+    if (auto e = number(keys[5], s.ior)) return *e;
+    for (int c = 0; c < 3; ++c)
+      if (!(s.radius[c] > 0.0))
+        return named({std::string(keys[2]) + "[" + std::to_string(c) + "]",
+                      "must be > 0 (a mean free path), got " + str(s.radius[c])});
+    if (!(s.scale > 0.0)) return named({keys[3], "must be a number of mm > 0, got " + str(s.scale)});
+    p = profiles::openpbr_from_standard_surface(s);
+  } else {
+    if (auto e = colour(keys[1], p.color)) return *e;
+    if (auto e = number(keys[2], p.radius_mm)) return *e;
+    if (auto e = colour(keys[3], p.radius_scale)) return *e;
+    if (auto e = number(keys[4], p.anisotropy)) return *e;
+    if (auto e = number(keys[5], p.ior)) return *e;
+  }
+  if (auto e = profiles::validate(p)) {
+    // Name the field as this block spells it.
+    if (standard_surface) {
+      for (std::size_t k = 0; k < kOpenPbrKeys.size(); ++k)
+        if (e->field.rfind(kOpenPbrKeys[k], 0) == 0 &&
+            (e->field.size() == std::strlen(kOpenPbrKeys[k]) || e->field[std::strlen(kOpenPbrKeys[k])] == '['))
+          e->field = kStandardSurfaceKeys[k] + e->field.substr(std::strlen(kOpenPbrKeys[k]));
+      if (e->field.rfind("subsurface_scale[", 0) == 0) e->field = "subsurface_radius" + e->field.substr(16);
+    }
+    return named(*e);
+  }
+  return source;
+}
+
+}  // namespace
+
 std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
   if (!o.is_object()) return FieldError{"", "must be a JSON object"};
   for (const auto& item : o.items())
@@ -138,7 +235,7 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
 
   if (o.contains("layers")) {  // a stack (SssLayers.h): it is the medium and the model
     for (const char* k : {"preset", "sigma_a", "sigma_s", "g", "eta", "color", "mfp",
-                          "thickness", "model"})
+                          "thickness", "model", "openpbr", "standard_surface", "albedo_inversion"})
       if (o.contains(k))
         return FieldError{k, "cannot be combined with layers (the layers give the medium, "
                              "their thicknesses, and the model: layered)"};
@@ -151,12 +248,46 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
     return made;
   }
 
+  const bool openpbr = o.contains("openpbr") || o.contains("standard_surface");
+  if (o.contains("albedo_inversion") && !openpbr)
+    return FieldError{"albedo_inversion", "applies only to openpbr or standard_surface"};
+  if (openpbr) {
+    if (o.contains("openpbr") && o.contains("standard_surface"))
+      return FieldError{"standard_surface", "cannot be combined with openpbr: give one of them"};
+    for (const char* k : {"preset", "sigma_a", "sigma_s", "g", "eta", "color", "mfp"})
+      if (o.contains(k))
+        return FieldError{k, "cannot be combined with openpbr or standard_surface (they give the "
+                             "medium, its anisotropy and its ior)"};
+    const bool standard_surface = o.contains("standard_surface");
+    const char* block = standard_surface ? "standard_surface" : "openpbr";
+    auto read = read_openpbr(o[block], standard_surface, enabled);
+    if (auto* e = std::get_if<FieldError>(&read)) return *e;
+    if (!enabled) return SssMaterial{};  // a weight of 0: no subsurface (the others unread)
+    OpenPbrSource source = std::get<OpenPbrSource>(std::move(read));
+    source.thickness_mm = thickness;
+    if (o.contains("albedo_inversion")) {
+      const json& a = o["albedo_inversion"];
+      const auto parsed = a.is_string() ? profiles::parse_albedo_inversion(a.get<std::string>()) : std::nullopt;
+      if (!parsed)
+        return FieldError{"albedo_inversion", "must be \"van-de-hulst\" (the spec's) or \"model\" "
+                                              "(the model's total reflectance), got " + a.dump()};
+      source.inversion = *parsed;
+    }
+    auto made = make_sss_material(std::move(source), model, gaussians, scale, albedo_mode);
+    if (auto* e = std::get_if<FieldError>(&made)) {
+      if (e->field.rfind("subsurface_", 0) == 0) e->field = std::string(block) + "." + e->field;
+      return *e;
+    }
+    std::get<SssMaterial>(made).enabled = enabled;
+    return made;
+  }
+
   const bool preset = o.contains("preset");
   const bool coefficients = o.contains("sigma_a") || o.contains("sigma_s");
   const bool artist = o.contains("color") || o.contains("mfp");
   if (int(preset) + int(coefficients) + int(artist) != 1)
     return FieldError{"", std::string(preset || coefficients || artist ? "give only one" : "needs one") +
-                              " of: preset; sigma_a + sigma_s; color + mfp"};
+                              " of: preset; sigma_a + sigma_s; color + mfp; openpbr; standard_surface"};
   SssSource source;
   if (preset) {
     for (const char* k : {"g", "eta"})
@@ -242,6 +373,20 @@ nlohmann::json sss_extras_json(const SssMaterial& m) {
     o["g"] = rgb(c->medium.g);
     o["eta"] = rgb(c->medium.eta);
     thickness = c->medium.thickness_mm;
+  } else if (const auto* op = std::get_if<OpenPbrSource>(&m.source)) {
+    const profiles::OpenPbrSubsurface& pbr = op->parameters;
+    if (op->standard_surface) {
+      const profiles::StandardSurfaceSubsurface ss = profiles::standard_surface_from_openpbr(pbr);
+      o["standard_surface"] = {{"subsurface_color", rgb(ss.color)}, {"subsurface_radius", rgb(ss.radius)},
+                               {"subsurface_scale", ss.scale}, {"subsurface_anisotropy", ss.anisotropy},
+                               {"specular_IOR", ss.ior}};
+    } else {
+      o["openpbr"] = {{"subsurface_color", rgb(pbr.color)}, {"subsurface_radius", pbr.radius_mm},
+                      {"subsurface_radius_scale", rgb(pbr.radius_scale)},
+                      {"subsurface_scatter_anisotropy", pbr.anisotropy}, {"specular_ior", pbr.ior}};
+    }
+    o["albedo_inversion"] = std::string(profiles::albedo_inversion_name(op->inversion));
+    thickness = op->thickness_mm;
   } else {
     const auto& a = std::get<ArtistSource>(m.source).parameters;
     o["color"] = rgb(a.color);

@@ -3,6 +3,16 @@
 //   {"preset": "skin1"}
 //   {"sigma_a": [r,g,b], "sigma_s": [r,g,b], "g": g, "eta": e}      (mm^-1)
 //   {"color": [r,g,b], "mfp": [r,g,b]}                 (reduced mean free path, mm)
+//   {"openpbr": {"subsurface_color": [r,g,b], "subsurface_radius": mm,
+//                "subsurface_radius_scale": [r,g,b], "subsurface_scatter_anisotropy": g,
+//                "specular_ior": e, "subsurface_weight": 0 | 1}}
+//   {"standard_surface": {"subsurface_color": [r,g,b], "subsurface_radius": [r,g,b],
+//                "subsurface_scale": mm, "subsurface_anisotropy": g, "specular_IOR": e,
+//                "subsurface": 0 | 1}}
+//       OpenPBR's or Standard Surface's subsurface parameters (profiles/OpenPbr.h): each
+//       key optional with the spec's default; colours linear Rec.709; lengths in mm; a
+//       weight of 0 is "enabled": false. With "albedo_inversion": "van-de-hulst" (the
+//       spec's, default) or "model" (the material's model's total reflectance).
 //   {"layers": [{...}, ...]}      a stack, top first (SssLayers.h; model layered, no
 //                                  "model", "thickness" or other medium keys with it)
 // plus, with any of them: "model" (dipole | better-dipole | pbd | burley | multipole |

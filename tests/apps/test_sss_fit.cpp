@@ -177,6 +177,17 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"profile --preset skin1 --radii 0:1:2.5", "COUNT"},
         BadInput{"profile --preset skin1", "--radii"},
         BadInput{"validate --preset skin1 --photons 0", "--photons"},
+        BadInput{"fit --subsurface-color 0.5,1,0.5 --subsurface-radius 1", "--subsurface-color[1]"},
+        BadInput{"fit --subsurface-color 0.5 --subsurface-radius 0", "--subsurface-radius"},
+        BadInput{"fit --subsurface-color 0.5 --subsurface-radius 1 --subsurface-radius-scale 1,0,1",
+                 "--subsurface-radius-scale[1]"},
+        BadInput{"fit --subsurface-color 0.5 --subsurface-radius 1 --eta 3", "--eta"},
+        BadInput{"fit --subsurface-color 0.5 --subsurface-radius 1 --g 1", "--g"},
+        BadInput{"fit --subsurface-color 0.5", "--subsurface-radius: is required"},
+        BadInput{"fit --subsurface-color 0.5 --subsurface-radius 1,1,1 --subsurface-scale 0", "--subsurface-scale"},
+        BadInput{"fit --subsurface-color 0.5 --subsurface-radius 1 --albedo-inversion exact", "--albedo-inversion"},
+        BadInput{"fit --preset skin1 --albedo-inversion model", "applies only to --subsurface-color"},
+        BadInput{"fit --preset skin1 --subsurface-color 0.5", "exclude each other"},
         BadInput{"fit --preset skin1 --bogus", "bogus"}));
 
 TEST(SssFit, UnwritableOutputIsARuntimeErrorAndLeavesNothing) {
@@ -430,6 +441,38 @@ TEST(SssFitGuards, ArtistModePrintsTheCoefficientsItDerived) {
   const auto doc = parse_only_json(c.out);
   const double color[3] = {0.8, 0.5, 0.3};
   for (int ch = 0; ch < 3; ++ch)
+    EXPECT_NEAR(doc["total_reflectance"][ch].get<double>(), color[ch], 1e-4) << ch;
+}
+
+// OpenPBR's parameters on the command line are the same medium as extras.sss.openpbr
+// (tested against the spec in test_openpbr.cpp): σt = 1 / (radius × radius_scale), and
+// Standard Surface's radius colour × scale the same mean free paths. The printed
+// coefficients, given back as --sigma-a/--sigma-s, fit the same profile.
+TEST(SssFitGuards, OpenPbrAndStandardSurfaceOptions) {
+  const CliRun a = sss_fit("fit --subsurface-color 0.671,0.505,0.371 --subsurface-radius 2 "
+                           "--subsurface-radius-scale 0.482,0.169,0.109 --eta 1.4");
+  ASSERT_EQ(a.code, 0) << a.err;
+  EXPECT_NE(a.out.find("OpenPBR subsurface"), std::string::npos) << a.out;
+  const auto [sa, ss] = derived_coefficients(a.out);
+  ASSERT_FALSE(sa.empty()) << a.out;
+  double a3[3], s3[3];
+  ASSERT_EQ(std::sscanf(sa.c_str(), "%lf,%lf,%lf", &a3[0], &a3[1], &a3[2]), 3) << sa;
+  ASSERT_EQ(std::sscanf(ss.c_str(), "%lf,%lf,%lf", &s3[0], &s3[1], &s3[2]), 3) << ss;
+  const double scale[3] = {0.482, 0.169, 0.109};
+  for (int c = 0; c < 3; ++c)  // printed to 6 digits
+    EXPECT_NEAR((a3[c] + s3[c]) * 2.0 * scale[c], 1.0, 2e-5) << c;
+  const CliRun b = sss_fit("fit --subsurface-color 0.671,0.505,0.371 --subsurface-radius 0.964,0.338,0.218 "
+                           "--eta 1.4");
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_NE(b.out.find("Standard Surface subsurface"), std::string::npos) << b.out;
+  EXPECT_EQ(derived_coefficients(b.out), derived_coefficients(a.out));
+  // The project's inversion scatters more behind the same boundary.
+  const CliRun m = sss_fit("fit --subsurface-color 0.671,0.505,0.371 --subsurface-radius 2 "
+                           "--subsurface-radius-scale 0.482,0.169,0.109 --eta 1.4 --albedo-inversion model --json");
+  ASSERT_EQ(m.code, 0) << m.err;
+  const auto doc = parse_only_json(m.out);
+  const double color[3] = {0.671, 0.505, 0.371};
+  for (int ch = 0; ch < 3; ++ch)  // mc-table's total, inverted to 1e-9
     EXPECT_NEAR(doc["total_reflectance"][ch].get<double>(), color[ch], 1e-4) << ch;
 }
 

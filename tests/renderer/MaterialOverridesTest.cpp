@@ -96,6 +96,37 @@ TEST(SssMaterialOption, EnablesAPlainGltfMaterialByNameIndexOrAll) {
   }
 }
 
+// OpenPBR's keys in --sss-material keep the material's source OpenPBR (the panel shows
+// its fields, Export writes extras.sss.openpbr); Standard Surface's radius colour likewise.
+TEST(SssMaterialOption, OpenPbrAndStandardSurfaceKeysKeepTheirSource) {
+  TempDir dir("sss_material_openpbr");
+  const auto file = dir.path() / "boxes.glb";
+  write_two_boxes(file, 0.05f);
+  scene::Scene s = load(file);
+  app::MaterialOverrideArgs a;
+  a.sss_material = {"plastic=subsurface-color=0.6,0.4,0.3;subsurface-radius=2;eta=1.4;albedo-inversion=model",
+                    "metal=subsurface-color=0.6,0.4,0.3;subsurface-radius=2,1,0.5;subsurface-scale=1"};
+  ASSERT_EQ(error_of(apply(s, a)), "");
+  const auto* p = std::get_if<scene::OpenPbrSource>(&s.materials[0].sss.source);
+  ASSERT_NE(p, nullptr);
+  EXPECT_EQ(p->inversion, profiles::AlbedoInversion::Model);
+  EXPECT_FALSE(p->standard_surface);
+  EXPECT_EQ(p->parameters.radius_mm, 2.0);
+  EXPECT_EQ(p->parameters.ior, 1.4);
+  const auto* ss = std::get_if<scene::OpenPbrSource>(&s.materials[1].sss.source);
+  ASSERT_NE(ss, nullptr);
+  EXPECT_TRUE(ss->standard_surface);
+  EXPECT_EQ(ss->inversion, profiles::AlbedoInversion::VanDeHulst);
+  // radius 2,1,0.5 × scale 1 against OpenPBR's 2 × (1, 0.5, 0.25): the same mean free paths.
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(s.materials[1].sss.medium.sigma_a[c] + s.materials[1].sss.medium.sigma_s[c],
+                1.0 / (2.0 * std::pow(0.5, c)), 1e-12) << c;
+  scene::Scene t = load(file);
+  a.sss_material = {"plastic=subsurface-color=0.6;subsurface-radius=2;albedo-inversion=best"};
+  EXPECT_NE(error_of(apply(t, a)).find("albedo-inversion"), std::string::npos);
+  EXPECT_FALSE(t.materials[0].sss.enabled);
+}
+
 TEST(SssMaterialOption, ExportWritesWhatWasEnabled) {
   TempDir dir("sss_material_export");
   const auto file = dir.path() / "boxes.glb";

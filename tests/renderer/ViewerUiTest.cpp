@@ -523,6 +523,59 @@ TEST(LayerEditor, SplittingKeepsTheProfileAndEditsBuildTheStack) {
   std::filesystem::remove(out);
 }
 
+// The editor's OpenPBR mode (issue 21). Switching to it fills the fields by the spec's
+// forward map of the current medium, so the medium stays: within the spec inversion's
+// rounding, 2e-5 of σt (test_khr_materials.cpp), and the fields' float rounding, 2^-24
+// relative on the radius and scales (σt) and below 1e-7 of σt through the colour
+// (|dα/dC| <= 1 at g = 0): 3e-5 of σt. Its inversion switched to the model's total
+// scatters more behind skin1's boundary (η 1.3); Export writes the block and it reads back
+// as the same source; a stack cannot be made of it.
+TEST(OpenPbrEditor, SwitchingKeepsTheMediumAndTheInversionChangesIt) {
+  LayerEditorFixture f;
+  const profiles::Medium skin = f.scene.materials[f.index].sss.medium;
+  ASSERT_TRUE(f.ed->set_source_kind(0, SourceKind::OpenPbr)) << f.edit().error;
+  const scene::SssMaterial spec = f.resolved();
+  ASSERT_TRUE(std::holds_alternative<scene::OpenPbrSource>(spec.source));
+  for (int c = 0; c < 3; ++c) {
+    const double st = skin.sigma_a[c] + skin.sigma_s[c];
+    EXPECT_NEAR(spec.medium.sigma_s[c], skin.sigma_s[c], 3e-5 * st) << c;
+    EXPECT_NEAR(spec.medium.sigma_a[c], skin.sigma_a[c], 3e-5 * st) << c;
+  }
+  EXPECT_FLOAT_EQ(f.edit().pbr_ior, 1.3f);
+  f.edit().pbr_inversion = 1;
+  ASSERT_TRUE(f.ed->apply(0)) << f.edit().error;
+  const scene::SssMaterial own = f.resolved();
+  ASSERT_EQ(std::get<scene::OpenPbrSource>(own.source).inversion, profiles::AlbedoInversion::Model);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GT(own.medium.sigma_s[c] / (own.medium.sigma_s[c] + own.medium.sigma_a[c]),
+              spec.medium.sigma_s[c] / (spec.medium.sigma_s[c] + spec.medium.sigma_a[c])) << c;
+    EXPECT_NEAR(own.medium.sigma_a[c] + own.medium.sigma_s[c], spec.medium.sigma_a[c] + spec.medium.sigma_s[c],
+                1e-6 * (spec.medium.sigma_a[c] + spec.medium.sigma_s[c])) << c;
+  }
+  // A bad field is refused naming the spec's field, before the worker.
+  f.edit().pbr_radius_scale[1] = 0.0f;
+  EXPECT_FALSE(f.ed->apply(0));
+  EXPECT_NE(f.edit().error.find("subsurface_radius_scale[1]"), std::string::npos) << f.edit().error;
+  f.edit().pbr_radius_scale[1] = 0.5f;
+  EXPECT_FALSE(f.ed->add_layer(0, 0));
+  EXPECT_NE(f.edit().error.find("OpenPBR"), std::string::npos) << f.edit().error;
+
+  std::vector<scene::Material> materials = f.scene.materials;
+  materials[f.index].sss = own;
+  const app::LiveState live{&f.scene, "builtin:bunny", materials, f.scene.lights};
+  const std::string out = (std::filesystem::temp_directory_path() / "sss_openpbr_export.json").string();
+  ASSERT_EQ(app::export_materials(live, out, true), "saved " + out);
+  std::ifstream in(out);
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  const nlohmann::json& block = doc["materials"][f.index]["extras"]["sss"];
+  ASSERT_TRUE(block.contains("openpbr")) << block.dump();
+  EXPECT_EQ(block["albedo_inversion"], "model");
+  const auto back = scene::parse_sss_extras(block);
+  ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(back));
+  EXPECT_EQ(std::get<scene::SssMaterial>(back).medium.sigma_s, own.medium.sigma_s);
+  std::filesystem::remove(out);
+}
+
 // Reordering, removing, and what is refused: a semi-infinite layer moved up is not a valid
 // stack (its error names the layer and field, and nothing is submitted); a stack's model and
 // artist mode cannot be chosen over it; a preset replaces it; the last layer removed but

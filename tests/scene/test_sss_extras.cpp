@@ -69,7 +69,13 @@ TEST(SssExtras, WrittenBlockReadsBackAsTheSameMaterial) {
         R"({"sigma_a": [0.013, 0.07, 0.3], "sigma_s": [1.1, 2.2, 3.3], "g": [0, 0.2, 0.4],
             "eta": [1.3, 1.4, 1.5], "model": "dipole", "enabled": false})",
         R"({"color": [0.3, 0.2, 0.1], "mfp": [2, 1, 0.5], "g": 0.1, "eta": 1.4,
-            "thickness": 3, "model": "multipole", "gaussians": 3})"}) {
+            "thickness": 3, "model": "multipole", "gaussians": 3})",
+        R"({"openpbr": {"subsurface_color": [0.671, 0.505, 0.371], "subsurface_radius": 1.5,
+            "subsurface_radius_scale": [0.482, 0.169, 0.109], "specular_ior": 1.4}})",
+        R"({"openpbr": {"subsurface_color": 0.5, "subsurface_scatter_anisotropy": 0.3},
+            "albedo_inversion": "model", "model": "better-dipole", "thickness": 12})",
+        R"({"standard_surface": {"subsurface_color": [0.8, 0.5, 0.3],
+            "subsurface_radius": [0.9, 0.3, 0.15], "subsurface_scale": 2.5}, "scale": 2})"}) {
     SCOPED_TRACE(text);
     const SssMaterial a = parse_ok(text);
     const nlohmann::json written = sss_extras_json(a);
@@ -85,6 +91,48 @@ TEST(SssExtras, ArtistColourAndMeanFreePath) {
   const Rgb total = profile.total_reflectance();
   EXPECT_NEAR(total[0], 0.6, 1e-6);
   EXPECT_NEAR(total[2], 0.2, 1e-6);
+}
+
+// extras.sss.openpbr is OpenPBR's mapping (profiles/OpenPbr.h, tested against the spec
+// there); here: every key reaches it, defaults are the spec's, Standard Surface is the
+// same medium as its OpenPBR equivalent, and a weight of 0 turns the material off.
+TEST(SssExtras, OpenPbrAndStandardSurfaceBlocks) {
+  const SssMaterial s = parse_ok(R"({"openpbr": {"subsurface_color": [0.671, 0.505, 0.371],
+      "subsurface_radius": 1.5, "subsurface_radius_scale": [0.482, 0.169, 0.109],
+      "subsurface_scatter_anisotropy": 0.2, "specular_ior": 1.4, "subsurface_weight": 1}})");
+  ASSERT_TRUE(std::holds_alternative<OpenPbrSource>(s.source));
+  profiles::OpenPbrSubsurface p;
+  p.color = {0.671, 0.505, 0.371};
+  p.radius_mm = 1.5;
+  p.radius_scale = {0.482, 0.169, 0.109};
+  p.anisotropy = 0.2;
+  p.ior = 1.4;
+  const auto want = profiles::medium_from_openpbr(p, profiles::AlbedoInversion::VanDeHulst, s.model);
+  ASSERT_TRUE(std::holds_alternative<profiles::Medium>(want));
+  EXPECT_EQ(s.medium.sigma_a, std::get<profiles::Medium>(want).sigma_a);
+  EXPECT_EQ(s.medium.sigma_s, std::get<profiles::Medium>(want).sigma_s);
+  EXPECT_EQ(s.medium.eta[2], 1.4);
+  EXPECT_TRUE(s.enabled);
+
+  // The spec's defaults: colour 0.8, radius 1, radius_scale (1, 0.5, 0.25), ior 1.5.
+  const SssMaterial d = parse_ok(R"({"openpbr": {}})");
+  EXPECT_NEAR((d.medium.sigma_a[2] + d.medium.sigma_s[2]) * 0.25, 1.0, 1e-14);
+  EXPECT_EQ(d.medium.eta[0], 1.5);
+
+  const SssMaterial ss = parse_ok(R"({"standard_surface": {"subsurface_color": [0.671, 0.505, 0.371],
+      "subsurface_radius": [0.723, 0.2535, 0.1635], "subsurface_scale": 1.0,
+      "subsurface_anisotropy": 0.2, "specular_IOR": 1.4}})");
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(ss.medium.sigma_s[c], s.medium.sigma_s[c], 1e-12 * s.medium.sigma_s[c]) << c;
+    EXPECT_NEAR(ss.medium.sigma_a[c], s.medium.sigma_a[c], 1e-12 * s.medium.sigma_a[c]) << c;
+  }
+  EXPECT_FALSE(parse_ok(R"({"openpbr": {"subsurface_weight": 0}})").enabled);
+  EXPECT_FALSE(parse_ok(R"({"standard_surface": {"subsurface": 0}})").enabled);
+  // The project's inversion scatters more for the same colour behind a boundary.
+  const SssMaterial own = parse_ok(R"({"openpbr": {"subsurface_color": 0.5, "specular_ior": 1.4},
+      "albedo_inversion": "model"})");
+  const SssMaterial spec = parse_ok(R"({"openpbr": {"subsurface_color": 0.5, "specular_ior": 1.4}})");
+  EXPECT_GT(own.medium.sigma_s[0], spec.medium.sigma_s[0]);
 }
 
 TEST(SssExtras, ErrorsNameTheField) {
@@ -124,6 +172,28 @@ TEST(SssExtras, ErrorsNameTheField) {
       {R"({"preset": "skin1", "color": 0.5, "mfp": 1})", {"", "only one"}},
       {R"([1, 2, 3])", {"", "JSON object"}},
       {R"({"preset": )", {"", "not valid JSON"}},
+      {R"({"openpbr": {"subsurface_color": [0.5, 1, 0.5]}})", {"openpbr.subsurface_color[1]", "between 0 and 1"}},
+      {R"({"openpbr": {"subsurface_radius": 0}})", {"openpbr.subsurface_radius", "> 0"}},
+      {R"({"openpbr": {"subsurface_radius": "1"}})", {"openpbr.subsurface_radius", "number"}},
+      {R"({"openpbr": {"subsurface_radius_scale": [1, 0, 1]}})", {"openpbr.subsurface_radius_scale[1]", "(0, 1]"}},
+      {R"({"openpbr": {"subsurface_scatter_anisotropy": -1}})", {"openpbr.subsurface_scatter_anisotropy", "(-1, 1)"}},
+      {R"({"openpbr": {"specular_ior": 0.5}})", {"openpbr.specular_ior", "[1, 2.5]"}},
+      {R"({"openpbr": {"subsurface_weight": 0.5}})", {"openpbr.subsurface_weight", "0 (no subsurface) or 1"}},
+      {R"({"openpbr": {"subsurface_radius": 1, "transmission_depth": 1}})", {"openpbr.transmission_depth", "unknown field"}},
+      {R"({"openpbr": [0.5]})", {"openpbr", "JSON object"}},
+      {R"({"openpbr": {}, "preset": "skin1"})", {"preset", "cannot be combined with openpbr"}},
+      {R"({"openpbr": {}, "standard_surface": {}})", {"standard_surface", "give one"}},
+      {R"({"openpbr": {}, "albedo_inversion": "exact"})", {"albedo_inversion", "van-de-hulst"}},
+      {R"({"preset": "skin1", "albedo_inversion": "model"})", {"albedo_inversion", "only to openpbr"}},
+      {R"({"standard_surface": {"subsurface_color": 0.5, "subsurface_radius": [1, -1, 1]}})", {"standard_surface.subsurface_radius[1]", "> 0"}},
+      {R"({"standard_surface": {"subsurface_color": 0.5, "subsurface_scale": 0}})", {"standard_surface.subsurface_scale", "> 0"}},
+      {R"({"standard_surface": {"subsurface_color": 0.5, "specular_IOR": 9}})",
+       {"standard_surface.specular_IOR", "[1, 2.5]"}},
+      {R"({"standard_surface": {"subsurface_radius": [1, 1, 1]}})", {"standard_surface.subsurface_color", "required"}},
+      {R"({"standard_surface": {"subsurface_color": 0.5, "subsurface_radius": [1, 1, 1], "foo": 1}})",
+       {"standard_surface.foo", "unknown field; expected one of subsurface, subsurface_color"}},
+      {R"({"standard_surface": {"subsurface_color": [0.5, 0.5, 1.5]}})", {"standard_surface.subsurface_color[2]", "between 0 and 1"}},
+      {R"({"standard_surface": {"subsurface": 0.3}})", {"standard_surface.subsurface", "0 (no subsurface) or 1"}},
   };
   for (const auto& [text, want] : cases) {
     const FieldError e = parse_error(text);
