@@ -18,6 +18,9 @@ PACKAGES=(
   # GNU parallel: the scale-out test runs the README's tile recipe with it
   # (tests/apps/test_sss_reference_random_walk.cpp, GnuParallelSpreadsTilesThatMergeBitIdentically).
   parallel
+  # Python 3: the tests compile the Unreal editor script that `sss-fit export --format
+  # unreal` writes (tests/profiles/test_engine_profiles.cpp), so a syntax error cannot ship.
+  python3-minimal
 )
 if [ "${1:-}" = "--fuzz" ]; then
   PACKAGES+=(clang-14 libclang-rt-14-dev zlib1g-dev)

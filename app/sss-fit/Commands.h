@@ -51,11 +51,21 @@ struct McTableArgs {
   std::optional<double> g;        // one layer at g
 };
 
+struct ExportArgs {
+  CommonArgs common;
+  std::string format;  // hdrp | unreal | kernel-json | c-header
+  std::string out, name;
+  std::optional<double> world_scale;  // hdrp: m per unit (1); unreal: WorldUnitScale (0.1)
+  int gaussians = 6;
+  int taps = 0;
+};
+
 int run_presets(bool json);
 int run_profile(const ProfileArgs& a);
 int run_fit(const FitArgs& a);
 int run_validate(const CommonArgs& a);
 int run_mc_table(const McTableArgs& a);
+int run_export(const ExportArgs& a);
 
 // "sss-fit: error: FIELD: message" on stderr.
 int usage_error(const FieldError& e);

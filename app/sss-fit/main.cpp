@@ -78,6 +78,22 @@ int main(int argc, char** argv) {
                   "mc-table, whose 1/r peak at the source no sum of Gaussians follows, 0 for the "
                   "other models)");
 
+  ExportArgs xa;
+  auto* exp = app.add_subcommand(
+      "export", "Write a material's profile for an engine: Unity HDRP's Diffusion Profile "
+                "(.asset + .meta), Unreal's Subsurface Profile (.json + an editor .py), or the "
+                "kernel (JSON, C header)");
+  add_common(*exp, xa.common, true);
+  exp->add_option("--format", xa.format, "hdrp | unreal | kernel-json | c-header")->required();
+  exp->add_option("--out", xa.out,
+                  "hdrp: NAME.asset; unreal: NAME.json; kernel-json: FILE.json; c-header: FILE.h")
+      ->required();
+  exp->add_option("--name", xa.name, "The asset's name (default: the file's stem); the C header's prefix");
+  exp->add_option("--world-scale", xa.world_scale,
+                  "hdrp: worldScale, metres per unit (default 1); unreal: WorldUnitScale (default 0.1)");
+  exp->add_option("--gaussians", xa.gaussians, "kernel-json, c-header: number of Gaussians, 1..8 (default 6)");
+  exp->add_option("--taps", xa.taps, "kernel-json, c-header: also a separable kernel with this many taps (odd)");
+
   CommonArgs va;
   auto* validate = app.add_subcommand(
       "validate", "Every model against Monte Carlo (with --layers: the layered model)");
@@ -113,6 +129,7 @@ int main(int argc, char** argv) {
     if (fit->parsed()) return run_fit(fa);
     if (validate->parsed()) return run_validate(va);
     if (mc_table->parsed()) return run_mc_table(ta);
+    if (exp->parsed()) return run_export(xa);
   } catch (const std::invalid_argument& e) {
     return usage_error(e.what());
   } catch (const std::exception& e) {

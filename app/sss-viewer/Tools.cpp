@@ -1,5 +1,6 @@
 #include "Tools.h"
 
+#include "profiles/EngineProfiles.h"
 
 #include "CliSupport.h"
 #include "InputFiles.h"
@@ -810,6 +811,58 @@ std::string export_kernel(const renderer::Renderer& r, const LiveState& live, st
   return write_new_file(path, bytes, replace, live.inputs);
 }
 
+std::string export_engine_profile(const LiveState& live, std::size_t material, const std::string& base,
+                                  bool hdrp, bool replace) {
+  if (material >= live.materials.size() || !live.materials[material].sss.enabled)
+    return "material " + std::to_string(material) + " has no subsurface scattering";
+  const scene::Material& m = live.materials[material];
+  if (!m.sss.layers.empty())
+    return "material '" + m.name + "' is a stack of layers: the engines' profiles hold one medium "
+           "(save its kernel instead)";
+  profiles::EngineProfileSource es;
+  es.name = m.name.empty() ? "material_" + std::to_string(material) : m.name;
+  es.medium = m.sss.effective_medium();
+  es.pre_post_albedo = m.sss.albedo_mode == scene::AlbedoMode::PrePost;
+  es.world_scale = hdrp ? std::max(0.001, (live.scene ? live.scene->mm_per_unit : 1000.0) / 1000.0) : 0.1;
+  std::string first, first_bytes, second, second_bytes;
+  profiles::BurleyShapeFit fit;
+  try {
+    const profiles::RgbProfile profile = m.sss.profile();
+    if (hdrp) {
+      const auto p = profiles::hdrp_diffusion_profile(es, profile);
+      first = base + ".asset";
+      first_bytes = p.asset;
+      second = first + ".meta";
+      second_bytes = p.meta;
+      fit = p.fit;
+    } else {
+      const auto p = profiles::unreal_subsurface_profile(es, profile);
+      first = base + "-unreal.json";
+      first_bytes = p.json;
+      second = base + "-unreal.py";
+      second_bytes = p.python;
+      fit = p.fit;
+    }
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  if (!replace)
+    for (const std::string& f : {first, second})
+      if (std::filesystem::exists(f)) return f + " exists (tick 'replace existing files')";
+  std::string msg = write_new_file(first, first_bytes, replace, live.inputs);
+  if (msg.rfind("saved ", 0) != 0) return msg;
+  const std::string msg2 = write_new_file(second, second_bytes, replace, live.inputs);
+  if (msg2.rfind("saved ", 0) != 0) {
+    std::error_code ec;
+    std::filesystem::remove(first, ec);
+    return msg2;
+  }
+  char err[96];
+  std::snprintf(err, sizeof err, "; Burley fit error %.1f/%.1f/%.1f%%", 100 * fit.relative_error[0],
+                100 * fit.relative_error[1], 100 * fit.relative_error[2]);
+  return "saved " + first + " and " + second + err;
+}
+
 void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live) {
   if (!ImGui::CollapsingHeader("Export")) return;
   const bool builtin = is_builtin(live.source);
@@ -822,7 +875,7 @@ void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live
   std::vector<int> sss;
   for (std::size_t i = 0; i < live.materials.size(); ++i)
     if (live.materials[i].sss.enabled) sss.push_back(int(i));
-  bool save_json = false, save_header = false;
+  bool save_json = false, save_header = false, save_hdrp = false, save_unreal = false;
   if (!sss.empty()) {
     kernel_material_ = std::clamp(kernel_material_, 0, int(sss.size()) - 1);
     const scene::Material& km = live.materials[std::size_t(sss[std::size_t(kernel_material_)])];
@@ -843,6 +896,15 @@ void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live
     save_json = ImGui::Button("Save kernel JSON");
     ImGui::SameLine();
     save_header = ImGui::Button("Save C header");
+    save_hdrp = ImGui::Button("Save HDRP profile");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Unity HDRP Diffusion Profile (.asset + .meta): Burley's d fitted to this "
+                        "material's profile, its ior, and for a slab its thickness and tint");
+    ImGui::SameLine();
+    save_unreal = ImGui::Button("Save Unreal profile");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Unreal Subsurface Profile settings (-unreal.json) and an editor Python "
+                        "script that creates the asset (-unreal.py)");
   }
   ImGui::Checkbox("replace existing files", &replace_);
 
@@ -858,6 +920,9 @@ void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live
     export_message_ = export_kernel(r, live, index,
                                     std::string(kernel_path_) + (save_json ? ".json" : ".h"), replace_);
   }
+  if (save_hdrp || save_unreal)
+    export_message_ = export_engine_profile(live, std::size_t(sss[std::size_t(kernel_material_)]),
+                                            kernel_path_, save_hdrp, replace_);
   if (!export_message_.empty()) ImGui::TextWrapped("%s", export_message_.c_str());
 }
 

@@ -247,6 +247,13 @@ std::string export_materials(const LiveState& live, const std::string& path, boo
 std::string export_kernel(const renderer::Renderer& r, const LiveState& live, std::size_t material,
                           const std::string& path, bool replace);
 
+// The material's profile as an engine's asset (profiles/EngineProfiles.h): `hdrp` writes
+// BASE.asset and BASE.asset.meta (worldScale the scene's metres per unit), else Unreal's
+// BASE-unreal.json and BASE-unreal.py (WorldUnitScale 0.1, Unreal's default). Both files or
+// neither; the message ends with the Burley fit's error per channel.
+std::string export_engine_profile(const LiveState& live, std::size_t material, const std::string& base,
+                                  bool hdrp, bool replace);
+
 // The key of a view for staleness: camera, size, exposure, materials and lights.
 std::string live_key(const renderer::Renderer& r, const LiveState& live);
 

@@ -476,6 +476,54 @@ TEST(SssFitGuards, OpenPbrAndStandardSurfaceOptions) {
     EXPECT_NEAR(doc["total_reflectance"][ch].get<double>(), color[ch], 1e-4) << ch;
 }
 
+// sss-fit export: each format writes its files (both or none), reports the Burley fit's
+// error, and refuses a file name that does not say the format. The files' content is
+// tested in tests/profiles/test_engine_profiles.cpp.
+TEST(SssFitExport, EveryFormatWritesItsFilesAndReportsTheFit) {
+  const fs::path dir = scratch_dir() / "export";
+  fs::create_directories(dir);
+  const CliRun h = sss_fit("export --format hdrp --preset skin1 --out " + (dir / "Skin.asset").string());
+  ASSERT_EQ(h.code, 0) << h.err;
+  EXPECT_TRUE(fs::exists(dir / "Skin.asset"));
+  EXPECT_TRUE(fs::exists(dir / "Skin.asset.meta"));
+  EXPECT_NE(h.out.find("relative L2 error"), std::string::npos) << h.out;
+  EXPECT_NE(slurp(dir / "Skin.asset").find("m_Name: Skin\n"), std::string::npos);
+
+  const CliRun u = sss_fit("export --format unreal --json --name Wax --preset marble --out " +
+                           (dir / "wax.json").string());
+  ASSERT_EQ(u.code, 0) << u.err;
+  const auto doc = parse_only_json(u.out);
+  EXPECT_EQ(doc["files"].size(), 2u);
+  EXPECT_EQ(doc["burley_relative_error"].size(), 3u);
+  EXPECT_TRUE(fs::exists(dir / "wax.py"));
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "wax.json"))["name"], "Wax");
+
+  for (const char* f : {"kernel-json", "c-header"}) {
+    const fs::path out = dir / (std::string("k") + (f[0] == 'k' ? ".json" : ".h"));
+    const CliRun k = sss_fit(std::string("export --format ") + f + " --preset skin1 --out " + out.string());
+    ASSERT_EQ(k.code, 0) << k.err;
+    EXPECT_TRUE(fs::exists(out)) << f;
+  }
+  for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"export --format hdrp --preset skin1 --out x.json", "NAME.asset"},
+           {"export --format unreal --preset skin1 --out x.asset", "NAME.json"},
+           {"export --format kernel-json --preset skin1 --out x.h", ".json"},
+           {"export --format fbx --preset skin1 --out x.fbx", "expected hdrp, unreal"},
+           {"export --format hdrp --preset skin1 --world-scale 0 --out x.asset", "--world-scale"},
+           {"export --format hdrp --preset skin1", "--out"}}) {
+    const CliRun e = sss_fit(args);
+    EXPECT_EQ(e.code, 2) << args;
+    EXPECT_NE(e.err.find(expected), std::string::npos) << args << "\n" << e.err;
+  }
+  // An unwritable second file leaves neither.
+  const fs::path blocked = dir / "Blocked.asset.meta";
+  fs::create_directories(blocked);  // a directory where the .meta would go
+  const CliRun b = sss_fit("export --format hdrp --preset skin1 --out " + (dir / "Blocked.asset").string());
+  EXPECT_EQ(b.code, 1) << b.err;
+  EXPECT_FALSE(fs::exists(dir / "Blocked.asset"));
+  fs::remove_all(dir);
+}
+
 TEST(SssFitGuards, TyposGetTheNearestOptionOrCommand) {
   const CliRun o = sss_fit("fit --preset marble --gaussian 4");
   EXPECT_EQ(o.code, 2);

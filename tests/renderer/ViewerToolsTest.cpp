@@ -232,7 +232,29 @@ TEST_F(ViewerExport, MaterialsGoToANewGltfAndKernelsToJsonAndHeader) {
       EXPECT_NE(export_kernel(r, live, i, (dir / "none.json").string(), false).find("no fitted"),
                 std::string::npos);
       EXPECT_FALSE(std::filesystem::exists(dir / "none.json"));
+      EXPECT_NE(export_engine_profile(live, i, (dir / "none").string(), true, false).find("no subsurface"),
+                std::string::npos);
+      EXPECT_FALSE(std::filesystem::exists(dir / "none.asset"));
     }
+
+  // The engines' profiles (content: tests/profiles/test_engine_profiles.cpp): the
+  // effective medium (scale 1.5 applied), the scene's metres per unit as HDRP's worldScale,
+  // both files or none, and the fit's error in the message.
+  const std::string base = (dir / "marble").string();
+  const std::string hdrp = export_engine_profile(live, sss, base, true, false);
+  EXPECT_EQ(hdrp.rfind("saved " + base + ".asset and " + base + ".asset.meta; Burley fit error", 0), 0u) << hdrp;
+  const std::string asset = slurp(base + ".asset");
+  const auto ws = asset.find("worldScale: ");
+  ASSERT_NE(ws, std::string::npos) << asset;
+  EXPECT_NEAR(std::stod(asset.substr(ws + 12)), std::max(0.001, scene.mm_per_unit / 1000.0), 1e-9);
+  EXPECT_NE(export_engine_profile(live, sss, base, true, false).find("exists"), std::string::npos);
+  const std::string unreal = export_engine_profile(live, sss, base, false, false);
+  EXPECT_EQ(unreal.rfind("saved " + base + "-unreal.json and " + base + "-unreal.py", 0), 0u) << unreal;
+  const auto ue = nlohmann::json::parse(slurp(base + "-unreal.json"));
+  const profiles::Medium eff = edited[sss].sss.effective_medium();
+  EXPECT_NEAR(ue["MeanFreePathDistance"].get<double>(),
+              0.1 / std::min({eff.sigma_a[0] + eff.sigma_s[0], eff.sigma_a[1] + eff.sigma_s[1],
+                              eff.sigma_a[2] + eff.sigma_s[2]}), 1e-9);
   std::filesystem::remove_all(dir);
 }
 
