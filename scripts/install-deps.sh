@@ -21,6 +21,9 @@ PACKAGES=(
   # Python 3: the tests compile the Unreal editor script that `sss-fit export --format
   # unreal` writes (tests/profiles/test_engine_profiles.cpp), so a syntax error cannot ship.
   python3-minimal
+  # gltfpack (meshoptimizer's): the tests load and render the quantized, texture-transformed
+  # files it writes (tests/scene/test_quantized_gltf.cpp, tests/renderer/GltfpackRenderTest.cpp).
+  gltfpack
 )
 if [ "${1:-}" = "--fuzz" ]; then
   PACKAGES+=(clang-14 libclang-rt-14-dev zlib1g-dev)

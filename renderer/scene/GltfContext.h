@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,11 @@ struct GltfContext {
   std::vector<std::vector<std::uint32_t>> mesh_primitives;  // glTF mesh -> scene meshes
   std::vector<std::optional<std::uint32_t>> texture_map;     // glTF texture -> scene texture
   std::vector<std::shared_ptr<const ImageRgba8>> images;     // decoded, by glTF image
+  bool mesh_quantization = false;  // KHR_mesh_quantization is in extensionsUsed
+  // KHR_texture_transform of each material's textures as u' = t[0] u + t[1] v + t[2],
+  // v' = t[3] u + t[4] v + t[5]: convert_meshes applies it to TEXCOORD_0 of the
+  // primitives drawn with the material (one transform per material; GltfMaterial.cpp).
+  std::vector<std::optional<std::array<float, 6>>> uv_transforms;
 
   LoadError fail(std::string object, std::string field, std::string message) const {
     return LoadError{file, std::move(object), std::move(field), std::move(message)};
@@ -52,12 +58,18 @@ std::string number_text(double v);
 Status check_buffer_views(GltfContext& ctx);
 
 // What an attribute accessor may be: its type (components) and component encodings.
+// With KHR_mesh_quantization in the file's extensionsUsed, `snorm` allows normalized BYTE
+// and SHORT, and `integers` every 8- and 16-bit type, normalized or not (the extension's
+// table: POSITION and TEXCOORD_n any, NORMAL and TANGENT normalized signed).
 struct AttributeRule {
   const char* semantic;  // "POSITION"
   int components;        // 2, 3 or 4
   bool unorm8 = false;   // normalized UNSIGNED_BYTE allowed besides FLOAT
   bool unorm16 = false;  // normalized UNSIGNED_SHORT allowed besides FLOAT
+  bool snorm = false;     // KHR_mesh_quantization: normalized BYTE, SHORT
+  bool integers = false;  // KHR_mesh_quantization: (UNSIGNED_)BYTE, (UNSIGNED_)SHORT, any
 };
+
 
 // Reads accessors[index] as `rule` says into out (count * components floats, unsigned
 // normalized values mapped to [0, 1]), after checking the accessor, its view and its

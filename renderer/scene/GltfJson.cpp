@@ -7,6 +7,12 @@
 
 namespace sss::scene {
 
+bool is_supported_required_extension(const std::string& name) {
+  for (const char* e : kSupportedRequiredExtensions)
+    if (name == e) return true;
+  return false;
+}
+
 namespace {
 
 using nlohmann::json;
@@ -173,12 +179,12 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
                                               std::to_string(views->size()) + ")");
   }
 
-  // Required extensions: only KHR_lights_punctual is implemented.
+  // Required extensions: those the loader implements (GltfContext.h).
   if (root.contains("extensionsRequired")) {
     const json& req = root["extensionsRequired"];
     if (!req.is_array()) return c.fail("extensionsRequired", "", "must be an array");
     for (std::size_t i = 0; i < req.size(); ++i)
-      if (req[i] != "KHR_lights_punctual")
+      if (!req[i].is_string() || !is_supported_required_extension(req[i].get<std::string>()))
         return c.fail("extensionsRequired", "[" + std::to_string(i) + "]",
                       req[i].dump() + " is required by the file but not supported");
   }

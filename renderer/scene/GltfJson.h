@@ -20,6 +20,11 @@
 
 namespace sss::scene {
 
+// The extensions a file may require: those the loader implements.
+inline constexpr const char* kSupportedRequiredExtensions[] = {
+    "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_texture_transform"};
+bool is_supported_required_extension(const std::string& name);
+
 // glTF itself nests about 6 deep; extras may go deeper, but not without bound (a
 // recursive parser would overflow the stack).
 inline constexpr int kMaxJsonDepth = 64;

@@ -46,7 +46,7 @@ std::string summarize(const std::string& err, const std::string& warn) {
 Status check_extensions(const GltfContext& ctx) {
   for (std::size_t i = 0; i < ctx.model.extensionsRequired.size(); ++i) {
     const std::string& ext = ctx.model.extensionsRequired[i];
-    if (ext != "KHR_lights_punctual")
+    if (!is_supported_required_extension(ext))
       return ctx.fail("extensionsRequired", "[" + std::to_string(i) + "]",
                       "\"" + ext + "\" is required by the file but not supported");
   }
@@ -125,7 +125,9 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   scene.name = std::filesystem::path(path).stem().string();
   scene.mm_per_unit = options.mm_per_unit;
   const GltfJsonFacts& f = std::get<GltfJsonFacts>(facts);
-  GltfContext ctx{path, options, model, scene, uri_images, f.image_media_type, 0, {}, {}, {}};
+  GltfContext ctx{path, options, model, scene, uri_images, f.image_media_type, 0, {}, {}, {}, false, {}};
+  ctx.mesh_quantization = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
+                                    "KHR_mesh_quantization") != model.extensionsUsed.end();
   if (auto e = check_extensions(ctx)) return *e;
   if (auto e = check_buffer_views(ctx)) return *e;
   if (auto e = convert_materials(ctx, f)) return *e;

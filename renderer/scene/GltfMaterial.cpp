@@ -96,6 +96,52 @@ Status texture(GltfContext& ctx, int index, const std::string& object, const std
 }
 
 // A material's texture reference; a texture set other than 0 is dropped with a warning.
+using UvTransform = std::array<float, 6>;
+
+// KHR_texture_transform on a texture reference (its README): uv' = T R S uv with
+// T = [1 0 ox; 0 1 oy], R = [cos r, sin r; -sin r, cos r], S = diag(sx, sy); its
+// texCoord replaces the reference's. Values must be finite.
+Status texture_transform(GltfContext& ctx, const tinygltf::ExtensionMap& extensions,
+                         const std::string& object, const std::string& field, int& tex_coord,
+                         std::optional<UvTransform>& out) {
+  const auto it = extensions.find("KHR_texture_transform");
+  if (it == extensions.end()) return std::nullopt;
+  const tinygltf::Value& t = it->second;
+  const std::string where = field + ".extensions.KHR_texture_transform";
+  if (!t.IsObject()) return ctx.fail(object, where, "must be an object");
+  const auto vec2 = [&](const char* key, double x, double y, double& ox, double& oy) -> Status {
+    ox = x;
+    oy = y;
+    if (!t.Has(key)) return std::nullopt;
+    const tinygltf::Value& v = t.Get(key);
+    if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+      return ctx.fail(object, where + "." + key, "must be an array of 2 numbers");
+    ox = v.Get(0).GetNumberAsDouble();
+    oy = v.Get(1).GetNumberAsDouble();
+    if (!std::isfinite(ox) || !std::isfinite(oy) || std::fabs(ox) > 1e30 || std::fabs(oy) > 1e30)
+      return ctx.fail(object, where + "." + key, "must be finite numbers");
+    return std::nullopt;
+  };
+  double ox = 0, oy = 0, sx = 1, sy = 1, r = 0;
+  if (auto e = vec2("offset", 0.0, 0.0, ox, oy)) return e;
+  if (auto e = vec2("scale", 1.0, 1.0, sx, sy)) return e;
+  if (t.Has("rotation")) {
+    const tinygltf::Value& v = t.Get("rotation");
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble()) || std::fabs(v.GetNumberAsDouble()) > 1e6)
+      return ctx.fail(object, where + ".rotation", "must be a finite number of radians");
+    r = v.GetNumberAsDouble();
+  }
+  if (t.Has("texCoord")) {
+    const tinygltf::Value& v = t.Get("texCoord");
+    if (!v.IsInt() || v.GetNumberAsInt() < 0)
+      return ctx.fail(object, where + ".texCoord", "must be an integer >= 0");
+    tex_coord = v.GetNumberAsInt();
+  }
+  const double c = std::cos(r), s = std::sin(r);
+  out = UvTransform{float(c * sx), float(s * sy), float(ox), float(-s * sx), float(c * sy), float(oy)};
+  return std::nullopt;
+}
+
 Status texture_ref(GltfContext& ctx, int index, int tex_coord, const std::string& object,
                    const std::string& field, std::optional<std::uint32_t>& out) {
   if (index < 0) return std::nullopt;
@@ -139,12 +185,37 @@ Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts) {
       return e;
     m.metallic = static_cast<float>(pbr.metallicFactor);
     m.roughness = static_cast<float>(pbr.roughnessFactor);
-    if (auto e = texture_ref(ctx, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, object,
+    // KHR_texture_transform: the renderer reads both textures through one TEXCOORD_0, so
+    // the transform is applied to the material's UVs (convert_meshes); where the two
+    // textures' transforms differ, the base colour's is used and a warning says so.
+    int base_coord = pbr.baseColorTexture.texCoord, normal_coord = gm.normalTexture.texCoord;
+    std::optional<UvTransform> base_tf, normal_tf;
+    if (pbr.baseColorTexture.index >= 0)
+      if (auto e = texture_transform(ctx, pbr.baseColorTexture.extensions, object,
+                                     "pbrMetallicRoughness.baseColorTexture", base_coord, base_tf))
+        return e;
+    if (gm.normalTexture.index >= 0)
+      if (auto e = texture_transform(ctx, gm.normalTexture.extensions, object, "normalTexture",
+                                     normal_coord, normal_tf))
+        return e;
+    if (auto e = texture_ref(ctx, pbr.baseColorTexture.index, base_coord, object,
                              "pbrMetallicRoughness.baseColorTexture", m.base_color_texture))
       return e;
-    if (auto e = texture_ref(ctx, gm.normalTexture.index, gm.normalTexture.texCoord, object,
+    if (auto e = texture_ref(ctx, gm.normalTexture.index, normal_coord, object,
                              "normalTexture", m.normal_texture))
       return e;
+    if (!m.base_color_texture) base_tf.reset();
+    if (!m.normal_texture) normal_tf.reset();
+    const UvTransform identity{1, 0, 0, 0, 1, 0};
+    const UvTransform tb = base_tf.value_or(identity), tn = normal_tf.value_or(identity);
+    bool same = true;
+    for (int k = 0; k < 6; ++k) same = same && std::fabs(tb[k] - tn[k]) <= 1e-6f * (1.0f + std::fabs(tb[k]));
+    if (m.base_color_texture && m.normal_texture && !same)
+      ctx.scene.warnings.push_back(ctx.file + ": " + object +
+                                   ": the base colour and normal textures have different "
+                                   "KHR_texture_transform; both are drawn with the base colour's");
+    ctx.uv_transforms.resize(materials.size());
+    ctx.uv_transforms[i] = m.base_color_texture ? base_tf : normal_tf;
     if (!std::isfinite(gm.normalTexture.scale) || std::fabs(gm.normalTexture.scale) > 1e6)
       return ctx.fail(object, "normalTexture.scale",
                       "must be a finite number, got " + number_text(gm.normalTexture.scale));

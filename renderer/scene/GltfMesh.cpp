@@ -11,10 +11,12 @@ namespace sss::scene {
 
 namespace {
 
-constexpr AttributeRule kPosition{"POSITION", 3};
-constexpr AttributeRule kNormal{"NORMAL", 3};
-constexpr AttributeRule kTexcoord{"TEXCOORD_0", 2, true, true};
-constexpr AttributeRule kTangent{"TANGENT", 4};
+// KHR_mesh_quantization's table of what each attribute may be (its README, "Extending
+// Mesh Attributes").
+constexpr AttributeRule kPosition{"POSITION", 3, false, false, true, true};
+constexpr AttributeRule kNormal{"NORMAL", 3, false, false, true, false};
+constexpr AttributeRule kTexcoord{"TEXCOORD_0", 2, true, true, true, true};
+constexpr AttributeRule kTangent{"TANGENT", 4, false, false, true, false};
 
 // Triangle list from a strip or fan of `seq` (glTF 2.0 §3.7.2.1 winding).
 std::vector<std::uint32_t> to_triangles(const std::vector<std::uint32_t>& seq, int mode) {
@@ -87,6 +89,12 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
     if (auto e = attribute_count(ctx, object, "NORMAL", f.size() / 3, n)) return e;
     mesh.normals.resize(n);
     for (std::size_t i = 0; i < n; ++i) mesh.normals[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+    // Quantized normals are unit only to their precision (1/127 for BYTE).
+    if (ctx.model.accessors[std::size_t(attr("NORMAL"))].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+      for (glm::vec3& v : mesh.normals) {
+        const float len = glm::length(v);
+        if (len > 0.0f) v /= len;
+      }
   }
   if (attr("TEXCOORD_0") >= 0) {
     if (auto e = read_attribute(ctx, attr("TEXCOORD_0"), kTexcoord, object, "attributes.TEXCOORD_0", f))
@@ -95,6 +103,17 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
     mesh.uv0.resize(n);
     for (std::size_t i = 0; i < n; ++i) mesh.uv0[i] = {f[2 * i], f[2 * i + 1]};
   }
+  // KHR_texture_transform of the material's textures, applied to the UVs they read.
+  if (!mesh.uv0.empty() && prim.material >= 0 && std::size_t(prim.material) < ctx.uv_transforms.size())
+    if (const auto& t = ctx.uv_transforms[std::size_t(prim.material)])
+      for (glm::vec2& uv : mesh.uv0) {
+        const float u = uv.x, v = uv.y;
+        uv = {(*t)[0] * u + (*t)[1] * v + (*t)[2], (*t)[3] * u + (*t)[4] * v + (*t)[5]};
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
+          return ctx.fail(object, "attributes.TEXCOORD_0",
+                          "KHR_texture_transform of materials[" + std::to_string(prim.material) +
+                              "] takes a UV past float range");
+      }
   if (attr("TANGENT") >= 0) {
     if (auto e = read_attribute(ctx, attr("TANGENT"), kTangent, object, "attributes.TANGENT", f))
       return e;
