@@ -141,16 +141,17 @@ std::variant<OpenPbrSource, FieldError> read_openpbr(const json& o, bool standar
   if (weight != 0.0 && weight != 1.0)
     return named({keys[0], "must be 0 (no subsurface) or 1: the renderer does not mix a diffuse "
                            "and a subsurface lobe, got " + str(weight)});
+  // A weight of 0 is no subsurface: every value is still type-checked (a typo is an
+  // error), but their ranges are not the renderer's business then (Standard Surface's
+  // default colour, 1, describes no finite medium).
+  const bool off = weight == 0.0;
+  if (off) enabled = false;
   OpenPbrSource source;
-  if (weight == 0.0) {
-    enabled = false;
-    return source;
-  }
   source.standard_surface = standard_surface;
   profiles::OpenPbrSubsurface& p = source.parameters;
   if (standard_surface) {
     profiles::StandardSurfaceSubsurface s;
-    if (!o.contains(keys[1]))
+    if (!off && !o.contains(keys[1]))
       return named({keys[1], "is required: Standard Surface's default (1, 1, 1) absorbs nothing, "
                              "which has no finite diffusion length"});
     if (auto e = colour(keys[1], s.color)) return *e;
@@ -158,6 +159,7 @@ std::variant<OpenPbrSource, FieldError> read_openpbr(const json& o, bool standar
     if (auto e = number(keys[3], s.scale)) return *e;
     if (auto e = number(keys[4], s.anisotropy)) return *e;
     if (auto e = number(keys[5], s.ior)) return *e;
+    if (off) return source;
     for (int c = 0; c < 3; ++c)
       if (!(s.radius[c] > 0.0))
         return named({std::string(keys[2]) + "[" + std::to_string(c) + "]",
@@ -171,6 +173,7 @@ std::variant<OpenPbrSource, FieldError> read_openpbr(const json& o, bool standar
     if (auto e = number(keys[4], p.anisotropy)) return *e;
     if (auto e = number(keys[5], p.ior)) return *e;
   }
+  if (off) return source;
   if (auto e = profiles::validate(p)) {
     // Name the field as this block spells it.
     if (standard_surface) {
@@ -262,7 +265,15 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
     const char* block = standard_surface ? "standard_surface" : "openpbr";
     auto read = read_openpbr(o[block], standard_surface, enabled);
     if (auto* e = std::get_if<FieldError>(&read)) return *e;
-    if (!enabled) return SssMaterial{};  // a weight of 0: no subsurface (the others unread)
+    if (!enabled) {
+      // A weight of 0: no subsurface. The spec's other values are not read (they need not
+      // describe a medium); the material keeps the default source, resolved, as every
+      // material without subsurface scattering does, so that it exports and reads back.
+      auto off = make_sss_material(PresetSource{"skin1"}, model, gaussians, scale, albedo_mode);
+      if (auto* e = std::get_if<FieldError>(&off)) return *e;
+      std::get<SssMaterial>(off).enabled = false;
+      return off;
+    }
     OpenPbrSource source = std::get<OpenPbrSource>(std::move(read));
     source.thickness_mm = thickness;
     if (o.contains("albedo_inversion")) {

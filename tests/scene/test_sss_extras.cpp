@@ -126,8 +126,19 @@ TEST(SssExtras, OpenPbrAndStandardSurfaceBlocks) {
     EXPECT_NEAR(ss.medium.sigma_s[c], s.medium.sigma_s[c], 1e-12 * s.medium.sigma_s[c]) << c;
     EXPECT_NEAR(ss.medium.sigma_a[c], s.medium.sigma_a[c], 1e-12 * s.medium.sigma_a[c]) << c;
   }
-  EXPECT_FALSE(parse_ok(R"({"openpbr": {"subsurface_weight": 0}})").enabled);
-  EXPECT_FALSE(parse_ok(R"({"standard_surface": {"subsurface": 0}})").enabled);
+  // A weight of 0: off, with the default (resolved) medium that every material without
+  // subsurface scattering has, so that it exports and reads back; the values are still
+  // type-checked but not range-checked (the fuzzer's find: a radius of 0 beside weight 0
+  // left the material without a medium).
+  for (const char* text : {R"({"openpbr": {"subsurface_weight": 0, "subsurface_radius": 0}})",
+                           R"({"standard_surface": {"subsurface": 0}})"}) {
+    const SssMaterial off = parse_ok(text);
+    EXPECT_FALSE(off.enabled) << text;
+    EXPECT_FALSE(off.effective_medium().validate().has_value()) << text;
+    testing::expect_same_sss(parse_ok(sss_extras_json(off).dump()), off);
+  }
+  EXPECT_EQ(parse_error(R"({"openpbr": {"subsurface_weight": 0, "subsurface_radius": "x"}})").field,
+            "openpbr.subsurface_radius");
   // The project's inversion scatters more for the same colour behind a boundary.
   const SssMaterial own = parse_ok(R"({"openpbr": {"subsurface_color": 0.5, "specular_ior": 1.4},
       "albedo_inversion": "model"})");
