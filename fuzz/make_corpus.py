@@ -107,10 +107,15 @@ def exrs():
 
 
 # ---------------------------------------------------------------- glTF
-def triangle_gltf(glb=False, mode=4, indexed=True, sss=None, textured=False):
-    pos = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
-    nrm = struct.pack("<9f", 0, 0, 1, 0, 0, 1, 0, 0, 1)
-    uv = struct.pack("<6f", 0, 0, 1, 0, 0, 1)
+def triangle_gltf(glb=False, mode=4, indexed=True, sss=None, textured=False, quantized=False):
+    if quantized:  # KHR_mesh_quantization (+ KHR_texture_transform on the textures), 36/36/24 bytes
+        pos = struct.pack("<12h", 0, 0, 0, 0, 1000, 0, 0, 0, 0, 1000, 0, 0) + b"\0" * 12
+        nrm = struct.pack("<12b", 0, 0, 127, 0, 0, 0, 127, 0, 0, 0, 127, 0) + b"\0" * 24
+        uv = struct.pack("<6H", 0, 0, 65535, 0, 0, 65535) + b"\0" * 12
+    else:
+        pos = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+        nrm = struct.pack("<9f", 0, 0, 1, 0, 0, 1, 0, 0, 1)
+        uv = struct.pack("<6f", 0, 0, 1, 0, 0, 1)
     idx = struct.pack("<3H", 0, 1, 2) + b"\0\0"
     binary = pos + nrm + uv + (idx if indexed else b"")
     views = [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
@@ -120,6 +125,13 @@ def triangle_gltf(glb=False, mode=4, indexed=True, sss=None, textured=False):
             "min": [0, 0, 0], "max": [1, 1, 0]},
            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
            {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"}]
+    if quantized:
+        views[0]["byteStride"] = 8
+        views[1]["byteStride"] = 4
+        acc[0] = {"bufferView": 0, "componentType": 5122, "count": 3, "type": "VEC3",
+                  "min": [0, 0, 0], "max": [1000, 1000, 0]}
+        acc[1] = {"bufferView": 1, "componentType": 5120, "normalized": True, "count": 3, "type": "VEC3"}
+        acc[2] = {"bufferView": 2, "componentType": 5123, "normalized": True, "count": 3, "type": "VEC2"}
     prim = {"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "material": 0, "mode": mode}
     if indexed:
         views.append({"buffer": 0, "byteOffset": 96, "byteLength": 6, "target": 34963})
@@ -151,6 +163,14 @@ def triangle_gltf(glb=False, mode=4, indexed=True, sss=None, textured=False):
         doc["textures"] = [{"source": 0, "sampler": 0}]
         material["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
         material["normalTexture"] = {"index": 0, "scale": 1}
+    if quantized:
+        doc["extensionsUsed"] += ["KHR_mesh_quantization", "KHR_texture_transform"]
+        doc["extensionsRequired"] = ["KHR_mesh_quantization"]
+        doc["nodes"][1]["scale"] = [0.001, 0.001, 0.001]
+        tf = {"KHR_texture_transform": {"offset": [0.25, 0], "rotation": 0.3, "scale": [2, 2]}}
+        if textured:
+            material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = tf
+            material["normalTexture"]["extensions"] = tf
     if glb:
         doc["buffers"] = [{"byteLength": len(binary)}]
         text = json.dumps(doc, separators=(",", ":")).encode()
@@ -207,6 +227,7 @@ def main():
     put("gltf", "fan_artist.gltf", triangle_gltf(mode=6, sss=SSS_BLOCKS["artist.json"]))
     put("gltf", "textured.gltf", triangle_gltf(textured=True))
     put("gltf", "textured.glb", triangle_gltf(glb=True, textured=True))
+    put("gltf", "quantized_textured.glb", triangle_gltf(glb=True, textured=True, quantized=True))
     shutil.copyfile(os.path.join(HERE, "..", "assets", "textured_tile.glb"),
                     os.path.join(CORPUS, "gltf", "textured_tile.glb"))
     for name, block in SSS_BLOCKS.items():
