@@ -89,6 +89,29 @@ std::optional<FieldError> validate(const OpenPbrSubsurface& p) {
   return std::nullopt;
 }
 
+std::optional<FieldError> validate(const StandardSurfaceSubsurface& s) {
+  for (int c = 0; c < 3; ++c)
+    if (!(s.radius[c] > 0.0 && std::isfinite(s.radius[c])))
+      return FieldError{channel_field("subsurface_radius", c),
+                        "must be a finite number > 0 (a mean free path), got " + str(s.radius[c])};
+  if (!(s.scale > 0.0 && std::isfinite(s.scale)))
+    return FieldError{"subsurface_scale", "must be a finite number of mm > 0, got " + str(s.scale)};
+  auto e = validate(openpbr_from_standard_surface(s));
+  if (!e) return e;
+  // OpenPBR's field → Standard Surface's (its radius_scale is the radius colour).
+  static const std::pair<const char*, const char*> kNames[] = {
+      {"subsurface_radius_scale", "subsurface_radius"}, {"subsurface_radius", "subsurface_scale"},
+      {"subsurface_scatter_anisotropy", "subsurface_anisotropy"}, {"specular_ior", "specular_IOR"}};
+  for (const auto& [openpbr, standard] : kNames) {
+    const std::size_t n = std::string_view(openpbr).size();
+    if (e->field.compare(0, n, openpbr) == 0 && (e->field.size() == n || e->field[n] == '[')) {
+      e->field = standard + e->field.substr(n);
+      break;
+    }
+  }
+  return e;
+}
+
 std::variant<Medium, FieldError> medium_from_openpbr(const OpenPbrSubsurface& p,
                                                      AlbedoInversion inversion, Model model,
                                                      const ModelOptions& opt) {

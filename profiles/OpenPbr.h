@@ -72,6 +72,11 @@ struct StandardSurfaceSubsurface {
 OpenPbrSubsurface openpbr_from_standard_surface(const StandardSurfaceSubsurface& s);
 StandardSurfaceSubsurface standard_surface_from_openpbr(const OpenPbrSubsurface& p);
 
+// Standard Surface's own checks (radius > 0 per channel, a finite scale > 0), then
+// OpenPBR's on its equivalent, every error named as Standard Surface spells the field:
+// "subsurface_radius[1]", "subsurface_scale", "specular_IOR".
+std::optional<FieldError> validate(const StandardSurfaceSubsurface& s);
+
 // What the project can render: C strictly inside (0, 1) per channel (0 scatters nothing,
 // 1 absorbs nothing and has no finite diffusion length), radius > 0, radius_scale in
 // (0, 1] (0 would be an infinite μt), |g| < 1, ior in the models' η range. Errors name

@@ -166,18 +166,26 @@ std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
       profiles::StandardSurfaceSubsurface ss;
       ss.color = std::get<Rgb>(col);
       ss.radius = std::get<Rgb>(radius);
-      for (int c = 0; c < 3; ++c)
-        if (!(ss.radius[c] > 0.0))
-          return FieldError{"--subsurface-radius", "must be > 0 in every channel, got '" + a.subsurface_radius + "'"};
       if (!a.subsurface_scale.empty()) {
         auto v = parse_number("--subsurface-scale", a.subsurface_scale);
         if (auto* e = std::get_if<FieldError>(&v)) return *e;
         ss.scale = std::get<double>(v);
-        if (!(ss.scale > 0.0 && std::isfinite(ss.scale)))
-          return FieldError{"--subsurface-scale", "must be a number of mm > 0, got '" + a.subsurface_scale + "'"};
       }
       ss.anisotropy = g;
       ss.ior = eta_given ? eta : 1.5;
+      if (auto e = profiles::validate(ss)) {
+        // Standard Surface's field → the option that set it.
+        static const std::pair<const char*, const char*> kOptions[] = {
+            {"subsurface_color", "--subsurface-color"}, {"subsurface_radius", "--subsurface-radius"},
+            {"subsurface_scale", "--subsurface-scale"}, {"subsurface_anisotropy", "--g"},
+            {"specular_IOR", "--eta"}};
+        for (const auto& [spec, option] : kOptions)
+          if (e->field.rfind(spec, 0) == 0) {
+            e->field = option + e->field.substr(std::strlen(spec));
+            break;
+          }
+        return *e;
+      }
       p = profiles::openpbr_from_standard_surface(ss);
     } else {
       p.color = std::get<Rgb>(col);
@@ -202,8 +210,6 @@ std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
           e->field = option + e->field.substr(std::strlen(spec));
           break;
         }
-      if (standard_surface && e->field.rfind("--subsurface-radius-scale", 0) == 0)
-        e->field = "--subsurface-radius" + e->field.substr(25);
       return *e;
     }
     out.medium = std::get<Medium>(m);

@@ -163,6 +163,7 @@ Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts) {
                                          std::to_string(facts.material_count));
   ctx.texture_map.assign(ctx.model.textures.size(), std::nullopt);
   ctx.images.assign(ctx.model.images.size(), nullptr);
+  ctx.uv_transforms.assign(materials.size(), std::nullopt);
   std::vector<std::string> both;  // materials with extras.sss and a KHR scatter extension
   for (std::size_t i = 0; i < materials.size(); ++i) {
     const tinygltf::Material& gm = materials[i];
@@ -214,7 +215,6 @@ Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts) {
       ctx.scene.warnings.push_back(ctx.file + ": " + object +
                                    ": the base colour and normal textures have different "
                                    "KHR_texture_transform; both are drawn with the base colour's");
-    ctx.uv_transforms.resize(materials.size());
     ctx.uv_transforms[i] = m.base_color_texture ? base_tf : normal_tf;
     if (!std::isfinite(gm.normalTexture.scale) || std::fabs(gm.normalTexture.scale) > 1e6)
       return ctx.fail(object, "normalTexture.scale",

@@ -9,7 +9,6 @@
 #include <array>
 #include <limits>
 #include <cmath>
-#include <cstring>
 #include <sstream>
 
 namespace sss::scene {
@@ -160,12 +159,9 @@ std::variant<OpenPbrSource, FieldError> read_openpbr(const json& o, bool standar
     if (auto e = number(keys[4], s.anisotropy)) return *e;
     if (auto e = number(keys[5], s.ior)) return *e;
     if (off) return source;
-    for (int c = 0; c < 3; ++c)
-      if (!(s.radius[c] > 0.0))
-        return named({std::string(keys[2]) + "[" + std::to_string(c) + "]",
-                      "must be > 0 (a mean free path), got " + str(s.radius[c])});
-    if (!(s.scale > 0.0)) return named({keys[3], "must be a number of mm > 0, got " + str(s.scale)});
+    if (auto e = profiles::validate(s)) return named(*e);
     p = profiles::openpbr_from_standard_surface(s);
+    return source;
   } else {
     if (auto e = colour(keys[1], p.color)) return *e;
     if (auto e = number(keys[2], p.radius_mm)) return *e;
@@ -174,17 +170,7 @@ std::variant<OpenPbrSource, FieldError> read_openpbr(const json& o, bool standar
     if (auto e = number(keys[5], p.ior)) return *e;
   }
   if (off) return source;
-  if (auto e = profiles::validate(p)) {
-    // Name the field as this block spells it.
-    if (standard_surface) {
-      for (std::size_t k = 0; k < kOpenPbrKeys.size(); ++k)
-        if (e->field.rfind(kOpenPbrKeys[k], 0) == 0 &&
-            (e->field.size() == std::strlen(kOpenPbrKeys[k]) || e->field[std::strlen(kOpenPbrKeys[k])] == '['))
-          e->field = kStandardSurfaceKeys[k] + e->field.substr(std::strlen(kOpenPbrKeys[k]));
-      if (e->field.rfind("subsurface_scale[", 0) == 0) e->field = "subsurface_radius" + e->field.substr(16);
-    }
-    return named(*e);
-  }
+  if (auto e = profiles::validate(p)) return named(*e);
   return source;
 }
 

@@ -1,6 +1,8 @@
 #include "profiles/ArtistMapping.h"
 #include "profiles/Presets.h"
 
+#include "MediumExpect.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,13 +11,7 @@
 using namespace sss::profiles;
 
 namespace {
-Medium ok(const std::variant<Medium, sss::FieldError>& v) {
-  if (auto* e = std::get_if<sss::FieldError>(&v)) {
-    ADD_FAILURE() << e->what();
-    return {};
-  }
-  return std::get<Medium>(v);
-}
+using sss::profiles::testing::ok;
 }  // namespace
 
 TEST(ArtistMapping, RoundTripEveryAnalyticModel) {

@@ -54,18 +54,19 @@ TEST(BurleyShapeFit, RecoversBurleysOwnDistance) {
   }
 }
 
-// For mc-table's skin1 the fit is a minimum of the error: 1% either side of d is worse,
-// and the error is what the export reports (printed for the README).
+// For mc-table's skin1 the fit is a minimum of the error: 1% either side of d is worse
+// (on a fine grid, n = 4000 intervals of ln r over the fit's range). The error the export
+// reports is printed to 0.1% (sss-fit's "12.047%" to three decimals, the README's "12.0%"):
+// it must equal the fine grid's to half of the README's last digit, 5e-4 absolute, so
+// that the printed figure is the converged error and not the 160-sample grid's.
 TEST(BurleyShapeFit, IsTheLeastSquaresMinimumForMcTable) {
   const RgbProfile profile(Model::McTable, skin1());
   const BurleyShapeFit fit = fit_burley_shape(profile);
   for (int c = 0; c < 3; ++c) {
-    // The error of a given d, computed here from the same definition.
-    const auto error = [&](double d) {
+    const auto error = [&](double d, int n) {
       double num = 0.0, den = 0.0;
       const double total = profile.total_reflectance()[c];
       const double lo = 1e-3 * profile.inner_radius(), hi = profile.support_radius();
-      constexpr int n = 4000;
       for (int i = 0; i <= n; ++i) {
         const double r = lo * std::pow(hi / lo, double(i) / n);
         const double w = r * std::log(hi / lo) / n * (i == 0 || i == n ? 0.5 : 1.0);
@@ -76,13 +77,13 @@ TEST(BurleyShapeFit, IsTheLeastSquaresMinimumForMcTable) {
       }
       return std::sqrt(num / den);
     };
-    const double e0 = error(fit.d_mm[c]);
-    EXPECT_LT(e0, error(1.01 * fit.d_mm[c])) << c;
-    EXPECT_LT(e0, error(0.99 * fit.d_mm[c])) << c;
-    // The export's own error and this finer grid's agree to the grid's resolution.
-    EXPECT_NEAR(fit.relative_error[c], e0, 0.02 * e0 + 1e-3) << c;
-    std::printf("[ Burley fit ] skin1 mc-table ch %d: d %.4f mm, relative L2 error %.2f%%\n", c,
-                fit.d_mm[c], 100 * fit.relative_error[c]);
+    const double d = fit.d_mm[c];
+    const double e0 = error(d, 4000);
+    EXPECT_LT(e0, error(1.01 * d, 4000)) << c;
+    EXPECT_LT(e0, error(0.99 * d, 4000)) << c;
+    EXPECT_NEAR(fit.relative_error[c], e0, 5e-4) << c;
+    std::printf("[ Burley fit ] skin1 mc-table ch %d: d %.4f mm, relative L2 error %.3f%% "
+                "(fine grid %.3f%%)\n", c, d, 100 * fit.relative_error[c], 100 * e0);
   }
 }
 

@@ -7,6 +7,8 @@
 #include "profiles/OpenPbr.h"
 #include "profiles/Presets.h"
 
+#include "MediumExpect.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,13 +19,7 @@ using namespace sss::profiles;
 
 namespace {
 
-Medium ok(const std::variant<Medium, sss::FieldError>& v) {
-  if (auto* e = std::get_if<sss::FieldError>(&v)) {
-    ADD_FAILURE() << e->what();
-    return {};
-  }
-  return std::get<Medium>(v);
-}
+using sss::profiles::testing::ok;
 
 std::string field_of(const std::variant<Medium, sss::FieldError>& v) {
   const auto* e = std::get_if<sss::FieldError>(&v);

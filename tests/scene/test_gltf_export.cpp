@@ -5,6 +5,7 @@
 #include "renderer/scene/GltfLoader.h"
 
 #include "GltfTestWriter.h"
+#include "LoadExpect.h"
 #include "SssExpect.h"
 
 #include <gtest/gtest.h>
@@ -17,6 +18,7 @@ namespace {
 using testing::GltfTestWriter;
 using testing::TempDir;
 using testing::expect_same_sss;
+using testing::load_ok;
 
 // One triangle, three materials: SSS coefficients, a plain surface with other extras,
 // and a preset that is disabled.
@@ -31,12 +33,6 @@ GltfTestWriter three_materials() {
   w.push("nodes", {{"mesh", 0}});
   w.doc["scenes"] = {{{"nodes", {0}}}};
   return w;
-}
-
-Scene load_ok(const std::filesystem::path& path) {
-  auto r = load_gltf(path.string());
-  if (auto* e = std::get_if<LoadError>(&r)) ADD_FAILURE() << e->what();
-  return r.index() == 0 ? std::get<Scene>(std::move(r)) : Scene{};
 }
 
 void write(const std::filesystem::path& path, const std::string& bytes) {

@@ -4,10 +4,10 @@
 #include "renderer/scene/GltfLoader.h"
 
 #include "GltfTestWriter.h"
+#include "LoadExpect.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
-#include <stb/stb_image_write.h>
 
 #include <cmath>
 #include <numbers>
@@ -17,19 +17,9 @@ namespace {
 
 using testing::GltfTestWriter;
 using testing::TempDir;
+using testing::load_error;
+using testing::load_ok;
 
-Scene load_ok(const std::filesystem::path& path) {
-  auto r = load_gltf(path.string());
-  if (auto* e = std::get_if<LoadError>(&r)) ADD_FAILURE() << e->what();
-  return r.index() == 0 ? std::get<Scene>(std::move(r)) : Scene{};
-}
-
-std::string load_error(const std::filesystem::path& path) {
-  auto r = load_gltf(path.string());
-  if (auto* e = std::get_if<LoadError>(&r)) return e->what();
-  ADD_FAILURE() << path << " loaded but should not have";
-  return {};
-}
 
 void expect_near(const glm::vec3& a, const glm::vec3& b, float tol = 1e-5f) {
   EXPECT_NEAR(a.x, b.x, tol);
@@ -177,14 +167,7 @@ TEST(GltfLoader, StripsFansPointsAndU8Indices) {
 
 TEST(GltfLoader, TextureSamplerAndTexcoords) {
   const TempDir dir("texture");
-  std::vector<unsigned char> png;
-  const unsigned char pixels[2 * 2 * 3] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
-  stbi_write_png_to_func(
-      [](void* ctx, void* data, int size) {
-        auto* out = static_cast<std::vector<unsigned char>*>(ctx);
-        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
-      },
-      &png, 2, 2, 3, pixels, 6);
+  const std::vector<unsigned char> png = testing::tiny_png();
   GltfTestWriter w;
   const int pos = w.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);
   const std::vector<std::uint16_t> uv = {0, 0, 65535, 0, 0, 65535};

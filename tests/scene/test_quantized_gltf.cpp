@@ -6,11 +6,11 @@
 #include "renderer/scene/GltfLoader.h"
 
 #include "GltfTestWriter.h"
+#include "LoadExpect.h"
 #include "tests/common/CliRun.h"
 
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
-#include <stb/stb_image_write.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,31 +22,10 @@ namespace {
 
 using testing::GltfTestWriter;
 using testing::TempDir;
+using testing::load_error;
+using testing::load_ok;
+using testing::tiny_png;
 
-Scene load_ok(const std::filesystem::path& path) {
-  auto r = load_gltf(path.string());
-  if (auto* e = std::get_if<LoadError>(&r)) ADD_FAILURE() << e->what();
-  return r.index() == 0 ? std::get<Scene>(std::move(r)) : Scene{};
-}
-
-std::string load_error(const std::filesystem::path& path) {
-  auto r = load_gltf(path.string());
-  if (auto* e = std::get_if<LoadError>(&r)) return e->what();
-  ADD_FAILURE() << path << " loaded but should not have";
-  return {};
-}
-
-std::vector<unsigned char> tiny_png() {
-  std::vector<unsigned char> png;
-  const unsigned char pixels[2 * 2 * 3] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
-  stbi_write_png_to_func(
-      [](void* ctx, void* data, int size) {
-        auto* out = static_cast<std::vector<unsigned char>*>(ctx);
-        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
-      },
-      &png, 2, 2, 3, pixels, 6);
-  return png;
-}
 
 // A triangle with quantized POSITION (SHORT, not normalized, stride 8), NORMAL (BYTE
 // normalized, stride 4), TEXCOORD_0 (UNSIGNED_SHORT normalized) and a textured material;
