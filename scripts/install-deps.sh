@@ -12,6 +12,8 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libvulkan-dev glslang-tools mesa-vulkan-drivers vulkan-validationlayers
   libglm-dev libtinygltf-dev libstb-dev libtinyexr-dev
+  # Compressed glTF geometry: EXT_meshopt_compression and KHR_draco_mesh_compression.
+  libmeshoptimizer-dev libdraco-dev
   libembree-dev libtbb-dev
   assimp-testmodels
   libglfw3-dev libimgui-dev xvfb xauth
@@ -29,12 +31,17 @@ if [ "${1:-}" = "--fuzz" ]; then
   PACKAGES+=(clang-14 libclang-rt-14-dev zlib1g-dev)
 fi
 
-# The Khronos glTF-Validator (npm gltf-validator, pinned in tools/gltf-validator's
-# package-lock.json): the tests run it over every glTF the project writes. Node and npm
-# from Debian (nodejs, npm) unless a node with npm is there already.
-VALIDATOR_DIR="$(cd "$(dirname "$0")/../tools/gltf-validator" && pwd)"
+# The JavaScript tools the tests run, pinned in tools/node's package-lock.json: the
+# Khronos glTF-Validator (npm gltf-validator), run over every glTF the project writes, and
+# glTF-Transform's libraries with npm's Draco and meshoptimizer encoders, which write the
+# compressed and KHR-extension files the loader is tested on (tools/node/variants.mjs;
+# the libraries, not @gltf-transform/cli, whose 4.x needs node >= 20 and Debian 12 has
+# 18). Node and npm from Debian (nodejs, npm) unless a node with npm is there already.
+VALIDATOR_DIR="$(cd "$(dirname "$0")/../tools/node" && pwd)"
 install_validator() {
-  [ -f "$VALIDATOR_DIR/node_modules/gltf-validator/package.json" ] && return 0
+  local m="$VALIDATOR_DIR/node_modules"
+  [ -f "$m/gltf-validator/package.json" ] && [ -f "$m/@gltf-transform/extensions/package.json" ] &&
+    [ -f "$m/draco3dgltf/package.json" ] && [ -f "$m/meshoptimizer/package.json" ] && return 0
   (cd "$VALIDATOR_DIR" && npm ci --no-audit --no-fund --loglevel=error)
 }
 if ! command -v npm >/dev/null 2>&1; then

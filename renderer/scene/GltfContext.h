@@ -10,6 +10,7 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <array>
 #include <optional>
@@ -29,6 +30,8 @@ struct GltfContext {
   const std::vector<std::vector<unsigned char>>& uri_image_bytes;
   // Declared media type of images[i] (GltfJsonFacts::image_media_type).
   const std::vector<std::string>& image_media_type;
+  // KHR_draco_mesh_compression of meshes[m].primitives[p] (GltfJsonFacts::draco).
+  const std::vector<std::vector<std::optional<DracoPrimitive>>>& draco;
   std::uint64_t bytes_charged = 0;
   std::vector<std::vector<std::uint32_t>> mesh_primitives;  // glTF mesh -> scene meshes
   std::vector<std::optional<std::uint32_t>> texture_map;     // glTF texture -> scene texture
@@ -89,6 +92,28 @@ Status read_indices(GltfContext& ctx, int index, std::size_t vertex_count,
 Status add_camera(GltfContext& ctx, int index, const glm::dmat4& world, const std::string& node);
 Status add_light(GltfContext& ctx, const tinygltf::Value& extension, const glm::dmat4& world,
                  const std::string& node);
+
+// EXT_meshopt_compression: gives each placeholder buffer its bytes (charged to the
+// budget) and decodes every compressed view into the bytes of its parent view, before
+// check_buffer_views and every accessor read (GltfCompression.cpp). `model` is the
+// object ctx.model refers to, the only time the loader writes to it.
+Status decode_meshopt(GltfContext& ctx, tinygltf::Model& model, const GltfJsonFacts& facts);
+
+// One primitive's KHR_draco_mesh_compression, decoded: `points` vertices, triangle
+// indices (each < points), and the attributes the extension names, as floats (Draco
+// dequantizes and normalizes them), every one finite.
+struct DracoAttribute {
+  int components = 0;
+  std::vector<float> values;  // points * components
+};
+struct DracoGeometry {
+  std::uint32_t points = 0;
+  std::vector<std::uint32_t> indices;
+  std::map<std::string, DracoAttribute> attributes;  // "POSITION" -> values
+};
+// `object` names the primitive ("meshes[0].primitives[1]"). Memory is charged first.
+Status decode_draco(GltfContext& ctx, const DracoPrimitive& d, const std::string& object,
+                    DracoGeometry& out);
 
 Status convert_meshes(GltfContext& ctx);
 Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts);

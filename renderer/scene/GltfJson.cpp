@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+
 namespace sss::scene {
 
 bool is_supported_required_extension(const std::string& name) {
@@ -60,6 +62,77 @@ struct Checker {
   }
 };
 
+bool uses_extension(const json& root, const char* name) {
+  if (!root.contains("extensionsUsed")) return false;  // the schema checked its type
+  for (const json& e : root["extensionsUsed"])
+    if (e == name) return true;
+  return false;
+}
+
+// o.extensions[name] (an object: check_gltf_schema), or nullptr.
+const json* extension(const json& o, const char* name) {
+  if (!o.contains("extensions") || !o["extensions"].contains(name)) return nullptr;
+  return &o["extensions"][name];
+}
+
+// The rules that tie EXT_meshopt_compression's fields to each other and to the parent
+// view (its README, "JSON schema updates" and "Fallback buffers"; the schema checked
+// each field's type). `view_length` and `view_stride` (0: not given) are the parent's.
+std::variant<MeshoptView, LoadError> check_meshopt_view(const Checker& c, const json& e,
+                                                        const std::string& view, std::uint64_t view_length,
+                                                        std::uint64_t view_stride,
+                                                        const std::vector<std::uint64_t>& buffer_bytes,
+                                                        const std::vector<bool>& fallback) {
+  const std::string name = view + ".extensions.EXT_meshopt_compression";
+  MeshoptView m;
+  m.buffer = e["buffer"].get<std::size_t>();
+  m.byte_offset = e.value("byteOffset", std::uint64_t{0});
+  m.byte_length = e["byteLength"].get<std::uint64_t>();
+  m.byte_stride = e["byteStride"].get<std::uint64_t>();
+  m.count = e["count"].get<std::uint64_t>();
+  const std::string mode = e["mode"].get<std::string>();
+  const std::string filter = e.value("filter", std::string("NONE"));
+  m.mode = mode == "ATTRIBUTES" ? MeshoptView::Mode::Attributes
+           : mode == "TRIANGLES" ? MeshoptView::Mode::Triangles
+                                 : MeshoptView::Mode::Indices;
+  m.filter = filter == "OCTAHEDRAL"    ? MeshoptView::Filter::Octahedral
+             : filter == "QUATERNION"  ? MeshoptView::Filter::Quaternion
+             : filter == "EXPONENTIAL" ? MeshoptView::Filter::Exponential
+                                       : MeshoptView::Filter::None;
+  const std::string buffer = "buffers[" + std::to_string(m.buffer) + "]";
+  if (fallback[m.buffer])
+    return c.fail(name, "buffer", buffer + " is a fallback buffer; compressed bytes must come from another");
+  std::uint64_t end = 0;
+  if (__builtin_add_overflow(m.byte_offset, m.byte_length, &end) || end > buffer_bytes[m.buffer])
+    return c.fail(name, "byteLength", "bytes [" + std::to_string(m.byte_offset) + ", +" +
+                                          std::to_string(m.byte_length) + ") run past the " +
+                                          std::to_string(buffer_bytes[m.buffer]) + " bytes of " + buffer);
+  if (view_stride && view_stride != m.byte_stride)
+    return c.fail(name, "byteStride", std::to_string(m.byte_stride) + " differs from the view's byteStride " +
+                                          std::to_string(view_stride));
+  std::uint64_t decoded = 0;
+  if (__builtin_mul_overflow(m.byte_stride, m.count, &decoded) || decoded != view_length)
+    return c.fail(name, "count", std::to_string(m.count) + " elements of " + std::to_string(m.byte_stride) +
+                                     " bytes do not fill the view's byteLength " + std::to_string(view_length));
+  const bool indices = m.mode != MeshoptView::Mode::Attributes;
+  if (!indices && m.byte_stride % 4 != 0)
+    return c.fail(name, "byteStride", "must be a multiple of 4 (at most 256) in mode ATTRIBUTES, got " +
+                                          std::to_string(m.byte_stride));
+  if (indices && m.byte_stride != 2 && m.byte_stride != 4)
+    return c.fail(name, "byteStride", "must be 2 or 4 in mode " + mode + ", got " + std::to_string(m.byte_stride));
+  if (m.mode == MeshoptView::Mode::Triangles && m.count % 3 != 0)
+    return c.fail(name, "count", std::to_string(m.count) + " is not a multiple of 3 (mode TRIANGLES)");
+  if (indices && m.filter != MeshoptView::Filter::None)
+    return c.fail(name, "filter", "must be NONE in mode " + mode + ", got " + filter);
+  const std::uint64_t s = m.byte_stride;
+  if ((m.filter == MeshoptView::Filter::Octahedral && s != 4 && s != 8) ||
+      (m.filter == MeshoptView::Filter::Quaternion && s != 8))
+    return c.fail(name, "byteStride", std::to_string(s) + " does not suit filter " + filter +
+                                          (m.filter == MeshoptView::Filter::Quaternion ? " (it needs 8)"
+                                                                                       : " (it needs 4 or 8)"));
+  return m;
+}
+
 }  // namespace
 
 // `auto var = expr` for a variant<T, LoadError>, returning the error.
@@ -99,19 +172,33 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
   if (auto e = check_gltf_schema(root, file)) return *e;
   const Checker c{file, root};
 
+  const bool meshopt = uses_extension(root, "EXT_meshopt_compression");
+  const bool draco = uses_extension(root, "KHR_draco_mesh_compression");
   std::vector<std::pair<std::string, std::string>> file_uris;
   SSS_TRY(buffers, c.array("buffers"));
   std::vector<std::uint64_t> buffer_bytes;
+  // EXT_meshopt_compression's fallback buffers: flagged, or placeholders without uri.
+  std::vector<bool> fallback(buffers->size(), false), placeholder(buffers->size(), false);
   for (std::size_t i = 0; i < buffers->size(); ++i) {
     const json& b = (*buffers)[i];
     SSS_TRY(length, c.uint_member(b, at("buffers", i), "byteLength", true));
     if (length == 0) return c.fail(at("buffers", i), "byteLength", "must be >= 1");
     buffer_bytes.push_back(length);
-    if (!b.contains("uri")) {  // the GLB's BIN chunk (glTF 2.0 §4.4.3.3)
-      if (!glb_bin_bytes || i != 0)
+    if (const json* e = extension(b, "EXT_meshopt_compression"))
+      fallback[i] = meshopt && e->value("fallback", false);  // schema: a boolean
+    const bool bin_chunk = glb_bin_bytes && i == 0;  // glTF 2.0 §4.4.3.3
+    if (!b.contains("uri") && !bin_chunk && meshopt) {
+      // The extension's README, "Fallback buffers": its views are all compressed.
+      fallback[i] = placeholder[i] = true;
+      continue;
+    }
+    if (!b.contains("uri")) {  // the GLB's BIN chunk
+      if (!bin_chunk)
         return c.fail(at("buffers", i), "uri",
-                      glb_bin_bytes ? "is required; only buffers[0] of a GLB may omit it (the BIN chunk)"
-                                    : "is required in a .gltf file (only a GLB's buffers[0] may omit it)");
+                      glb_bin_bytes ? "is required; only buffers[0] of a GLB may omit it (the BIN chunk), "
+                                      "or a placeholder of EXT_meshopt_compression"
+                                    : "is required in a .gltf file (only a GLB's buffers[0] may omit it, "
+                                      "or a placeholder of EXT_meshopt_compression)");
       if (length > *glb_bin_bytes)
         return c.fail(at("buffers", i), "byteLength",
                       std::to_string(length) + " bytes, but the GLB's BIN chunk has " +
@@ -127,6 +214,7 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
 
   // Every buffer view lies inside its buffer (tinygltf forms image pointers from them).
   SSS_TRY(views, c.array("bufferViews"));
+  std::vector<std::optional<MeshoptView>> meshopt_views(views->size());
   for (std::size_t v = 0; v < views->size(); ++v) {
     const json& view = (*views)[v];
     const std::string name = at("bufferViews", v);
@@ -148,6 +236,21 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
     if (view.contains("byteStride") && (stride < 4 || stride > 252 || stride % 4 != 0))
       return c.fail(name, "byteStride", "must be a multiple of 4 in [4, 252], got " +
                                             std::to_string(stride));
+    const json* mx = extension(view, "EXT_meshopt_compression");
+    if (mx && !meshopt)
+      return c.fail(name, "extensions.EXT_meshopt_compression",
+                    "is used but \"EXT_meshopt_compression\" is not in extensionsUsed");
+    if (!mx && fallback[b])
+      return c.fail(name, "buffer",
+                    "buffers[" + std::to_string(b) + "] is an EXT_meshopt_compression fallback " +
+                        (placeholder[b] ? "placeholder without data" : "buffer") +
+                        "; only compressed views may refer to it");
+    if (mx) {
+      auto m = check_meshopt_view(c, *mx, name, length, view.contains("byteStride") ? stride : 0,
+                                  buffer_bytes, fallback);
+      if (auto* e = std::get_if<LoadError>(&m)) return std::move(*e);
+      meshopt_views[v] = std::get<MeshoptView>(m);
+    }
   }
 
   SSS_TRY(images, c.array("images"));
@@ -177,6 +280,12 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
       return c.fail(object, "bufferView", "bufferViews[" + std::to_string(v) +
                                               "] does not exist (the file has " +
                                               std::to_string(views->size()) + ")");
+    // tinygltf reads an image's view before meshopt data is decoded (compressors leave
+    // images uncompressed: their formats are compressed already).
+    if (meshopt_views[v])
+      return c.fail(object, "bufferView", "bufferViews[" + std::to_string(v) +
+                                              "] is EXT_meshopt_compression-compressed; images "
+                                              "in compressed views are not supported");
   }
 
   // Required extensions: those the loader implements (GltfContext.h).
@@ -193,6 +302,46 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
   GltfJsonFacts facts;
   facts.image_media_type = std::move(media_types);
   facts.file_uris = std::move(file_uris);
+  facts.meshopt_views = std::move(meshopt_views);
+  facts.placeholder_buffers = placeholder;
+  // KHR_draco_mesh_compression (the schema checked the types and the view index).
+  if (root.contains("meshes")) {
+    const json& meshes = root["meshes"];
+    facts.draco.resize(meshes.size());
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
+      const json& prims = meshes[m]["primitives"];
+      facts.draco[m].resize(prims.size());
+      for (std::size_t p = 0; p < prims.size(); ++p) {
+        const json* e = extension(prims[p], "KHR_draco_mesh_compression");
+        if (!e) continue;
+        const std::string name = at("meshes", m) + "." + at("primitives", p);
+        if (!draco)
+          return c.fail(name, "extensions.KHR_draco_mesh_compression",
+                        "is used but \"KHR_draco_mesh_compression\" is not in extensionsUsed");
+        DracoPrimitive d;
+        d.buffer_view = (*e)["bufferView"].get<std::size_t>();
+        for (const auto& item : (*e)["attributes"].items())
+          d.attributes.emplace_back(item.key(), item.value().get<std::uint32_t>());
+        if (prims[p].contains("indices")) d.indices = prims[p]["indices"].get<std::size_t>();
+        facts.draco[m][p] = std::move(d);
+      }
+    }
+  }
+  // What tinygltf 2.7.0 cannot parse as the file has it (GltfJsonFacts::parser_json).
+  std::optional<json> parser_root;
+  for (std::size_t i = 0; i < placeholder.size(); ++i)
+    if (placeholder[i]) {
+      if (!parser_root) parser_root = root;
+      (*parser_root)["buffers"][i]["uri"] = "data:application/octet-stream;base64,AA==";
+      (*parser_root)["buffers"][i]["byteLength"] = 1;
+    }
+  for (std::size_t m = 0; m < facts.draco.size(); ++m)
+    for (std::size_t p = 0; p < facts.draco[m].size(); ++p)
+      if (facts.draco[m][p] && facts.draco[m][p]->indices) {
+        if (!parser_root) parser_root = root;
+        (*parser_root)["meshes"][m]["primitives"][p].erase("indices");
+      }
+  if (parser_root) facts.parser_json = parser_root->dump();
   facts.material_count = materials->size();
   facts.material_sss.resize(materials->size());
   facts.material_khr.resize(materials->size());

@@ -72,12 +72,14 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   std::string_view json;
   std::vector<unsigned char> glb_bytes;  // the checked chunks, as tinygltf will see them
   std::optional<std::uint64_t> bin_bytes;
+  GlbLayout glb_layout;
   if (glb) {
     auto layout = parse_glb(bytes);
     if (auto* e = std::get_if<FieldError>(&layout)) return LoadError{path, "glb", e->field, e->message};
-    json = std::get<GlbLayout>(layout).json;
-    bin_bytes = std::get<GlbLayout>(layout).bin.size();
-    glb_bytes = rebuild_glb(std::get<GlbLayout>(layout));
+    glb_layout = std::get<GlbLayout>(layout);
+    json = glb_layout.json;
+    bin_bytes = glb_layout.bin.size();
+    glb_bytes = rebuild_glb(glb_layout);
     if (glb_bytes.size() > std::numeric_limits<unsigned>::max()) return fail("", "is too large for a GLB");
   } else {
     json = std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
@@ -87,6 +89,10 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
                         std::to_string(options.max_json_bytes) + " (LoadOptions::max_json_bytes)");
   auto facts = check_gltf_json(json, path, bin_bytes);
   if (auto* e = std::get_if<LoadError>(&facts)) return *e;
+  if (const auto& parser_json = std::get<GltfJsonFacts>(facts).parser_json) {
+    json = *parser_json;  // placeholder buffers stand in as 1-byte data URIs
+    if (glb) glb_bytes = rebuild_glb(GlbLayout{json, glb_layout.bin});
+  }
 
   std::error_code ec;
   FileSandbox sandbox;
@@ -125,10 +131,11 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   scene.name = std::filesystem::path(path).stem().string();
   scene.mm_per_unit = options.mm_per_unit;
   const GltfJsonFacts& f = std::get<GltfJsonFacts>(facts);
-  GltfContext ctx{path, options, model, scene, uri_images, f.image_media_type, 0, {}, {}, {}, false, {}};
+  GltfContext ctx{path, options, model, scene, uri_images, f.image_media_type, f.draco, 0, {}, {}, {}, false, {}};
   ctx.mesh_quantization = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
                                     "KHR_mesh_quantization") != model.extensionsUsed.end();
   if (auto e = check_extensions(ctx)) return *e;
+  if (auto e = decode_meshopt(ctx, model, f)) return *e;
   if (auto e = check_buffer_views(ctx)) return *e;
   if (auto e = convert_materials(ctx, f)) return *e;
   if (auto e = convert_meshes(ctx)) return *e;

@@ -227,7 +227,11 @@ Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts) {
       if (khr && khr->scatter != KhrMedium::Scatter::None) both.push_back(object);
     } else if (khr) {
       std::string why_not;
-      if (auto sss = khr_sss_material(*khr, ctx.options.mm_per_unit, why_not)) m.sss = std::move(*sss);
+      if (auto sss = khr_sss_material(*khr, ctx.options.mm_per_unit, why_not)) {
+        m.sss = std::move(*sss);
+        for (const std::string& note : khr_transmission_notes(*khr))
+          ctx.scene.warnings.push_back(ctx.file + ": " + object + ": " + note);
+      }
       if (!why_not.empty()) ctx.scene.warnings.push_back(ctx.file + ": " + object + ": " + why_not);
     }
     if (khr && khr->ior && *khr->ior >= 1.0) m.specular = float(ior_f0(*khr->ior) / 0.04);  // F0 = 0.04 specular

@@ -67,12 +67,38 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
     return it == prim.attributes.end() ? -1 : it->second;
   };
   if (attr("POSITION") < 0) return ctx.fail(object, "attributes.POSITION", "is required");
+  // KHR_draco_mesh_compression: the attributes it names and the indices come from the
+  // bitstream; the primitive's other attributes are read as usual (its README).
+  const std::optional<DracoPrimitive>* draco_ext =
+      m < ctx.draco.size() && p < ctx.draco[m].size() ? &ctx.draco[m][p] : nullptr;
+  const bool compressed = draco_ext && draco_ext->has_value();
+  DracoGeometry draco;
+  if (compressed) {
+    if (mode != TINYGLTF_MODE_TRIANGLES)
+      return ctx.fail(object, "mode", "must be 4 (triangles) with KHR_draco_mesh_compression");
+    if (auto e = decode_draco(ctx, **draco_ext, object, draco)) return e;
+  }
+  // attributes.SEMANTIC as `rule` says, from Draco or from its accessor.
+  const auto read = [&](const AttributeRule& rule, std::vector<float>& out) -> Status {
+    const std::string field = std::string("attributes.") + rule.semantic;
+    const auto it = draco.attributes.find(rule.semantic);
+    if (it == draco.attributes.end()) return read_attribute(ctx, attr(rule.semantic), rule, object, field, out);
+    if (it->second.components != rule.components)
+      return ctx.fail(object + ".extensions.KHR_draco_mesh_compression", field,
+                      "decodes to " + std::to_string(it->second.components) + " components; " +
+                          rule.semantic + " has " + std::to_string(rule.components));
+    out = it->second.values;
+    return std::nullopt;
+  };
   std::vector<float> f;
-  if (auto e = read_attribute(ctx, attr("POSITION"), kPosition, object, "attributes.POSITION", f))
-    return e;
+  if (auto e = read(kPosition, f)) return e;
   const std::size_t n = f.size() / 3;
   if (n > std::numeric_limits<std::uint32_t>::max())
     return ctx.fail(object, "attributes.POSITION", "too many vertices for 32-bit indices");
+  if (compressed && n != draco.points)  // Draco's indices count its points
+    return ctx.fail(object, "attributes.POSITION", "has " + std::to_string(n) +
+                                                       " elements but the Draco bitstream has " +
+                                                       std::to_string(draco.points) + " points");
   // Every attribute has as many elements as POSITION (glTF 2.0 §3.7.2.1), also those not
   // read here (COLOR_0, JOINTS_0, ...): their indices were checked by check_gltf_schema.
   for (const auto& [semantic, accessor] : prim.attributes) {
@@ -85,20 +111,21 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
   mesh.positions.resize(n);
   for (std::size_t i = 0; i < n; ++i) mesh.positions[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
   if (attr("NORMAL") >= 0) {
-    if (auto e = read_attribute(ctx, attr("NORMAL"), kNormal, object, "attributes.NORMAL", f)) return e;
+    if (auto e = read(kNormal, f)) return e;
     if (auto e = attribute_count(ctx, object, "NORMAL", f.size() / 3, n)) return e;
     mesh.normals.resize(n);
     for (std::size_t i = 0; i < n; ++i) mesh.normals[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
-    // Quantized normals are unit only to their precision (1/127 for BYTE).
-    if (ctx.model.accessors[std::size_t(attr("NORMAL"))].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    // Quantized normals are unit only to their precision (1/127 for BYTE; Draco's
+    // octahedral quantization).
+    if (draco.attributes.count("NORMAL") ||
+        ctx.model.accessors[std::size_t(attr("NORMAL"))].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
       for (glm::vec3& v : mesh.normals) {
         const float len = glm::length(v);
         if (len > 0.0f) v /= len;
       }
   }
   if (attr("TEXCOORD_0") >= 0) {
-    if (auto e = read_attribute(ctx, attr("TEXCOORD_0"), kTexcoord, object, "attributes.TEXCOORD_0", f))
-      return e;
+    if (auto e = read(kTexcoord, f)) return e;
     if (auto e = attribute_count(ctx, object, "TEXCOORD_0", f.size() / 2, n)) return e;
     mesh.uv0.resize(n);
     for (std::size_t i = 0; i < n; ++i) mesh.uv0[i] = {f[2 * i], f[2 * i + 1]};
@@ -115,8 +142,7 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
                               "] takes a UV past float range");
       }
   if (attr("TANGENT") >= 0) {
-    if (auto e = read_attribute(ctx, attr("TANGENT"), kTangent, object, "attributes.TANGENT", f))
-      return e;
+    if (auto e = read(kTangent, f)) return e;
     if (auto e = attribute_count(ctx, object, "TANGENT", f.size() / 4, n)) return e;
     mesh.tangents.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -132,13 +158,20 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
   }
 
   std::vector<std::uint32_t> seq;
-  if (prim.indices >= 0) {
+  if (compressed) {
+    // check_gltf_schema: the index exists.
+    if (const auto i = (*draco_ext)->indices; i && ctx.model.accessors[*i].count != draco.indices.size())
+      return ctx.fail(object, "indices",
+                      indexed("accessors", *i) + " has " + std::to_string(ctx.model.accessors[*i].count) +
+                          " elements but the Draco bitstream decodes " + std::to_string(draco.indices.size()));
+    seq = std::move(draco.indices);
+  } else if (prim.indices >= 0) {
     if (auto e = read_indices(ctx, prim.indices, n, object, seq)) return e;
   } else {
     if (auto e = ctx.charge(n * sizeof(std::uint32_t), object)) return e;
     seq = sequential_indices(static_cast<std::uint32_t>(n));
   }
-  const char* what = prim.indices >= 0 ? "indices" : "attributes.POSITION";
+  const char* what = prim.indices >= 0 || compressed ? "indices" : "attributes.POSITION";
   if (mode == TINYGLTF_MODE_TRIANGLES) {
     if (seq.size() % 3 != 0)
       return ctx.fail(object, what, std::to_string(seq.size()) +

@@ -217,6 +217,13 @@ class Schema {
     return v;
   }
 
+  // o.extensions[name] (already checked to be an object by extensions()), or nullptr.
+  static const json* extension(const json& o, const char* name) {
+    if (!o.contains("extensions") || !o["extensions"].is_object() || !o["extensions"].contains(name))
+      return nullptr;
+    return &o["extensions"][name];
+  }
+
   // Common to every glTF object: name, extensions (an object of objects).
   bool common(const json& o, const std::string& name) { return string(o, name, "name") && extensions(o, name); }
 
@@ -279,11 +286,24 @@ class Schema {
     each("animations", [&](const json& a, const std::string& n) { animation(a, n); });
     each("buffers", [&](const json& b, const std::string& n) {
       size(b, n, "byteLength", true, 1) && string(b, n, "uri");
+      if (const json* e = extension(b, "EXT_meshopt_compression"))
+        boolean(*e, n + ".extensions.EXT_meshopt_compression", "fallback");
     });
     each("bufferViews", [&](const json& v, const std::string& n) {
-      index(v, n, "buffer", "buffers", true) && size(v, n, "byteOffset") &&
-          size(v, n, "byteLength", true, 1) && integer(v, n, "byteStride", 4, 252) &&
-          one_of(v, n, "target", {34962, 34963});
+      if (!index(v, n, "buffer", "buffers", true) || !size(v, n, "byteOffset") ||
+          !size(v, n, "byteLength", true, 1) || !integer(v, n, "byteStride", 4, 252) ||
+          !one_of(v, n, "target", {34962, 34963}))
+        return;
+      // EXT_meshopt_compression's README, "JSON schema updates"; the rules that tie
+      // these fields together are checked in GltfJson.cpp.
+      if (const json* e = extension(v, "EXT_meshopt_compression")) {
+        const std::string en = n + ".extensions.EXT_meshopt_compression";
+        index(*e, en, "buffer", "buffers", true) && size(*e, en, "byteOffset") &&
+            size(*e, en, "byteLength", true, 1) && integer(*e, en, "byteStride", 1, 256, true) &&
+            size(*e, en, "count", true, 1) &&
+            one_of(*e, en, "mode", {"ATTRIBUTES", "TRIANGLES", "INDICES"}, true) &&
+            one_of(*e, en, "filter", {"NONE", "OCTAHEDRAL", "QUATERNION", "EXPONENTIAL"});
+      }
     });
     each("cameras", [&](const json& c, const std::string& n) { camera(c, n); });
     each("images", [&](const json& im, const std::string& n) {
@@ -426,6 +446,16 @@ class Schema {
       if (prim.contains("mode") && !integer(prim, pn, "mode", 0, 6)) {
         error_->message = prim["mode"].dump() + " is not a glTF primitive mode (0..6)";
         return;
+      }
+      // KHR_draco_mesh_compression's README: the view of the compressed bytes, and each
+      // semantic's Draco attribute id (a uint32, not an accessor index).
+      if (const json* e = extension(prim, "KHR_draco_mesh_compression")) {
+        const std::string en = pn + ".extensions.KHR_draco_mesh_compression";
+        if (!index(*e, en, "bufferView", "bufferViews", true)) return;
+        const json* ids = object(*e, en, "attributes", true);
+        if (!ids) return;
+        for (const auto& item : ids->items())
+          if (!integer(*ids, en + ".attributes", item.key().c_str(), 0, 0xFFFFFFFFll)) return;
       }
       // A morph target is a map like attributes: semantic -> accessor.
       if (const json* targets = objects(prim, pn, "targets"))

@@ -18,6 +18,8 @@ constexpr const char* kVolume = "KHR_materials_volume";
 constexpr const char* kVolumeScatter = "KHR_materials_volume_scatter";
 constexpr const char* kScatter = "KHR_materials_scatter";
 constexpr const char* kIor = "KHR_materials_ior";
+constexpr const char* kTransmission = "KHR_materials_transmission";
+constexpr const char* kDiffuseTransmission = "KHR_materials_diffuse_transmission";
 
 std::string field(const char* ext, std::string_view key) { return std::string(ext) + "." + std::string(key); }
 
@@ -101,6 +103,28 @@ std::variant<KhrMedium, FieldError> parse_khr_medium(const json& extensions) {
     }
     note_textures(s, ext, {"multiscatterColorTexture"}, k.ignored);
   }
+  if (extensions.contains(kTransmission)) {
+    const json& t = extensions[kTransmission];
+    double f = 0.0;
+    if (t.contains("transmissionFactor"))
+      if (auto e = read_number(t, kTransmission, "transmissionFactor", 0.0, 1.0, false, false, f)) return *e;
+    k.transmission = f;
+    note_textures(t, kTransmission, {"transmissionTexture"}, k.ignored);
+  }
+  if (extensions.contains(kDiffuseTransmission)) {
+    const json& t = extensions[kDiffuseTransmission];
+    double f = 0.0;
+    if (t.contains("diffuseTransmissionFactor"))
+      if (auto e = read_number(t, kDiffuseTransmission, "diffuseTransmissionFactor", 0.0, 1.0, false, false, f))
+        return *e;
+    k.diffuse_transmission = f;
+    if (t.contains("diffuseTransmissionColorFactor"))
+      if (auto e = read_colour(t, kDiffuseTransmission, "diffuseTransmissionColorFactor", false,
+                               k.diffuse_transmission_color))
+        return *e;
+    note_textures(t, kDiffuseTransmission, {"diffuseTransmissionTexture", "diffuseTransmissionColorTexture"},
+                  k.ignored);
+  }
   if (extensions.contains(kIor)) {
     const json& i = extensions[kIor];
     if (i.contains("ior")) {
@@ -145,6 +169,25 @@ json khr_extensions_json(const SssMaterial& material, double mm_per_unit) {
   return out;
 }
 
+std::vector<std::string> khr_transmission_notes(const KhrMedium& khr) {
+  std::vector<std::string> notes;
+  if (!khr.transmission && !khr.diffuse_transmission) {
+    notes.push_back(std::string(kVolume) + " without " + kTransmission + " or " + kDiffuseTransmission +
+                    " lets no light in by its spec; scattered here as if diffuseTransmissionFactor were 1");
+    return notes;
+  }
+  const double entering = std::max(khr.transmission.value_or(0.0), khr.diffuse_transmission.value_or(0.0));
+  if (entering > 0.0 && entering < 1.0)
+    notes.push_back("a transmission factor of " + str(entering) +
+                    " is taken as 1: all light not reflected specularly enters the medium");
+  if (khr.diffuse_transmission_color != Rgb{1.0, 1.0, 1.0})
+    notes.push_back(field(kDiffuseTransmission, "diffuseTransmissionColorFactor") +
+                    " (the boundary's tint) is not applied");
+  if (khr.scatter == KhrMedium::Scatter::Scatter && khr.diffuse_transmission)
+    notes.push_back(std::string(kScatter) + " forbids " + kDiffuseTransmission + "; it is ignored");
+  return notes;
+}
+
 double ior_f0(double ior) {
   const double r = (ior - 1.0) / (ior + 1.0);
   return r * r;
@@ -159,6 +202,13 @@ std::optional<SssMaterial> khr_sss_material(const KhrMedium& khr, double mm_per_
     why_not = std::string(ext) + " without a volume (" + kVolume +
               ".thicknessFactor 0 or absent) is thin-walled, a surface BSDF rather than a "
               "medium: not given subsurface scattering";
+    return std::nullopt;
+  }
+  if ((khr.transmission || khr.diffuse_transmission) && khr.transmission.value_or(0.0) == 0.0 &&
+      khr.diffuse_transmission.value_or(0.0) == 0.0) {
+    why_not = std::string(kTransmission) + ".transmissionFactor and " + kDiffuseTransmission +
+              ".diffuseTransmissionFactor are 0 or absent: no light enters the volume (Khronos' "
+              "sample renderer draws it opaque): not given subsurface scattering";
     return std::nullopt;
   }
   if (khr.attenuation_distance == 0.0) {

@@ -18,6 +18,10 @@
 //     ρss = (1 - s²) / (1 - g s²).
 //   KHR_materials_ior: ior (default 1.5, >= 1; 0 = spec-gloss compatibility), the
 //     medium's η and the specular F0 = ((ior - 1) / (ior + 1))².
+//   KHR_materials_transmission (transmissionFactor, [0, 1], default 0) and
+//     KHR_materials_diffuse_transmission (diffuseTransmissionFactor, [0, 1], default 0;
+//     diffuseTransmissionColorFactor, each in [0, 1], default 1): the boundary through
+//     which light enters the volume. Both factors 0: no light enters, no medium.
 //
 // s = 4.09712 + 4.20863 ρms - sqrt(9.59217 + 41.6808 ρms + 17.7126 ρms²) is the root of
 // van de Hulst's relation ρms = (1 - s)(1 - 0.139 s) / (1 + 1.17 s), s² = (1 - ρss) /
@@ -54,6 +58,12 @@ struct KhrMedium {
   double strength = 1.0;             // KHR_materials_scatter's scatterStrength; 1 otherwise
   double anisotropy = 0.0;
   std::optional<double> ior;         // KHR_materials_ior
+  // KHR_materials_transmission's transmissionFactor and KHR_materials_diffuse_transmission's
+  // diffuseTransmissionFactor and diffuseTransmissionColorFactor, when present (each
+  // factor's default is 0). The volume lets light in only through one of them.
+  std::optional<double> transmission;
+  std::optional<double> diffuse_transmission;
+  Rgb diffuse_transmission_color{1.0, 1.0, 1.0};
   std::vector<std::string> ignored;  // textures and drafts' fields not read, for a warning
   bool any() const { return volume || scatter != Scatter::None || ior.has_value(); }
 };
@@ -72,6 +82,16 @@ using profiles::single_scattering_albedo;
 // parse_khr_medium accepted is never an error here.
 std::optional<SssMaterial> khr_sss_material(const KhrMedium& khr, double mm_per_unit,
                                             std::string& why_not);
+
+// How the transmission extensions were taken, for warnings on a material that scatters:
+// neither present (KHR_materials_volume "needs" one; the medium is scattered as if
+// diffuseTransmissionFactor were 1), a factor between 0 and 1 (not applied: all light
+// that is not reflected specularly enters), a diffuseTransmissionColorFactor other than
+// 1 (the boundary's tint, not applied), and KHR_materials_scatter with
+// diffuse_transmission (which that draft forbids). Empty when there is nothing to say.
+// Both factors 0 is not here: khr_sss_material gives no medium then (no light enters;
+// Khronos' sample renderer draws such a surface opaque).
+std::vector<std::string> khr_transmission_notes(const KhrMedium& khr);
 
 // What an exported material carries besides extras.sss, so that other tools see its
 // medium (an object of extensions; empty for a layered material, which they cannot

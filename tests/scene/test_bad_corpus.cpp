@@ -75,11 +75,11 @@ TEST(BadCorpus, LoaderErrorsOnFilesystemOddities) {
   EXPECT_NE(std::get<LoadError>(r).what().find("limit"), std::string::npos);
 }
 
-// The Khronos glTF-Validator's verdict on the same files (tools/gltf-validator, installed
+// The Khronos glTF-Validator's verdict on the same files (tools/node, installed
 // by scripts/install-deps.sh): an error in every file but those VALIDATOR.md lists, each
 // with the reason the loader refuses what the validator accepts. One node process for all.
 TEST(BadCorpus, TheValidatorDisagreesOnlyWhereListed) {
-  std::string cmd = "node " SSS_SOURCE_DIR "/tools/gltf-validator/validate.mjs";
+  std::string cmd = "node " SSS_SOURCE_DIR "/tools/node/validate.mjs";
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(kBad)) {
     const std::string ext = entry.path().extension().string();

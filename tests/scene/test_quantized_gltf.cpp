@@ -1,8 +1,10 @@
-// KHR_mesh_quantization and KHR_texture_transform (issue 21): quantized attributes decode
-// by glTF's normalized-integer formulas, a texture transform is applied to the UVs, what
-// the extensions do not allow is refused naming the field; and files written by Debian's
-// gltfpack (quantized, texture-transformed) load as the originals within the
-// quantization's own step.
+// KHR_mesh_quantization, KHR_texture_transform, EXT_meshopt_compression and
+// KHR_draco_mesh_compression (issue 21): quantized attributes decode by glTF's
+// normalized-integer formulas, a texture transform is applied to the UVs, what the
+// extensions do not allow is refused naming the field; and files written by tools not ours
+// (Debian's gltfpack; glTF-Transform from npm, tools/node/variants.mjs) load as the
+// originals within the quantization's own step, or bit for bit where the compression is
+// lossless.
 #include "renderer/scene/GltfLoader.h"
 
 #include "GltfTestWriter.h"
@@ -10,11 +12,14 @@
 #include "tests/common/CliRun.h"
 
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <fstream>
+#include <functional>
 #include <limits>
 
 namespace sss::scene {
@@ -131,6 +136,117 @@ TEST(TextureTransform, TheUvsAreTransformedAsTheExtensionSays) {
   }
 }
 
+namespace {
+
+// How far a loaded file `b` is from the original `a` (one mesh, one instance each):
+// every original vertex is matched to the nearest vertex of b in world space (a grid-free
+// O(n²) is fine at these sizes); `position` is the worst such distance (max-norm), `uv`
+// the worst UV distance among the vertices of b at that place within `tol` (a UV seam
+// duplicates positions), `normal` the worst |n_a - n_b| likewise. `uv_range` is the
+// range of a's UVs over both components.
+struct VertexError {
+  float position = 0.0f, uv = 0.0f, normal = 0.0f, extent = 0.0f, uv_range = 0.0f;
+};
+VertexError vertex_error(const Scene& a, const Scene& b, float tol) {
+  VertexError r;
+  EXPECT_EQ(a.meshes.size(), 1u);
+  EXPECT_EQ(b.meshes.size(), 1u);
+  EXPECT_EQ(a.instances.size(), 1u);
+  EXPECT_EQ(b.instances.size(), 1u);
+  if (a.meshes.size() != 1 || b.meshes.size() != 1 || a.instances.size() != 1 || b.instances.size() != 1)
+    return r;
+  const auto world = [](const Scene& s, std::size_t i) {
+    return glm::vec3(s.instances[0].world * glm::vec4(s.meshes[0].positions[i], 1.0f));
+  };
+  const glm::mat3 na = glm::inverse(glm::transpose(glm::mat3(a.instances[0].world)));
+  const glm::mat3 nb = glm::inverse(glm::transpose(glm::mat3(b.instances[0].world)));
+  const Bounds box = a.bounds();
+  const glm::vec3 ext = box.max - box.min;
+  r.extent = std::max({ext.x, ext.y, ext.z});
+  const Mesh& ma = a.meshes[0];
+  const Mesh& mb = b.meshes[0];
+  EXPECT_EQ(ma.indices.size(), mb.indices.size());
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  for (const glm::vec2& uv : ma.uv0) {
+    lo = std::min({lo, uv.x, uv.y});
+    hi = std::max({hi, uv.x, uv.y});
+  }
+  r.uv_range = ma.uv0.empty() ? 0.0f : hi - lo;
+  for (std::size_t i = 0; i < ma.positions.size(); ++i) {
+    const glm::vec3 p = world(a, i);
+    const glm::vec3 n = glm::normalize(na * ma.normals[i]);
+    float best = std::numeric_limits<float>::infinity(), best_uv = best, best_n = best;
+    for (std::size_t j = 0; j < mb.positions.size(); ++j) {
+      const glm::vec3 d = glm::abs(world(b, j) - p);
+      best = std::min(best, std::max({d.x, d.y, d.z}));
+    }
+    r.position = std::max(r.position, best);
+    for (std::size_t j = 0; j < mb.positions.size(); ++j) {
+      const glm::vec3 d = glm::abs(world(b, j) - p);
+      if (std::max({d.x, d.y, d.z}) > tol) continue;
+      best_n = std::min(best_n, glm::length(glm::normalize(nb * mb.normals[j]) - n));
+      if (!ma.uv0.empty() && !mb.uv0.empty()) {
+        const glm::vec2 du = glm::abs(ma.uv0[i] - mb.uv0[j]);
+        best_uv = std::min(best_uv, std::max(du.x, du.y));
+      }
+    }
+    r.normal = std::max(r.normal, best_n);
+    if (!ma.uv0.empty()) r.uv = std::max(r.uv, best_uv);
+  }
+  EXPECT_EQ(ma.uv0.empty(), mb.uv0.empty());
+  return r;
+}
+
+// Half a quantization step of `bits` over `range`, the most rounding can move a value,
+// with float rounding of the dequantized value (a few ulps of the extent) on top.
+float half_step(float range, int bits, float extent) {
+  return 0.5f * range / float((1 << bits) - 1) + 1e-6f * extent;
+}
+
+// Octahedral normals (Draco's and meshopt's filter) with `bits` per coordinate: the two
+// coordinates u, v in [-1, 1] are stored in steps of 2 / (2^bits - 2), so rounding moves
+// each by at most h = 1 / (2^bits - 2). The point on the octahedron |x|+|y|+|z| = 1
+// moves by at most sqrt(h² + h² + (2h)²) = √6 h (z = 1 - |u| - |v|, or its fold, changes
+// by |du| + |dv|), and renormalizing divides by its length, at least 1/√3: the unit
+// normal moves by at most √18 h. meshopt's filter then stores the decoded normal in the
+// same integers again (`requantized`), √3 h more.
+float octahedral_bound(int bits, bool requantized) {
+  const float h = 1.0f / float((1 << bits) - 2);
+  return std::sqrt(18.0f) * h + (requantized ? std::sqrt(3.0f) * h : 0.0f) + 1e-5f;
+}
+
+// Each triangle rotated to start at its smallest index, winding kept: meshopt's index
+// codec may rotate a triangle's corners (its README, mode 1), which draws the same thing.
+std::vector<std::uint32_t> canonical_triangles(const std::vector<std::uint32_t>& in) {
+  std::vector<std::uint32_t> out(in.size());
+  for (std::size_t t = 0; t + 2 < in.size(); t += 3) {
+    const std::size_t k = in[t] <= in[t + 1] && in[t] <= in[t + 2] ? 0 : in[t + 1] <= in[t + 2] ? 1 : 2;
+    for (std::size_t c = 0; c < 3; ++c) out[t + c] = in[t + (k + c) % 3];
+  }
+  return out;
+}
+
+// The same vertices bit for bit, and the same triangles up to rotation.
+bool same_geometry(const Scene& a, const Scene& b) {
+  if (a.meshes.size() != b.meshes.size() || a.meshes.empty()) return false;
+  for (std::size_t m = 0; m < a.meshes.size(); ++m)
+    if (a.meshes[m].positions != b.meshes[m].positions || a.meshes[m].normals != b.meshes[m].normals ||
+        a.meshes[m].uv0 != b.meshes[m].uv0 ||
+        canonical_triangles(a.meshes[m].indices) != canonical_triangles(b.meshes[m].indices))
+      return false;
+  return true;
+}
+
+std::string gltf_transform(const std::filesystem::path& in, const std::filesystem::path& out,
+                           const std::string& variant) {
+  const auto run = sss::testing::run_shell("node '" SSS_SOURCE_DIR "/tools/node/variants.mjs' '" + in.string() +
+                                           "' '" + out.string() + "' " + variant + " 2>&1");
+  EXPECT_EQ(run.code, 0) << run.out;
+  return run.out;
+}
+
+}  // namespace
+
 // Debian's gltfpack (its defaults: positions 14 bits, normals 8, texcoords 12, the UVs'
 // range in KHR_texture_transform, the positions' in the node; vertices reordered for the
 // cache) writes files the loader reads as the originals: every original triangle's
@@ -146,55 +262,252 @@ TEST(MeshQuantization, GltfpackFilesLoadAsTheOriginals) {
     ASSERT_EQ(run.code, 0) << run.out;
     const Scene a = load_ok(in), b = load_ok(out);
     ASSERT_EQ(a.meshes.size(), b.meshes.size());
-    ASSERT_EQ(a.instances.size(), 1u);
-    ASSERT_EQ(b.instances.size(), 1u);
     EXPECT_EQ(b.materials[0].sss.enabled, a.materials[0].sss.enabled);  // -ke kept extras.sss
-    const auto world = [](const Scene& s, std::size_t i) {
-      return glm::vec3(s.instances[0].world * glm::vec4(s.meshes[0].positions[i], 1.0f));
-    };
     const Bounds box = a.bounds();
     const glm::vec3 ext = box.max - box.min;
     const float extent = std::max({ext.x, ext.y, ext.z});
-    const float tol = 0.5f * extent / 16383.0f + 1e-6f * extent;
-    // Match each original vertex to the packed one nearest to it (a grid-free O(n²) is
-    // fine at these sizes), then require every triangle's corners to match.
-    const Mesh& ma = a.meshes[0];
-    const Mesh& mb = b.meshes[0];
-    ASSERT_EQ(ma.indices.size(), mb.indices.size());
-    float worst = 0.0f, worst_uv = 0.0f;
-    for (std::size_t i = 0; i < ma.positions.size(); ++i) {
-      const glm::vec3 p = world(a, i);
-      // The nearest packed vertex, and among those at the same place (a UV seam
-      // duplicates positions) the one whose UV is nearest.
-      float best = std::numeric_limits<float>::infinity(), best_uv = best;
-      for (std::size_t j = 0; j < mb.positions.size(); ++j) {
-        const glm::vec3 d = glm::abs(world(b, j) - p);
-        best = std::min(best, std::max({d.x, d.y, d.z}));
-      }
-      worst = std::max(worst, best);
-      if (!ma.uv0.empty()) {
-        ASSERT_FALSE(mb.uv0.empty());
-        for (std::size_t j = 0; j < mb.positions.size(); ++j) {
-          const glm::vec3 d = glm::abs(world(b, j) - p);
-          if (std::max({d.x, d.y, d.z}) > tol) continue;
-          const glm::vec2 du = glm::abs(ma.uv0[i] - mb.uv0[j]);
-          best_uv = std::min(best_uv, std::max(du.x, du.y));
-        }
-        worst_uv = std::max(worst_uv, best_uv);
-      }
-    }
-    EXPECT_LE(worst, tol) << "extent " << extent;
-    if (!ma.uv0.empty()) {
-      float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-      for (const glm::vec2& uv : ma.uv0) {
-        lo = std::min({lo, uv.x, uv.y});
-        hi = std::max({hi, uv.x, uv.y});
-      }
-      EXPECT_LE(worst_uv, 0.5f * (hi - lo) / 4095.0f + 1e-6f);
+    const float tol = half_step(extent, 14, extent);
+    const VertexError e = vertex_error(a, b, tol);
+    EXPECT_LE(e.position, tol) << "extent " << extent;
+    if (e.uv_range > 0.0f) {
+      EXPECT_LE(e.uv, half_step(e.uv_range, 12, 1.0f));
     }
     std::printf("[ gltfpack ] %s: worst position error %.3g of tolerance %.3g; worst uv error %.3g\n",
-                asset, worst, tol, worst_uv);
+                asset, e.position, tol, e.uv);
   }
+}
+
+// gltfpack's meshopt files (issue 21), through the placeholder buffer of a GLB and of a
+// .gltf:
+// - -c (no filters) is lossless: the same vertices as gltfpack's uncompressed output
+//   (-ke alone), bit for bit, and the same triangles up to rotation;
+// - -cc (its higher ratio) stores normals with the octahedral filter: the original's
+//   vertices are found within half a 14-bit step, normals within octahedral_bound(8, true);
+// - another decoder (glTF-Transform with npm's meshoptimizer, written uncompressed) gives
+//   the same positions and indices bit for bit, and normals within one step of their 8-bit
+//   integers per component, √3/127: meshoptimizer 1.3 rounds the octahedral filter's
+//   output differently from Debian's 0.18 for a few vertices.
+TEST(CompressedGltf, GltfpackMeshoptDecodesAsTheUncompressedFile) {
+  const TempDir dir("gltfpack_meshopt");
+  for (const char* asset : {"bunny", "textured_tile"})
+    for (const char* ext : {".glb", ".gltf"}) {
+      const std::string in = std::string(SSS_SOURCE_DIR) + "/assets/" + asset + ".glb";
+      const auto pack = [&](const std::string& flags) {
+        const std::filesystem::path out = dir / (std::string(asset) + flags + ext);
+        const auto run = sss::testing::run_shell("gltfpack -ke " + flags + " -i '" + in + "' -o '" + out.string() + "' 2>&1");
+        EXPECT_EQ(run.code, 0) << run.out;
+        return out;
+      };
+      const Scene original = load_ok(in), plain = load_ok(pack(""));
+      const Bounds box = original.bounds();
+      const glm::vec3 e3 = box.max - box.min;
+      const float extent = std::max({e3.x, e3.y, e3.z});
+      for (const std::string flags : {"-c", "-cc"}) {
+        SCOPED_TRACE(std::string(asset) + ext + " " + flags);
+        const std::filesystem::path file = pack(flags);
+        const Scene compressed = load_ok(file);
+        ASSERT_EQ(compressed.meshes.size(), 1u);
+        if (flags == "-c") {
+          EXPECT_TRUE(same_geometry(plain, compressed));
+        } else {
+          const float tol = half_step(extent, 14, extent);
+          const VertexError e = vertex_error(original, compressed, tol);
+          EXPECT_LE(e.position, tol);
+          EXPECT_LE(e.normal, octahedral_bound(8, true));
+          std::printf("[ gltfpack -cc ] %s%s: position %.3g of %.3g, normal %.3g of %.3g\n", asset, ext,
+                      e.position, tol, e.normal, octahedral_bound(8, true));
+        }
+        const std::filesystem::path decoded = dir / (std::string(asset) + flags + "_decoded.glb");
+        gltf_transform(file, decoded, "decode");
+        const Scene other = load_ok(decoded);
+        ASSERT_EQ(other.meshes.size(), 1u);
+        EXPECT_EQ(other.meshes[0].positions, compressed.meshes[0].positions);
+        EXPECT_EQ(other.meshes[0].uv0, compressed.meshes[0].uv0);
+        EXPECT_EQ(other.meshes[0].indices, compressed.meshes[0].indices);  // not even rotated
+        ASSERT_EQ(other.meshes[0].normals.size(), compressed.meshes[0].normals.size());
+        float gap = 0.0f;
+        for (std::size_t i = 0; i < other.meshes[0].normals.size(); ++i)
+          gap = std::max(gap, glm::length(other.meshes[0].normals[i] - compressed.meshes[0].normals[i]));
+        EXPECT_LE(gap, std::sqrt(3.0f) / 127.0f);
+      }
+    }
+}
+
+// glTF-Transform (npm, tools/node/variants.mjs) writes Draco and meshopt files that load
+// as the original bunny:
+// - meshopt without filters is lossless: the same vertices, bit for bit;
+// - meshopt with its filters: positions exact, normals octahedral in 8 bits, stored
+//   again as 8-bit integers (octahedral_bound(8, true) = 0.0235);
+// - Draco (edgebreaker reorders vertices): positions within half a 14-bit step of the
+//   extent, normals within octahedral_bound(10, false) = 0.0042, as many triangles; and
+//   the same file decoded by npm's draco3dgltf (glTF-Transform, written uncompressed)
+//   loads to the same vertices and indices as libdraco's decoding here, bit for bit.
+TEST(CompressedGltf, GltfTransformVariantsLoadAsTheOriginal) {
+  const TempDir dir("gltf_transform");
+  const std::filesystem::path in = std::filesystem::path(SSS_SOURCE_DIR) / "assets" / "bunny.glb";
+  const Scene a = load_ok(in);
+  const Bounds box = a.bounds();
+  const glm::vec3 ext = box.max - box.min;
+  const float extent = std::max({ext.x, ext.y, ext.z});
+
+  gltf_transform(in, dir / "meshopt.glb", "meshopt");
+  EXPECT_TRUE(same_geometry(a, load_ok(dir / "meshopt.glb")));
+
+  gltf_transform(in, dir / "filter.glb", "meshopt-filter");
+  const Scene f = load_ok(dir / "filter.glb");
+  ASSERT_EQ(f.meshes.size(), 1u);
+  EXPECT_EQ(f.meshes[0].positions, a.meshes[0].positions);
+  EXPECT_EQ(canonical_triangles(f.meshes[0].indices), canonical_triangles(a.meshes[0].indices));
+  float worst_normal = 0.0f;
+  for (std::size_t i = 0; i < a.meshes[0].normals.size(); ++i)
+    worst_normal = std::max(worst_normal, glm::length(f.meshes[0].normals[i] - a.meshes[0].normals[i]));
+  EXPECT_LE(worst_normal, octahedral_bound(8, true));
+
+  gltf_transform(in, dir / "draco.glb", "draco");
+  const Scene d = load_ok(dir / "draco.glb");
+  const float tol = half_step(extent, 14, extent);
+  const VertexError e = vertex_error(a, d, tol);
+  EXPECT_LE(e.position, tol);
+  EXPECT_LE(e.normal, octahedral_bound(10, false));
+  gltf_transform(dir / "draco.glb", dir / "draco_decoded.glb", "decode");
+  const Scene other = load_ok(dir / "draco_decoded.glb");
+  ASSERT_EQ(other.meshes.size(), 1u);
+  ASSERT_EQ(d.meshes.size(), 1u);
+  EXPECT_EQ(other.meshes[0].positions, d.meshes[0].positions);
+  EXPECT_EQ(other.meshes[0].indices, d.meshes[0].indices);
+  float normal_gap = 0.0f;  // libdraco's normals are renormalized here, the file's are not
+  for (std::size_t i = 0; i < d.meshes[0].normals.size() && i < other.meshes[0].normals.size(); ++i)
+    normal_gap = std::max(normal_gap, glm::length(d.meshes[0].normals[i] - other.meshes[0].normals[i]));
+  EXPECT_LE(normal_gap, 1e-6f);
+  std::printf("[ glTF-Transform ] meshopt filter: worst normal error %.3g of %.3g; Draco: position %.3g of %.3g, "
+              "normal %.3g of %.3g; libdraco vs draco3dgltf normals %.3g\n",
+              worst_normal, octahedral_bound(8, true), e.position, tol, e.normal, octahedral_bound(10, false),
+              normal_gap);
+}
+
+namespace {
+
+// A compressed .gltf (from `make`, writing base.gltf and base.bin into `dir`) changed by
+// `edit` (its JSON, and its .bin's bytes) is refused, the message holding `expected`.
+void expect_refused(const TempDir& dir, const std::string& name,
+                    const std::function<void(nlohmann::json&, std::vector<char>&)>& edit,
+                    const std::string& expected) {
+  SCOPED_TRACE(name);
+  std::ifstream jf(dir / "base.gltf");
+  nlohmann::json doc = nlohmann::json::parse(jf);
+  const std::string bin_name = doc["buffers"][0]["uri"].get<std::string>();
+  std::ifstream bf(dir / bin_name, std::ios::binary);
+  std::vector<char> bin((std::istreambuf_iterator<char>(bf)), std::istreambuf_iterator<char>());
+  edit(doc, bin);
+  doc["buffers"][0]["uri"] = name + ".bin";
+  std::ofstream(dir / (name + ".bin"), std::ios::binary).write(bin.data(), std::streamsize(bin.size()));
+  std::ofstream(dir / (name + ".gltf")) << doc.dump();
+  const std::string error = load_error(dir / (name + ".gltf"));
+  EXPECT_NE(error.find(expected), std::string::npos) << error;
+}
+
+}  // namespace
+
+// assimp's glTF2 models (Debian's assimp-testmodels) through glTF-Transform: meshopt
+// without filters loads bit for bit as the original (triangles up to rotation), and Draco
+// keeps every mesh, each with at most its triangles (Draco drops degenerate ones) and its
+// bounds within half a 14-bit step of its own extent (Draco quantizes each primitive over
+// its own bounds).
+TEST(CompressedGltf, AssimpModelsThroughGltfTransform) {
+  const std::filesystem::path models = "/usr/share/assimp/models/glTF2";
+  if (!std::filesystem::is_directory(models)) GTEST_SKIP() << "assimp-testmodels not installed";
+  const TempDir dir("assimp_variants");
+  for (const char* rel : {"BoxTextured-glTF-Binary/BoxTextured.glb", "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"}) {
+    const std::filesystem::path in = models / rel;
+    SCOPED_TRACE(rel);
+    const Scene a = load_ok(in);
+    gltf_transform(in, dir / "m.glb", "meshopt");
+    EXPECT_TRUE(same_geometry(a, load_ok(dir / "m.glb")));
+    gltf_transform(in, dir / "d.glb", "draco");
+    const Scene d = load_ok(dir / "d.glb");
+    ASSERT_EQ(d.meshes.size(), a.meshes.size());
+    float worst = 0.0f;
+    for (std::size_t m = 0; m < a.meshes.size(); ++m) {
+      EXPECT_LE(d.meshes[m].indices.size(), a.meshes[m].indices.size());
+      EXPECT_GT(d.meshes[m].indices.size(), 0u);
+      const glm::vec3 e = a.meshes[m].bounds.max - a.meshes[m].bounds.min;
+      const float extent = std::max({e.x, e.y, e.z});
+      for (int c = 0; c < 3; ++c) {
+        const float gap = std::max(std::abs(a.meshes[m].bounds.min[c] - d.meshes[m].bounds.min[c]),
+                                   std::abs(a.meshes[m].bounds.max[c] - d.meshes[m].bounds.max[c]));
+        EXPECT_LE(gap, half_step(extent, 14, extent)) << "mesh " << m;
+        worst = std::max(worst, gap / extent);
+      }
+    }
+    std::printf("[ assimp via glTF-Transform ] %s: Draco bounds within %.3g of each mesh's extent (bound %.3g)\n",
+                rel, worst, 0.5 / 16383.0);
+  }
+}
+
+
+// Hostile or inconsistent meshopt data is refused with the view and field named, before
+// or by the decoder, never read past: each case edits one thing of gltfpack's output.
+TEST(CompressedGltf, BadMeshoptDataIsRefusedNamingTheField) {
+  const TempDir dir("bad_meshopt");
+  const std::string in = SSS_SOURCE_DIR "/assets/bunny.glb";
+  const auto run = sss::testing::run_shell("gltfpack -ke -c -i '" + in + "' -o '" + (dir / "base.gltf").string() + "' 2>&1");
+  ASSERT_EQ(run.code, 0) << run.out;
+  using J = nlohmann::json;
+  using B = std::vector<char>;
+  const auto ext = [](J& d, int v) -> J& { return d["bufferViews"][v]["extensions"]["EXT_meshopt_compression"]; };
+  expect_refused(dir, "truncated", [&](J& d, B&) { ext(d, 0)["byteLength"] = ext(d, 0)["byteLength"].get<int>() - 64; },
+                 "bufferViews[0].extensions.EXT_meshopt_compression: the compressed bytes do not decode");
+  expect_refused(dir, "header", [&](J& d, B& b) { b[ext(d, 0).value("byteOffset", 0)] = 0; },
+                 "not a stream it reads");
+  expect_refused(dir, "count", [&](J& d, B&) { ext(d, 1)["count"] = ext(d, 1)["count"].get<int>() + 1; },
+                 "bufferViews[1].extensions.EXT_meshopt_compression.count: 1840 elements of 4 bytes do not fill");
+  expect_refused(dir, "stride", [&](J& d, B&) {
+    ext(d, 2)["byteStride"] = 12;  // 12 * 1837 still fills the view's 22044 bytes
+    ext(d, 2)["count"] = 1837;
+  }, "EXT_meshopt_compression.byteStride: must be 2 or 4 in mode TRIANGLES, got 12");
+  expect_refused(dir, "filter", [&](J& d, B&) { ext(d, 1)["filter"] = "QUATERNION"; },
+                 "byteStride: 4 does not suit filter QUATERNION (it needs 8)");
+  expect_refused(dir, "mode", [&](J& d, B&) { ext(d, 1)["mode"] = "LINES"; },
+                 "EXT_meshopt_compression.mode: must be one of");
+  expect_refused(dir, "plain_view_in_placeholder",
+                 [&](J& d, B&) { d["bufferViews"][1].erase("extensions"); },
+                 "bufferViews[1].buffer: buffers[1] is an EXT_meshopt_compression fallback placeholder");
+  expect_refused(dir, "source_is_fallback", [&](J& d, B&) { ext(d, 0)["buffer"] = 1; },
+                 "buffers[1] is a fallback buffer; compressed bytes must come from another");
+  expect_refused(dir, "past_the_buffer", [&](J& d, B&) { ext(d, 2)["byteOffset"] = 1 << 20; },
+                 "run past the");
+  expect_refused(dir, "undeclared", [&](J& d, B&) {
+    d["extensionsUsed"] = {"KHR_mesh_quantization"};
+    d["extensionsRequired"] = {"KHR_mesh_quantization"};
+  }, "buffers[1].uri: is required in a .gltf file");
+}
+
+// The same for Draco: a corrupt bitstream, an attribute id it does not hold, counts that
+// disagree with it, the extension undeclared (glTF-Transform's output, edited).
+TEST(CompressedGltf, BadDracoDataIsRefusedNamingTheField) {
+  const TempDir dir("bad_draco");
+  gltf_transform(SSS_SOURCE_DIR "/assets/bunny.glb", dir / "base.gltf", "draco");
+  using J = nlohmann::json;
+  using B = std::vector<char>;
+  const auto ext = [](J& d) -> J& { return d["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]; };
+  const std::string where = "meshes[0].primitives[0].extensions.KHR_draco_mesh_compression";
+  expect_refused(dir, "corrupt", [&](J& d, B& b) {
+    const J& v = d["bufferViews"][ext(d)["bufferView"].get<int>()];
+    for (int i = 0; i < 64; ++i) b[std::size_t(v.value("byteOffset", 0) + i)] = char(0x5a);
+  }, where + ".bufferView: the Draco bitstream does not decode");
+  expect_refused(dir, "attribute_id", [&](J& d, B&) { ext(d)["attributes"]["NORMAL"] = 99; },
+                 where + ".attributes.NORMAL: Draco attribute 99 is not in the bitstream");
+  expect_refused(dir, "indices_count", [&](J& d, B&) { d["accessors"][d["meshes"][0]["primitives"][0]["indices"].get<int>()]["count"] = 3; },
+                 "meshes[0].primitives[0].indices: accessors[0] has 3 elements but the Draco bitstream decodes 11022");
+  expect_refused(dir, "position_count", [&](J& d, B&) {
+    d["accessors"][d["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()]["count"] = 5;
+  }, "meshes[0].primitives[0].attributes.POSITION: has 5 elements");
+  expect_refused(dir, "undeclared", [&](J& d, B&) {
+    d.erase("extensionsRequired");
+    d["extensionsUsed"] = J::array();
+  }, where + ": is used but \"KHR_draco_mesh_compression\" is not in extensionsUsed");
+  expect_refused(dir, "mode", [&](J& d, B&) { d["meshes"][0]["primitives"][0]["mode"] = 5; },
+                 "meshes[0].primitives[0].mode: must be 4 (triangles) with KHR_draco_mesh_compression");
 }
 
 }  // namespace sss::scene

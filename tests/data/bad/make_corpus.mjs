@@ -139,7 +139,7 @@ gltf('json_too_deep.gltf', 'json_too_deep.gltf', 'nests deeper', d => {
   let x = {}; for (let i = 0; i < 100; ++i) x = { a: x }; d.nodes[0].extras = x;
 });
 gltf('required_extension.gltf', 'extensionsRequired[0]', 'not supported', d => {
-  d.extensionsUsed = d.extensionsRequired = ['KHR_draco_mesh_compression'];
+  d.extensionsUsed = d.extensionsRequired = ['KHR_texture_basisu'];
 });
 // URIs.
 gltf('uri_absolute.gltf', 'buffers[0].uri', 'absolute path', d => { d.buffers[0].uri = '/etc/passwd'; });

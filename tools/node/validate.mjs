@@ -2,7 +2,7 @@
 // prints, for each, "FILE: N errors, N warnings, N infos, N hints" and then its errors and
 // warnings, one per line: "error CODE POINTER: message".
 // Exit code: 0 when no file has errors, 1 when one has, 2 when a file or the validator
-// cannot be read. Usage: node tools/gltf-validator/validate.mjs FILE...
+// cannot be read. Usage: node tools/node/validate.mjs FILE...
 import fs from "node:fs";
 import path from "node:path";
 import { createRequire } from "node:module";
