@@ -42,6 +42,44 @@ Status attribute_count(GltfContext& ctx, const std::string& object, const char* 
                       std::to_string(expected));
 }
 
+// The file's tangents follow its UVs, ∂P/∂u. Where KHR_texture_transform maps (u, v) to
+// (u', v') = M (u, v) + o, the normal map is sampled along u', so the tangent becomes
+// ∂P/∂u' = (M⁻¹)₀₀ ∂P/∂u + (M⁻¹)₁₀ ∂P/∂v, and the handedness follows ∂P/∂v'. The
+// file's tangent and bitangent (w · N × T) are unit, so this takes |∂P/∂u| = |∂P/∂v|:
+// exact for a scale and offset (the direction does not change) and for a rotation of a
+// conformal mapping. A singular M (a zero scale) leaves no direction: tangents dropped.
+// Without normals the tangents are dropped too, as the spec asks.
+Status transform_tangents(GltfContext& ctx, const tinygltf::Primitive& prim, const std::string& object,
+                          Mesh& mesh) {
+  if (mesh.normals.empty()) {  // glTF 2.0 §3.7.2.1: without normals, tangents MUST be ignored
+    mesh.tangents.clear();
+    return std::nullopt;
+  }
+  if (mesh.normals.size() != mesh.tangents.size() || prim.material < 0 ||
+      std::size_t(prim.material) >= ctx.uv_transforms.size() || !ctx.uv_transforms[std::size_t(prim.material)])
+    return std::nullopt;
+  const auto& t = *ctx.uv_transforms[std::size_t(prim.material)];
+  if (t[1] == 0.0f && t[3] == 0.0f && t[0] > 0.0f && t[4] > 0.0f) return std::nullopt;  // scale and offset
+  const float det = t[0] * t[4] - t[1] * t[3];
+  if (!(std::abs(det) > 0.0f) || !std::isfinite(1.0f / det)) {
+    ctx.scene.warnings.push_back(ctx.file + ": " + object + ": KHR_texture_transform of materials[" +
+                                 std::to_string(prim.material) + "] is singular; its tangents are dropped");
+    mesh.tangents.clear();
+    return std::nullopt;
+  }
+  const float i00 = t[4] / det, i01 = -t[1] / det, i10 = -t[3] / det, i11 = t[0] / det;
+  for (std::size_t i = 0; i < mesh.tangents.size(); ++i) {
+    const glm::vec3 n = mesh.normals[i];
+    const glm::vec3 tu(mesh.tangents[i]);
+    const glm::vec3 tv = mesh.tangents[i].w * glm::cross(n, tu);
+    const glm::vec3 du = i00 * tu + i10 * tv, dv = i01 * tu + i11 * tv;
+    const float len = glm::length(du);
+    if (!(len > 0.0f) || !std::isfinite(len)) continue;  // a zero normal: keep the file's
+    mesh.tangents[i] = glm::vec4(du / len, glm::dot(glm::cross(n, du), dv) < 0.0f ? -1.0f : 1.0f);
+  }
+  return std::nullopt;
+}
+
 Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
                          std::optional<std::uint32_t>& default_material) {
   const tinygltf::Mesh& gm = ctx.model.meshes[m];
@@ -155,6 +193,7 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
       t = len > 0.0f && std::isfinite(len) ? t / len : glm::vec3(1, 0, 0);
       mesh.tangents[i] = glm::vec4(t, w > 0.0f ? 1.0f : -1.0f);
     }
+    if (auto e = transform_tangents(ctx, prim, object, mesh)) return e;
   }
 
   std::vector<std::uint32_t> seq;

@@ -136,6 +136,53 @@ TEST(TextureTransform, TheUvsAreTransformedAsTheExtensionSays) {
   }
 }
 
+// Tangents follow a texture transform: for a triangle whose tangent and bitangent are
+// its UV derivatives (unit, conformal), the loaded tangent is ∂P/∂u' computed here from
+// the positions and the transformed UVs by the usual triangle formula, and its handedness
+// the sign of (N × T)·∂P/∂v'; a rotation with unequal scales, and a mirror, included.
+TEST(TextureTransform, TangentsFollowTheTransformedUvs) {
+  const TempDir dir("texture_transform_tangents");
+  for (const nlohmann::json& tf : {nlohmann::json{{"rotation", 0.7}, {"scale", {2.0, 0.5}}},
+                                   nlohmann::json{{"scale", {-1.0, 1.0}}, {"offset", {0.3, 0.0}}},
+                                   nlohmann::json{{"rotation", -2.0}}}) {
+    SCOPED_TRACE(tf.dump());
+    GltfTestWriter w;
+    const std::vector<float> pos = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::vector<float> nrm = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const std::vector<float> tan = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
+    const std::vector<float> uv = {0, 0, 1, 0, 0, 1};
+    const int p = w.accessor(w.view(pos.data(), pos.size() * 4), 5126, 3, "VEC3");
+    const int n = w.accessor(w.view(nrm.data(), nrm.size() * 4), 5126, 3, "VEC3");
+    const int t = w.accessor(w.view(tan.data(), tan.size() * 4), 5126, 3, "VEC4");
+    const int u = w.accessor(w.view(uv.data(), uv.size() * 4), 5126, 3, "VEC2");
+    const auto png = tiny_png();
+    w.push("images", {{"bufferView", w.view(png.data(), png.size())}, {"mimeType", "image/png"}});
+    w.push("textures", {{"source", 0}});
+    const nlohmann::json info = {{"index", 0}, {"extensions", {{"KHR_texture_transform", tf}}}};
+    w.push("materials", {{"pbrMetallicRoughness", {{"baseColorTexture", info}}}, {"normalTexture", info}});
+    w.push("meshes", {{"primitives", {{{"attributes", {{"POSITION", p}, {"NORMAL", n}, {"TANGENT", t}, {"TEXCOORD_0", u}}},
+                                       {"material", 0}}}}});
+    w.push("nodes", {{"mesh", 0}});
+    w.doc["scenes"] = {{{"nodes", {0}}}};
+    w.doc["extensionsUsed"] = {"KHR_texture_transform"};
+    w.write_gltf(dir / "t.gltf");
+    const Scene s = load_ok(dir / "t.gltf");
+    ASSERT_EQ(s.meshes.size(), 1u);
+    const Mesh& m = s.meshes[0];
+    ASSERT_EQ(m.tangents.size(), 3u);
+    const glm::vec3 e1 = m.positions[1] - m.positions[0], e2 = m.positions[2] - m.positions[0];
+    const glm::vec2 d1 = m.uv0[1] - m.uv0[0], d2 = m.uv0[2] - m.uv0[0];
+    const float r = 1.0f / (d1.x * d2.y - d2.x * d1.y);
+    const glm::vec3 dpdu = (e1 * d2.y - e2 * d1.y) * r, dpdv = (e2 * d1.x - e1 * d2.x) * r;
+    const glm::vec3 expected = glm::normalize(dpdu);
+    const float handedness = glm::dot(glm::cross(glm::vec3(0, 0, 1), expected), dpdv) < 0.0f ? -1.0f : 1.0f;
+    for (const glm::vec4& got : m.tangents) {
+      EXPECT_LT(glm::length(glm::vec3(got) - expected), 1e-5f) << got.x << " " << got.y << " " << got.z;
+      EXPECT_EQ(got.w, handedness);
+    }
+  }
+}
+
 namespace {
 
 // How far a loaded file `b` is from the original `a` (one mesh, one instance each):
