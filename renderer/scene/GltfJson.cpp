@@ -15,6 +15,13 @@ bool is_supported_required_extension(const std::string& name) {
   return false;
 }
 
+const nlohmann::json* find_extension(const nlohmann::json& o, const char* name) {
+  if (!o.is_object() || !o.contains("extensions") || !o["extensions"].is_object() ||
+      !o["extensions"].contains(name))
+    return nullptr;
+  return &o["extensions"][name];
+}
+
 namespace {
 
 using nlohmann::json;
@@ -67,12 +74,6 @@ bool uses_extension(const json& root, const char* name) {
   for (const json& e : root["extensionsUsed"])
     if (e == name) return true;
   return false;
-}
-
-// o.extensions[name] (an object: check_gltf_schema), or nullptr.
-const json* extension(const json& o, const char* name) {
-  if (!o.contains("extensions") || !o["extensions"].contains(name)) return nullptr;
-  return &o["extensions"][name];
 }
 
 // The rules that tie EXT_meshopt_compression's fields to each other and to the parent
@@ -184,7 +185,7 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
     SSS_TRY(length, c.uint_member(b, at("buffers", i), "byteLength", true));
     if (length == 0) return c.fail(at("buffers", i), "byteLength", "must be >= 1");
     buffer_bytes.push_back(length);
-    if (const json* e = extension(b, "EXT_meshopt_compression"))
+    if (const json* e = find_extension(b, "EXT_meshopt_compression"))
       fallback[i] = meshopt && e->value("fallback", false);  // schema: a boolean
     const bool bin_chunk = glb_bin_bytes && i == 0;  // glTF 2.0 §4.4.3.3
     if (!b.contains("uri") && !bin_chunk && meshopt) {
@@ -236,7 +237,7 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
     if (view.contains("byteStride") && (stride < 4 || stride > 252 || stride % 4 != 0))
       return c.fail(name, "byteStride", "must be a multiple of 4 in [4, 252], got " +
                                             std::to_string(stride));
-    const json* mx = extension(view, "EXT_meshopt_compression");
+    const json* mx = find_extension(view, "EXT_meshopt_compression");
     if (mx && !meshopt)
       return c.fail(name, "extensions.EXT_meshopt_compression",
                     "is used but \"EXT_meshopt_compression\" is not in extensionsUsed");
@@ -312,7 +313,7 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
       const json& prims = meshes[m]["primitives"];
       facts.draco[m].resize(prims.size());
       for (std::size_t p = 0; p < prims.size(); ++p) {
-        const json* e = extension(prims[p], "KHR_draco_mesh_compression");
+        const json* e = find_extension(prims[p], "KHR_draco_mesh_compression");
         if (!e) continue;
         const std::string name = at("meshes", m) + "." + at("primitives", p);
         if (!draco)

@@ -26,6 +26,10 @@ inline constexpr const char* kSupportedRequiredExtensions[] = {
     "EXT_meshopt_compression", "KHR_draco_mesh_compression"};
 bool is_supported_required_extension(const std::string& name);
 
+// o.extensions[name] when `o` has it (check_gltf_schema makes every extensions member an
+// object of objects), else nullptr.
+const nlohmann::json* find_extension(const nlohmann::json& o, const char* name);
+
 // glTF itself nests about 6 deep; extras may go deeper, but not without bound (a
 // recursive parser would overflow the stack).
 inline constexpr int kMaxJsonDepth = 64;

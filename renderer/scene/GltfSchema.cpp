@@ -217,13 +217,6 @@ class Schema {
     return v;
   }
 
-  // o.extensions[name] (already checked to be an object by extensions()), or nullptr.
-  static const json* extension(const json& o, const char* name) {
-    if (!o.contains("extensions") || !o["extensions"].is_object() || !o["extensions"].contains(name))
-      return nullptr;
-    return &o["extensions"][name];
-  }
-
   // Common to every glTF object: name, extensions (an object of objects).
   bool common(const json& o, const std::string& name) { return string(o, name, "name") && extensions(o, name); }
 
@@ -286,7 +279,7 @@ class Schema {
     each("animations", [&](const json& a, const std::string& n) { animation(a, n); });
     each("buffers", [&](const json& b, const std::string& n) {
       size(b, n, "byteLength", true, 1) && string(b, n, "uri");
-      if (const json* e = extension(b, "EXT_meshopt_compression"))
+      if (const json* e = find_extension(b, "EXT_meshopt_compression"))
         boolean(*e, n + ".extensions.EXT_meshopt_compression", "fallback");
     });
     each("bufferViews", [&](const json& v, const std::string& n) {
@@ -296,7 +289,7 @@ class Schema {
         return;
       // EXT_meshopt_compression's README, "JSON schema updates"; the rules that tie
       // these fields together are checked in GltfJson.cpp.
-      if (const json* e = extension(v, "EXT_meshopt_compression")) {
+      if (const json* e = find_extension(v, "EXT_meshopt_compression")) {
         const std::string en = n + ".extensions.EXT_meshopt_compression";
         index(*e, en, "buffer", "buffers", true) && size(*e, en, "byteOffset") &&
             size(*e, en, "byteLength", true, 1) && integer(*e, en, "byteStride", 1, 256, true) &&
@@ -449,7 +442,7 @@ class Schema {
       }
       // KHR_draco_mesh_compression's README: the view of the compressed bytes, and each
       // semantic's Draco attribute id (a uint32, not an accessor index).
-      if (const json* e = extension(prim, "KHR_draco_mesh_compression")) {
+      if (const json* e = find_extension(prim, "KHR_draco_mesh_compression")) {
         const std::string en = pn + ".extensions.KHR_draco_mesh_compression";
         if (!index(*e, en, "bufferView", "bufferViews", true)) return;
         const json* ids = object(*e, en, "attributes", true);
