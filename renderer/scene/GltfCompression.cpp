@@ -8,6 +8,7 @@
 #include "renderer/scene/GltfContext.h"
 
 #include <draco/compression/decode.h>
+#include <draco/core/draco_types.h>
 #include <meshoptimizer.h>
 
 #include <cmath>
@@ -117,11 +118,12 @@ Status decode_draco(GltfContext& ctx, const DracoPrimitive& d, const std::string
     if (n < 1 || n > 4)
       return ctx.fail(name, field, "Draco attribute " + std::to_string(id) + " has " + std::to_string(n) +
                                        " components (1 to 4 expected)");
-    // Draco's ConvertValue checks only that a value starts inside the attribute's
-    // buffer: the mapping and the buffer's size are checked here first.
-    const std::uint64_t entry = std::uint64_t(a->byte_stride());
-    if (!a->buffer() || a->byte_stride() < std::int64_t(n) || a->byte_offset() != 0 ||
-        a->buffer()->data_size() / entry < a->size() ||
+    // Draco's ConvertValue checks only that each component starts inside the
+    // attribute's buffer: the entry size, the mapping and the buffer's size are checked
+    // here first, so that every byte it reads lies inside.
+    const int component_bytes = draco::DataTypeLength(a->data_type());  // -1: not a type
+    if (!a->buffer() || component_bytes <= 0 || a->byte_stride() < std::int64_t(n) * component_bytes ||
+        a->byte_offset() != 0 || a->buffer()->data_size() / std::uint64_t(a->byte_stride()) < a->size() ||
         (!a->is_mapping_identity() && a->indices_map_size() < out.points))
       return ctx.fail(name, field, "Draco attribute " + std::to_string(id) + " is inconsistent with its data");
     if (auto e = ctx.charge(std::uint64_t(out.points) * std::uint64_t(n) * sizeof(float), name)) return e;
