@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <cstdlib>
+#include <span>
 #include <sstream>
 
 namespace sss::app {
@@ -69,6 +70,18 @@ std::variant<Rgb, FieldError> parse_rgb(const std::string& option, const std::st
 }
 
 namespace {
+
+// `e` with its field's leading spec name ("subsurface_radius_scale[1]") replaced by the
+// option that set it ("--subsurface-radius-scale[1]"): the first prefix that matches, so
+// a longer name must come before a name it starts with.
+FieldError named_by_option(FieldError e, std::span<const std::pair<const char*, const char*>> options) {
+  for (const auto& [spec, option] : options)
+    if (e.field.rfind(spec, 0) == 0) {
+      e.field = option + e.field.substr(std::strlen(spec));
+      break;
+    }
+  return e;
+}
 
 std::string rgb_text(const Rgb& v) {
   std::ostringstream s;
@@ -179,12 +192,7 @@ std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
             {"subsurface_color", "--subsurface-color"}, {"subsurface_radius", "--subsurface-radius"},
             {"subsurface_scale", "--subsurface-scale"}, {"subsurface_anisotropy", "--g"},
             {"specular_IOR", "--eta"}};
-        for (const auto& [spec, option] : kOptions)
-          if (e->field.rfind(spec, 0) == 0) {
-            e->field = option + e->field.substr(std::strlen(spec));
-            break;
-          }
-        return *e;
+        return named_by_option(std::move(*e), kOptions);
       }
       p = profiles::openpbr_from_standard_surface(ss);
     } else {
@@ -205,12 +213,7 @@ std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
           {"subsurface_color", "--subsurface-color"}, {"subsurface_radius_scale", "--subsurface-radius-scale"},
           {"subsurface_radius", "--subsurface-radius"}, {"subsurface_scatter_anisotropy", "--g"},
           {"specular_ior", "--eta"}};
-      for (const auto& [spec, option] : kOptions)
-        if (e->field.rfind(spec, 0) == 0) {
-          e->field = option + e->field.substr(std::strlen(spec));
-          break;
-        }
-      return *e;
+      return named_by_option(std::move(*e), kOptions);
     }
     out.medium = std::get<Medium>(m);
     out.openpbr = p;
