@@ -223,7 +223,7 @@ nlohmann::json summary_common(int argc, char** argv, const std::string& settings
 int merge_usage(const std::string& message) { return usage_error("sss-reference merge", message); }
 
 int merge_main(int argc, char** argv) {
-  CLI::App app{"sss-reference merge: put the tiles of one random-walk render (--tile K/N) back together into the "
+  CLI::App app{"sss-reference merge: put the tiles of one random-walk or probe render (--tile K/N) back together into the "
                "frame and its variance, bit for bit what one process renders",
                "sss-reference merge"};
   std::vector<std::string> tiles;
@@ -330,8 +330,8 @@ int main(int argc, char** argv) {
   app.add_option("--variance", variance,
                  "random-walk, --estimator probe: also write the per-pixel variance of the mean (FILE.exr)");
   app.add_option("--tile", tile_text,
-                 "random-walk: render tile K of N (rows y with y mod N = K-1) for 'sss-reference merge'; needs "
-                 "--spp and --variance");
+                 "random-walk, --estimator probe: render tile K of N (rows y with y mod N = K-1) for "
+                 "'sss-reference merge'; needs --spp and --variance");
   app.add_option("--summary", summary,
                  "random-walk, --estimator probe: also write what the render did as JSON (command, samples per pixel, "
                  "relative standard error, paths or probes, times)");
@@ -397,9 +397,8 @@ int main(int argc, char** argv) {
   for (const char* name : {"--spacing", "--max-points", "--error-bound", "--brute-force"})
     if (app.count(name) > 0 && (walk || probe))
       return usage(std::string(name) + ": applies to --method diffusion with --estimator octree only");
-  for (const char* name : {"--tile", "--exitance"})
-    if (app.count(name) > 0 && !walk) return usage(std::string(name) + ": applies to --method random-walk only");
-  for (const char* name : {"--spp", "--target-error", "--variance", "--summary"})
+  if (app.count("--exitance") > 0 && !walk) return usage("--exitance: applies to --method random-walk only");
+  for (const char* name : {"--spp", "--target-error", "--variance", "--summary", "--tile"})
     if (app.count(name) > 0 && !walk && !probe)
       return usage(std::string(name) + ": applies to --method random-walk or --estimator probe only");
   if (!(std::isfinite(spacing) && spacing > 0.0))
@@ -497,6 +496,7 @@ int main(int argc, char** argv) {
         o.estimator = reference::Estimator::Probe;
         o.spp = spp;
         o.target_error = target_error;
+        o.tile = tile;
         if (spp == 1)
           std::cerr << "sss-reference: warning: --spp 1: one batch per pixel says nothing of the noise; the "
                        "variance is written as 0 and the relative standard error is unknown (nan)\n";
@@ -506,8 +506,9 @@ int main(int argc, char** argv) {
       if (probe) {
         const std::string settings = pixel_settings(argc, argv);
         const double error = r.stats.relative_standard_error;
-        r.hdr.attributes = reference::ground_truth_attributes("mean", "", settings, r.stats.spp, error);
-        r.variance.attributes = reference::ground_truth_attributes("variance", "", settings, r.stats.spp, error);
+        const std::string tile_name = tile.whole() ? "" : tile_text;
+        r.hdr.attributes = reference::ground_truth_attributes("mean", tile_name, settings, r.stats.spp, error);
+        r.variance.attributes = reference::ground_truth_attributes("variance", tile_name, settings, r.stats.spp, error);
       }
       if (no_specular) image::write_exr(out, image::subtract_rgb(r.hdr, r.specular));
       else if (ext == ".exr") image::write_exr(out, r.hdr);

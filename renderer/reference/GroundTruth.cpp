@@ -45,16 +45,7 @@ void check_options(const GroundTruthOptions& o) {
   if (!(std::isfinite(o.exposure) && o.exposure >= 0.0f))
     throw std::invalid_argument("exposure: must be finite and >= 0, got " + message_number(o.exposure));
   if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
-  if (o.tile.count == 0 || o.tile.index == 0 || o.tile.index > o.tile.count)
-    throw std::invalid_argument("tile: expected K/N with 1 <= K <= N, got " + std::to_string(o.tile.index) + "/" +
-                                std::to_string(o.tile.count));
-  if (o.tile.count > o.height)
-    throw std::invalid_argument("tile: " + std::to_string(o.tile.count) + " tiles of interleaved rows need at least " +
-                                std::to_string(o.tile.count) + " rows, the image has " + std::to_string(o.height));
-  if (!o.tile.whole() && o.target_error > 0.0)
-    throw std::invalid_argument(
-        "tile: a target error is a property of the whole frame, so tiles need a fixed --spp (render one tile with "
-        "--target-error to learn it)");
+  check_tile(o.tile, o.height, o.target_error);
 }
 
 // A cosine-weighted direction about n (unit), away from the surface.
@@ -75,25 +66,6 @@ glm::dvec3 sample_pixel(const WalkScene& walk, const PixelPlan& px, bool exitanc
 }
 
 }  // namespace
-
-std::optional<TileSpec> parse_tile(const std::string& text, std::string& error) {
-  const auto slash = text.find('/');
-  auto number = [](const std::string& s, std::uint32_t& out) {
-    if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return false;
-    out = std::uint32_t(std::stoul(s));
-    return true;
-  };
-  TileSpec t;
-  if (slash == std::string::npos || !number(text.substr(0, slash), t.index) || !number(text.substr(slash + 1), t.count)) {
-    error = "expected K/N (tile K of N, e.g. 3/8), got '" + text + "'";
-    return std::nullopt;
-  }
-  if (t.count == 0 || t.index == 0 || t.index > t.count) {
-    error = "expected K/N with 1 <= K <= N, got '" + text + "'";
-    return std::nullopt;
-  }
-  return t;
-}
 
 double relative_standard_error(const image::Image& mean, const image::Image& variance) {
   double var = 0.0, sq = 0.0;

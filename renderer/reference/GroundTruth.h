@@ -18,6 +18,7 @@
 #include "renderer/image/Image.h"
 #include "renderer/reference/RandomWalk.h"
 #include "renderer/reference/ReferenceRenderer.h"
+#include "renderer/reference/TileMerge.h"
 #include "renderer/scene/Scene.h"
 
 #include <atomic>
@@ -29,14 +30,6 @@
 
 namespace sss::reference {
 
-struct TileSpec {
-  std::uint32_t index = 1;  // K, 1-based
-  std::uint32_t count = 1;  // N
-  bool whole() const { return count == 1; }
-  bool owns_row(std::uint32_t y) const { return y % count == index - 1; }
-};
-// "K/N" with 1 <= K <= N; the error says what is wrong with the text.
-std::optional<TileSpec> parse_tile(const std::string& text, std::string& error);
 
 struct GroundTruthOptions {
   std::uint32_t width = 640;

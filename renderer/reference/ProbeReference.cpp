@@ -261,7 +261,7 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
   std::vector<std::vector<ProbePixel>> rows(o.height);
   arena.execute([&] {
     tbb::parallel_for(std::uint32_t(0), o.height, [&](std::uint32_t y) {
-      if (cancelled()) return;
+      if (!o.tile.owns_row(y) || cancelled()) return;
       for (std::uint32_t x = 0; x < o.width; ++x) {
         const CameraRays::Ray ray = camera.pixel(x, y);
         const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);

@@ -98,6 +98,9 @@ void check_options(const ReferenceOptions& o) {
   if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
   if (o.estimator == Estimator::Probe) {
     check_sample_counts(o.spp, o.target_error, "probe batches");
+    check_tile(o.tile, o.height, o.target_error);
+  } else if (!o.tile.whole()) {
+    throw std::invalid_argument("tile: applies to the probe estimator only (the octree renders whole frames)");
   } else if (o.spp != 0 || o.target_error != 0.0) {
     throw std::invalid_argument("spp/target error: apply to the probe estimator only (the octree's error is set by "
                                 "the spacing and the error bound)");

@@ -25,6 +25,7 @@
 
 #include "renderer/image/Image.h"
 #include "renderer/reference/PointOctree.h"
+#include "renderer/reference/TileMerge.h"
 #include "renderer/scene/Scene.h"
 
 #include "profiles/Profile.h"
@@ -96,6 +97,9 @@ struct ReferenceOptions {
   // and the frame's relative standard error to stop at (0: run spp batches).
   std::uint64_t spp = 0;
   double target_error = 0.0;
+  // Probe only: render the rows of this tile (TileMerge.h), with a fixed spp; the octree
+  // renders whole frames (its point set and octree serve every pixel at once).
+  TileSpec tile;
   profiles::ModelOptions model_options;
   KernelSource kernel = KernelSource::Exact;
   Shadows shadows = Shadows::RayTraced;

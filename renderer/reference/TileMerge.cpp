@@ -5,8 +5,42 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <stdexcept>
+#include <string>
 
 namespace sss::reference {
+
+std::optional<TileSpec> parse_tile(const std::string& text, std::string& error) {
+  const auto slash = text.find('/');
+  auto number = [](const std::string& s, std::uint32_t& out) {
+    if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return false;
+    out = std::uint32_t(std::stoul(s));
+    return true;
+  };
+  TileSpec t;
+  if (slash == std::string::npos || !number(text.substr(0, slash), t.index) || !number(text.substr(slash + 1), t.count)) {
+    error = "expected K/N (tile K of N, e.g. 3/8), got '" + text + "'";
+    return std::nullopt;
+  }
+  if (t.count == 0 || t.index == 0 || t.index > t.count) {
+    error = "expected K/N with 1 <= K <= N, got '" + text + "'";
+    return std::nullopt;
+  }
+  return t;
+}
+
+void check_tile(const TileSpec& tile, std::uint32_t height, double target_error) {
+  if (tile.count == 0 || tile.index == 0 || tile.index > tile.count)
+    throw std::invalid_argument("tile: expected K/N with 1 <= K <= N, got " + std::to_string(tile.index) + "/" +
+                                std::to_string(tile.count));
+  if (tile.count > height)
+    throw std::invalid_argument("tile: " + std::to_string(tile.count) + " tiles of interleaved rows need at least " +
+                                std::to_string(tile.count) + " rows, the image has " + std::to_string(height));
+  if (!tile.whole() && target_error > 0.0)
+    throw std::invalid_argument(
+        "tile: a target error is a property of the whole frame, so tiles need a fixed --spp (render one tile with "
+        "--target-error to learn it)");
+}
 
 std::optional<std::string> attribute(const image::Image& image, const std::string& name) {
   for (const auto& [k, v] : image.attributes)
@@ -53,8 +87,8 @@ std::variant<MergedFrame, std::string> merge_tiles(const std::vector<std::string
     const auto settings = attribute(t.image, kAttrSettings);
     const auto spp = attribute(t.image, kAttrSpp);
     if (!content || !settings || !spp)
-      return path + ": not a ground-truth EXR (no " + kAttrContent + "/" + kAttrSettings + "/" + kAttrSpp +
-             " attributes: written by sss-reference --method random-walk)";
+      return path + ": not a tile of a per-pixel Monte Carlo render (no " + kAttrContent + "/" + kAttrSettings + "/" + kAttrSpp +
+             " attributes: written by sss-reference --method random-walk or --estimator probe)";
     if (spp->empty() || spp->size() > 18 || spp->find_first_not_of("0123456789") != std::string::npos)
       return path + ": " + kAttrSpp + " is '" + *spp + "', expected a sample count";
     if (*content != "mean" && *content != "variance")

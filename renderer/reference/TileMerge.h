@@ -1,7 +1,10 @@
-// Ground-truth frames in pieces (issue 16): a tile is a pair of EXRs (mean and variance) of
-// the whole frame's size that hold the rows it rendered (GroundTruth.h: rows y with
-// y mod N = K - 1; the other rows are 0 with alpha 0). Every ground-truth EXR says what it
-// is in string attributes of its header:
+// Per-pixel Monte Carlo frames in pieces: the ground truth (issue 16, GroundTruth.h) and the
+// diffusion reference's probe estimator (issue 17, ProbeReference.h). A tile is a pair of
+// EXRs (mean and variance) of the whole frame's size that hold the rows it rendered (rows y
+// with y mod N = K - 1, interleaved so that every tile sees the same mix of easy and hard
+// rows; the other rows are 0 with alpha 0). Both renderers draw sample k of pixel i from
+// its own stream (seed, i, k), so a tile's rows are bit for bit the whole frame's. Every
+// such EXR says what it is in string attributes of its header:
 //   sssContent   "mean" or "variance"
 //   sssTile      "K/N" (absent on a whole frame)
 //   sssSettings  every option that changes the pixels (the tool's command line without the
@@ -16,12 +19,26 @@
 
 #include "renderer/image/Image.h"
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
 namespace sss::reference {
+
+struct TileSpec {
+  std::uint32_t index = 1;  // K, 1-based
+  std::uint32_t count = 1;  // N
+  bool whole() const { return count == 1; }
+  bool owns_row(std::uint32_t y) const { return y % count == index - 1; }
+};
+// "K/N" with 1 <= K <= N; the error says what is wrong with the text.
+std::optional<TileSpec> parse_tile(const std::string& text, std::string& error);
+// Throws std::invalid_argument ("tile: ...") unless `tile` is K/N with 1 <= K <= N, the
+// image has at least N rows, and the render runs a fixed number of samples (a target error
+// is a property of the whole frame, which a tile cannot measure).
+void check_tile(const TileSpec& tile, std::uint32_t height, double target_error);
 
 inline constexpr const char* kAttrContent = "sssContent";
 inline constexpr const char* kAttrTile = "sssTile";

@@ -264,7 +264,8 @@ TEST(SssReferenceProbe, WritesMeanVarianceAndSummaryAndRefusesOctreeOptions) {
   const Case cases[] = {
       {probe + " --spacing 1", "--spacing"},
       {probe + " --brute-force", "--brute-force"},
-      {probe + " --tile 1/2", "--tile"},
+      {probe + " --tile 1/2", "--tile"},  // no fixed --spp, no --variance
+      {octree + " --tile 1/2", "--tile"},  // the octree renders whole frames
       {probe + " --spp 0", "--spp"},
       {probe + " --target-error 2", "--target-error"},
       {octree + " --variance " + (bad_dir / "v.exr").string(), "--variance"},
@@ -290,6 +291,44 @@ TEST(SssReferenceProbe, WritesMeanVarianceAndSummaryAndRefusesOctreeOptions) {
     EXPECT_NE(b.err.find(c.expect), std::string::npos) << c.args << "\n" << b.err;
     EXPECT_EQ(entries(bad_dir), 0u) << c.args << ": wrote something";
   }
+}
+
+// The probe estimator's frame spread over machines as the ground truth's is (the README's
+// GNU parallel and Slurm recipes): its batch k of pixel i draws from stream (seed, i, k),
+// so two tiles merge into the very bytes of the whole frame, and a probe tile does not
+// merge with a random-walk one (their settings differ).
+TEST(SssReferenceProbe, TilesMergeBitIdenticallyToTheWholeFrame) {
+  const fs::path dir = folder("probe-tiles");
+  const std::string frame = "builtin:sphere --estimator probe --width 16 --height 9 --spp 3 --seed 5 --quiet";
+  const CliRun w = reference(frame + " --out " + (dir / "whole.exr").string() + " --variance " +
+                             (dir / "whole.var.exr").string());
+  ASSERT_EQ(w.code, 0) << w.err;
+  for (int k = 1; k <= 2; ++k) {
+    const std::string t = "p" + std::to_string(k);
+    const CliRun r = reference(frame + " --tile " + std::to_string(k) + "/2 --out " + (dir / (t + ".exr")).string() +
+                               " --variance " + (dir / (t + ".var.exr")).string());
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  const CliRun m = reference("merge" + files(dir, {"p2.exr", "p1.var.exr", "p1.exr", "p2.var.exr"}) + " --out " +
+                             (dir / "merged.exr").string() + " --variance " + (dir / "merged.var.exr").string());
+  ASSERT_EQ(m.code, 0) << m.err;
+  const std::string whole = slurp(dir / "whole.exr");
+  ASSERT_FALSE(whole.empty());
+  EXPECT_TRUE(slurp(dir / "merged.exr") == whole) << "merged.exr differs from whole.exr";
+  EXPECT_TRUE(slurp(dir / "merged.var.exr") == slurp(dir / "whole.var.exr")) << "the variances differ";
+  EXPECT_FALSE(slurp(dir / "p1.exr") == whole) << "a tile holds half the rows";
+  EXPECT_EQ(attribute(read(dir / "p2.exr"), "sssTile"), "2/2");
+  // Tile 2 of a random-walk render of the same frame does not complete the probe's tile 1.
+  const CliRun r = reference("builtin:sphere --method random-walk --width 16 --height 9 --spp 3 --seed 5 --quiet "
+                             "--tile 2/2 --out " + (dir / "w2.exr").string() + " --variance " +
+                             (dir / "w2.var.exr").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const fs::path refused = dir / "refused.exr";
+  const CliRun bad = reference("merge" + files(dir, {"p1.exr", "p1.var.exr", "w2.exr", "w2.var.exr"}) + " --out " +
+                               refused.string());
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("other settings"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(refused));
 }
 
 TEST(SssReferenceRandomWalk, TilesMergeBitIdenticallyToTheWholeFrame) {
@@ -394,7 +433,7 @@ TEST(SssReferenceRandomWalk, MergeRefusesTilesThatDoNotFitAndWritesNothing) {
   // The diffusion EXR is refused for what it is, not for failing to open.
   const CliRun d = reference("merge" + files(dir, {"t1.exr", "diffusion.exr", "t3.exr", "t1.var.exr", "t2.var.exr",
                                                    "t3.var.exr"}) + " --out " + out.string());
-  EXPECT_NE(d.err.find("not a ground-truth EXR"), std::string::npos) << d.err;
+  EXPECT_NE(d.err.find("not a tile of a per-pixel Monte Carlo render"), std::string::npos) << d.err;
 }
 
 TEST(SssReferenceRandomWalk, GnuParallelSpreadsTilesThatMergeBitIdentically) {
