@@ -276,7 +276,7 @@ int main(int argc, char** argv) {
       "smooth dielectric boundary). 'sss-reference merge --help' puts tiles together.",
       "sss-reference"};
   std::string scene_name = std::string(scene::kDefaultScene);
-  std::string out, png, method = "diffusion", estimator = "octree", variance, tile_text, summary;
+  std::string out, png, method = "diffusion", estimator = "auto", variance, tile_text, summary;
   std::string kernel = "exact", shadows = "ray-traced";
   int width = 640, height = 360, threads = 0, shadow_map_size = 1024;
   double spacing = 0.5, error_bound = 0.3, target_error = 0.0;
@@ -297,9 +297,11 @@ int main(int argc, char** argv) {
                  "diffusion (default): the exact diffusion profile over irradiance points; random-walk: the ground "
                  "truth, true transport through the meshes");
   app.add_option("--estimator", estimator,
-                 "diffusion: octree (default): irradiance points summed through the Jensen-Buhler octree, its error "
-                 "set by --spacing and --error-bound; probe: per-pixel profile importance sampling with probe rays, "
-                 "unbiased, with a standard error per pixel (--spp, --target-error, --variance)");
+                 "diffusion: auto (default): probe where the pixels are finer than the octree's point spacing on "
+                 "the surface (the median over the frame), else octree, or as the options given ask (--spacing... "
+                 "octree, --spp... probe); octree: irradiance points summed through the Jensen-Buhler octree, its "
+                 "error set by --spacing and --error-bound; probe: per-pixel profile importance sampling with probe "
+                 "rays, unbiased, with a standard error per pixel (--spp, --target-error, --variance)");
   add_material_override_options(app, material);
   add_environment_options(app, environment);
   app.add_option("--spacing", spacing,
@@ -374,8 +376,8 @@ int main(int argc, char** argv) {
   if (method != "diffusion" && method != "random-walk")
     return usage("--method: expected diffusion or random-walk, got '" + method + "'");
   const bool walk = method == "random-walk";
-  if (estimator != "octree" && estimator != "probe")
-    return usage("--estimator: expected octree or probe, got '" + estimator + "'");
+  if (estimator != "auto" && estimator != "octree" && estimator != "probe")
+    return usage("--estimator: expected auto, octree or probe, got '" + estimator + "'");
   if (walk && app.count("--estimator") > 0) return usage("--estimator: applies to --method diffusion only");
   if (fresnel != "on" && fresnel != "off") return usage("--fresnel: expected on or off, got '" + fresnel + "'");
   if (single_scattering != "on" && single_scattering != "off")
@@ -384,7 +386,18 @@ int main(int argc, char** argv) {
     return usage("--single-scattering: applies to --method diffusion only (the random walk scatters once by construction)");
   if (walk && app.count("--fresnel") > 0)
     return usage("--fresnel: applies to --method diffusion only (the random walk refracts at the faces)");
-  const bool probe = !walk && estimator == "probe";
+  // auto: what the options ask for, or (neither asked) the frame decides after loading.
+  if (!walk && estimator == "auto") {
+    bool wants_probe = false, wants_octree = false;
+    for (const char* name : {"--spp", "--target-error", "--variance", "--summary", "--tile"})
+      wants_probe = wants_probe || app.count(name) > 0;
+    for (const char* name : {"--spacing", "--max-points", "--error-bound", "--brute-force"})
+      wants_octree = wants_octree || app.count(name) > 0;
+    if (wants_octree) estimator = "octree";  // with probe options too: refused below, naming them
+    else if (wants_probe) estimator = "probe";
+  }
+  const bool choose_later = !walk && estimator == "auto";
+  bool probe = !walk && estimator == "probe";
   if (kernel != "exact" && kernel != "fit") return usage("--kernel: expected exact or fit, got '" + kernel + "'");
   if (shadows != "ray-traced" && shadows != "shadow-map")
     return usage("--shadows: expected ray-traced or shadow-map, got '" + shadows + "'");
@@ -412,7 +425,8 @@ int main(int argc, char** argv) {
   if (app.count("--target-error") > 0 && !(std::isfinite(target_error) && target_error > 0.0 && target_error < 1.0))
     return usage("--target-error: expected a relative standard error in (0, 1), got " + message_number(target_error));
   if (walk && spp == 0 && target_error == 0.0) target_error = 0.02;
-  if (probe && spp == 0 && target_error == 0.0) spp = 16;
+  constexpr std::uint64_t kProbeBatches = 16;  // the probe's default
+  if (probe && spp == 0 && target_error == 0.0) spp = kProbeBatches;
   if (app.count("--target-error") > 0 && spp == 1)
     return usage("--spp: a target error needs at least 2 samples per pixel to measure the noise, got 1");
   reference::TileSpec tile;
@@ -469,6 +483,41 @@ int main(int argc, char** argv) {
   add_material_warnings(s, std::uint32_t(height));
   print_messages("sss-reference", "warning", s.warnings);
 
+  if (choose_later) {
+    reference::ReferenceOptions o;
+    o.width = std::uint32_t(width);
+    o.height = std::uint32_t(height);
+    o.spacing_mfp = spacing;
+    o.max_points = max_points;
+    o.threads = threads;
+    reference::EstimatorChoice choice;
+    try {
+      choice = reference::choose_estimator(s, o);
+    } catch (const std::invalid_argument& e) {
+      return usage(e.what());
+    } catch (const std::exception& e) {
+      std::cerr << "sss-reference: error: " << e.what() << '\n';
+      return kExitRuntime;
+    }
+    probe = choice.estimator == reference::Estimator::Probe;
+    if (probe) spp = kProbeBatches;
+    spacing = choice.spacing_mfp;
+    if (!quiet) {
+      char what[160], why[320];
+      if (probe)
+        std::snprintf(what, sizeof what, "probe (%llu batches per pixel)", (unsigned long long)kProbeBatches);
+      else
+        std::snprintf(what, sizeof what, "octree at spacing %.3g mfp (%.3g points)", choice.spacing_mfp,
+                      choice.planned_points);
+      std::snprintf(why, sizeof why,
+                    "the pixels' median footprint on the surface is %.3g mm, the octree's point spacing %.3g mm at "
+                    "--spacing %.3g (median ratio %.3g over %zu subsurface pixels)%s",
+                    choice.footprint_mm, choice.spacing_mm, o.spacing_mfp, choice.ratio, choice.pixels,
+                    probe ? "; points as dense as the pixels would exceed --max-points" : "");
+      std::cerr << "sss-reference: note: --estimator auto chose " << what << ": "
+                << (choice.pixels ? why : "no pixel sees a medium") << "; --estimator octree|probe to choose\n";
+    }
+  }
   const int used_threads = threads > 0 ? threads : int(std::thread::hardware_concurrency());
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);

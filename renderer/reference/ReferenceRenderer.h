@@ -151,6 +151,38 @@ struct Cancelled : std::runtime_error {
   Cancelled() : std::runtime_error("cancelled") {}
 };
 
+// sss-reference --estimator auto (its default): how to reach a given error first on this
+// frame. The octree's quadrature has a floor set by its point spacing (at a light edge
+// the points near it are lit or dark as a whole), which shows pixel by pixel where the
+// pixels are finer than the points (issue 17: builtin:edge at 0.1 mm pixels, 30% of R_d
+// for mc-table at the default spacing, where the probe's 16 batches give 0.84% in less
+// time); where each pixel covers a point or more the octree is as exact and far cheaper
+// (builtin:bunny at 160x90: within 0.24% of the probe in 1.6 s against 57 s). So, with r
+// the median over the frame's subsurface pixels of (the pixel's footprint on the surface)
+// / (the octree's spacing for its material):
+//   r >= 1: the octree at its spacing;
+//   r < 1: the octree with its points as dense as the pixels (spacing x r), where that
+//          many points fit under max_points (the view samples the surface no finer, and
+//          points cost far less than per-pixel probes); the probe where they do not (the
+//          octree cannot sample the surface at the pixels' scale: builtin:edge's 120,000
+//          mm² at 0.1 mm would take 12 M points).
+// The footprint is the side of the square with the area the pixel covers on the tangent
+// plane of its visible point (found from the neighbouring pixels' rays, so it holds for
+// both projections and grows with the surface's tilt). Pixels on a grid of at most ~4096
+// are looked at.
+struct EstimatorChoice {
+  Estimator estimator = Estimator::Octree;
+  double spacing_mfp = 0.0;   // the octree's: options.spacing_mfp, or finer (above)
+  double planned_points = 0;  // the octree's at spacing_mfp, over every SSS surface
+  double ratio = 0.0;         // median footprint / spacing (0 when no pixel sees a medium)
+  double footprint_mm = 0.0;  // median footprint over the sampled subsurface pixels
+  double spacing_mm = 0.0;    // median octree spacing (at options.spacing_mfp) there
+  std::size_t pixels = 0;     // subsurface pixels sampled
+};
+// `options`: the size, spacing, point cap and threads (the estimator field is ignored).
+// Throws as render_reference for a scene without a camera or with broken meshes.
+EstimatorChoice choose_estimator(const scene::Scene& scene, const ReferenceOptions& options);
+
 // Throws std::invalid_argument for unusable options or scenes (no camera, zero size,
 // bad spacing, too many points; the message names the option), Cancelled when `cancel`
 // becomes true (checked between rows and stages), std::runtime_error for Embree failures.

@@ -63,6 +63,38 @@ TEST(SssReferenceApp, RendersExrAndPng) {
 }
 
 // --no-specular: the same render less its specular term (the same points: same seed).
+// --estimator auto, the default: it says what it chose and why, and the render is the
+// chosen estimator's (ChooseEstimator.* checks the choice itself against closed forms).
+// builtin:edge at 0.1 mm pixels: points that dense would exceed the cap, so the probe (its
+// frame carries the Monte Carlo attributes); the bunny at 320x180 (pixels of ~1.2 mm
+// against points 1.34 mm apart): the octree with points as dense as the pixels; options
+// of one estimator pick it without a note.
+TEST(SssReferenceApp, AutoEstimatorSaysWhatItChoseAndRendersWithIt) {
+  const fs::path edge = scratch() / "auto-edge.exr", bunny = scratch() / "auto-bunny.exr";
+  const CliRun e = reference("builtin:edge --width 400 --height 1 --diffuse-only --out " + edge.string());
+  ASSERT_EQ(e.code, 0) << e.err;
+  EXPECT_NE(e.err.find("--estimator auto chose probe (16 batches per pixel)"), std::string::npos) << e.err;
+  EXPECT_NE(e.err.find("would exceed --max-points"), std::string::npos) << e.err;
+  auto image = sss::image::read_image(edge.string());
+  ASSERT_TRUE(std::holds_alternative<sss::image::Image>(image));
+  bool probe_attributes = false;
+  for (const auto& [key, value] : std::get<sss::image::Image>(image).attributes)
+    if (key == "sssSpp" && value == "16") probe_attributes = true;
+  EXPECT_TRUE(probe_attributes) << "the frame is not the probe's";
+
+  const CliRun b = reference("builtin:bunny --width 320 --height 180 --stats --out " + bunny.string());
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_NE(b.err.find("--estimator auto chose octree at spacing 0."), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("irradiance points"), std::string::npos) << "not the octree's stats: " << b.err;
+
+  const CliRun o = reference("builtin:edge --width 400 --height 1 --spacing 2 --out " + edge.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(o.err.find("--estimator auto chose"), std::string::npos) << o.err;
+  const CliRun q = reference("builtin:bunny --width 16 --height 9 --quiet --out " + bunny.string());
+  ASSERT_EQ(q.code, 0) << q.err;
+  EXPECT_EQ(q.err.find("note"), std::string::npos) << "--quiet prints no note: " << q.err;
+}
+
 TEST(SssReferenceApp, NoSpecularIsTheFrameLessItsHighlight) {
   const fs::path whole = scratch() / "whole.exr", scattered = scratch() / "scattered.exr";
   const std::string args = "builtin:sphere --width 48 --height 27 --spacing 2 --quiet --out ";

@@ -206,7 +206,8 @@ TEST(SssReferenceRandomWalk, BadInputExitsTwoNamingTheOptionAndWritesNothing) {
       {walk + " --spp 4 --variance " + var.string() + " --tile 2/4 --target-error 0.1", "--tile"},
       {walk + " --spp 4 --variance " + var.string() + " --tile 20/20", "--tile"},  // 20 tiles, 9 rows
       {walk + " --spp 4 --spacing 1", "--spacing"},
-      {"builtin:sphere --width 16 --height 9 --quiet --out " + out.string() + " --spp 4", "--spp"},  // diffusion
+      {"builtin:sphere --estimator octree --width 16 --height 9 --quiet --out " + out.string() + " --spp 4",
+       "--spp"},  // the octree's error is set by its spacing
       {"builtin:sphere --method magic --width 16 --height 9 --quiet --out " + out.string(), "--method"},
       {walk + " --spp 4 --variance " + (dir / "x.png").string(), "--variance"},
       {walk + " --spp 4 --summary " + (dir / "x.txt").string(), "--summary"},
@@ -257,7 +258,8 @@ TEST(SssReferenceProbe, WritesMeanVarianceAndSummaryAndRefusesOctreeOptions) {
   const fs::path bad_dir = folder("probe-bad");
   const std::string out = (bad_dir / "x.exr").string();
   const std::string probe = "builtin:sphere --estimator probe --width 12 --height 8 --quiet --out " + out;
-  const std::string octree = "builtin:sphere --width 12 --height 8 --quiet --out " + out;
+  const std::string octree = "builtin:sphere --estimator octree --width 12 --height 8 --quiet --out " + out;
+  const std::string automatic = "builtin:sphere --width 12 --height 8 --quiet --out " + out;
   struct Case {
     std::string args, expect;
   };
@@ -269,7 +271,10 @@ TEST(SssReferenceProbe, WritesMeanVarianceAndSummaryAndRefusesOctreeOptions) {
       {probe + " --spp 0", "--spp"},
       {probe + " --target-error 2", "--target-error"},
       {octree + " --variance " + (bad_dir / "v.exr").string(), "--variance"},
-      {octree + " --estimator magic", "--estimator"},
+      {automatic + " --estimator magic", "--estimator"},
+      // auto with the options of both estimators: the octree's win, the probe's are named.
+      {automatic + " --spacing 1 --spp 4", "--spp"},
+      {automatic + " --brute-force --variance " + (bad_dir / "v.exr").string(), "--variance"},
       {"builtin:sphere --method random-walk --estimator probe --spp 2 --quiet --out " + out, "--estimator"},
       // The budget's switches (issue 17): named values, diffusion only, the size with the maps only.
       {octree + " --kernel gaussian", "--kernel"},

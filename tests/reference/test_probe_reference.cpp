@@ -286,6 +286,71 @@ TEST(ProbeReference, ThinSlabLitFromBehindTransmitsTheMultipoleTotal) {
   }
 }
 
+// sss-reference --estimator auto (choose_estimator): the pixel footprint it measures
+// against closed forms, and its three outcomes. builtin:edge is an orthographic view
+// straight down on the block (200 x 50 x 200 mm: 120,000 mm² of surface), 40 mm over W
+// pixels: a footprint of 40/W mm exactly. Seen at 60° from its normal the plane's pixel
+// is stretched by 1/cos 60° = 2 along the tilt, so the square of equal area has a side
+// √2 x 40/W. The octree's spacing is 0.5 x the smallest reduced mean free path of skin1
+// (blue: 1/(σa + σs') mm); the points planned are the area / spacing².
+TEST(ChooseEstimator, FootprintMatchesClosedFormsAndPicksByIt) {
+  scene::EdgeOptions eo;
+  eo.preset = "skin1";
+  eo.half_width_mm = 20.0;
+  scene::Scene s = scene::edge_scene(eo);
+  const profiles::Medium medium = s.materials[0].sss.effective_medium();
+  double mfp = 1e300;
+  for (int c = 0; c < 3; ++c) mfp = std::min(mfp, 1.0 / medium.channel(c).sigma_t_reduced());
+  const double spacing = 0.5 * mfp, area = 120000.0;
+  ReferenceOptions o;
+  // Pixels coarser than the points: the octree as it is.
+  o.width = std::uint32_t(std::lround(40.0 / (1.1 * spacing)));
+  o.height = 4;
+  const EstimatorChoice coarse = choose_estimator(s, o);
+  // Float rays in mm at 100 mm from the plane: a few ulps of 100 mm on the step.
+  EXPECT_NEAR(coarse.footprint_mm, 40.0 / o.width, 1e-4);
+  EXPECT_NEAR(coarse.spacing_mm, spacing, 1e-9 * spacing);
+  EXPECT_EQ(coarse.estimator, Estimator::Octree);
+  EXPECT_EQ(coarse.spacing_mfp, 0.5);
+  EXPECT_NEAR(coarse.planned_points, area / (spacing * spacing), 1e-6 * coarse.planned_points);
+
+  // Pixels finer than the points, and points that fine fit: the octree at the pixels' scale.
+  o.width = std::uint32_t(std::lround(40.0 / (0.9 * spacing)));
+  const EstimatorChoice finer = choose_estimator(s, o);
+  const double footprint = 40.0 / o.width;
+  EXPECT_EQ(finer.estimator, Estimator::Octree);
+  EXPECT_NEAR(finer.ratio, footprint / spacing, 1e-3);
+  EXPECT_NEAR(finer.spacing_mfp, 0.5 * footprint / spacing, 1e-3);
+  EXPECT_NEAR(finer.planned_points, area / (footprint * footprint), 2e-3 * finer.planned_points);
+  // ... and the same when they do not fit: the probe.
+  o.max_points = std::size_t(0.9 * area / (footprint * footprint));
+  const EstimatorChoice capped = choose_estimator(s, o);
+  EXPECT_EQ(capped.estimator, Estimator::Probe);
+  EXPECT_EQ(capped.spacing_mfp, 0.5);
+  o.max_points = ReferenceOptions{}.max_points;
+
+  // The 0.1 mm pixels: 12 M points would be needed, over the 8 M cap: the probe.
+  o.width = 400;
+  o.height = 8;
+  const EstimatorChoice fine = choose_estimator(s, o);
+  EXPECT_NEAR(fine.footprint_mm, 0.1, 1e-4);
+  EXPECT_EQ(fine.estimator, Estimator::Probe);
+  EXPECT_EQ(fine.pixels, 400u * 8u);  // every pixel sees the slab; 3200 < the ~4096 sampled
+
+  const float mm = 1e-3f;
+  const float tilt = float(kPi / 3.0);
+  s.cameras[0].world = scene::look_at_world({0.0f, 100 * mm * std::cos(tilt), 100 * mm * std::sin(tilt)},
+                                            glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
+  const EstimatorChoice tilted = choose_estimator(s, o);
+  EXPECT_NEAR(tilted.footprint_mm, 0.1 * std::sqrt(2.0), 1e-4);
+
+  // No subsurface pixel: nothing to decide, the octree (which then has nothing to do).
+  s.materials[0].sss.enabled = false;
+  const EstimatorChoice none = choose_estimator(s, o);
+  EXPECT_EQ(none.pixels, 0u);
+  EXPECT_EQ(none.estimator, Estimator::Octree);
+}
+
 // The goal, measured (not a pass/fail: machines differ): builtin:edge at 400 x 8
 // px of 0.1 mm, the CLI's default 16 batches, every preset and model; prints the worst
 // error against the exact M(x) in % of R_d and the time. Run with
