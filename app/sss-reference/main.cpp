@@ -277,7 +277,7 @@ int main(int argc, char** argv) {
       "sss-reference"};
   std::string scene_name = std::string(scene::kDefaultScene);
   std::string out, png, method = "diffusion", estimator = "auto", variance, tile_text, summary;
-  std::string kernel = "exact", shadows = "ray-traced";
+  std::string kernel = "exact", shadows = "ray-traced", transmission = "profile";
   int width = 640, height = 360, threads = 0, shadow_map_size = 1024;
   double spacing = 0.5, error_bound = 0.3, target_error = 0.0;
   std::size_t max_points = 8'000'000;
@@ -319,6 +319,12 @@ int main(int argc, char** argv) {
                  "diffusion: ray-traced (a shadow ray per light, default) or shadow-map (the real-time frame's "
                  "shadow maps and 3x3 PCF rebuilt on the CPU, no shadow from point lights); the error budget's "
                  "'lighting' link");
+  app.add_option("--transmission", transmission,
+                 "diffusion, octree: how light crosses thin parts: profile (default: far-side points summed with "
+                 "the profile, the model's own answer), local (as sss-viewer: the far side dark, each point facing "
+                 "away from a light given E (-n.l) T(d) / R_d, d ray-cast towards the light, T(d) R's tail beyond "
+                 "d), or off (far side dark, nothing transmitted: sss-viewer --transmission off); the error "
+                 "budget's transmission link");
   app.add_option("--shadow-map-size", shadow_map_size,
                  "diffusion --shadows shadow-map: texels a side (default 1024, as sss-viewer's)")
       ->check(CLI::Range(1, 16384));
@@ -391,7 +397,7 @@ int main(int argc, char** argv) {
     bool wants_probe = false, wants_octree = false;
     for (const char* name : {"--spp", "--target-error", "--variance", "--summary", "--tile"})
       wants_probe = wants_probe || app.count(name) > 0;
-    for (const char* name : {"--spacing", "--max-points", "--error-bound", "--brute-force"})
+    for (const char* name : {"--spacing", "--max-points", "--error-bound", "--brute-force", "--transmission"})
       wants_octree = wants_octree || app.count(name) > 0;
     if (wants_octree) estimator = "octree";  // with probe options too: refused below, naming them
     else if (wants_probe) estimator = "probe";
@@ -401,6 +407,10 @@ int main(int argc, char** argv) {
   if (kernel != "exact" && kernel != "fit") return usage("--kernel: expected exact or fit, got '" + kernel + "'");
   if (shadows != "ray-traced" && shadows != "shadow-map")
     return usage("--shadows: expected ray-traced or shadow-map, got '" + shadows + "'");
+  if (transmission != "profile" && transmission != "local" && transmission != "off")
+    return usage("--transmission: expected profile, local or off, got '" + transmission + "'");
+  if (app.count("--transmission") > 0 && (walk || probe))
+    return usage("--transmission: applies to --method diffusion with --estimator octree only");
   for (const char* name : {"--kernel", "--shadows", "--shadow-map-size"})
     if (app.count(name) > 0 && walk)
       return usage(std::string(name) + ": applies to --method diffusion only (the ground truth has neither a "
@@ -541,6 +551,9 @@ int main(int argc, char** argv) {
       o.kernel = kernel == "fit" ? reference::KernelSource::Fit : reference::KernelSource::Exact;
       o.shadows = shadows == "shadow-map" ? reference::Shadows::ShadowMap : reference::Shadows::RayTraced;
       o.shadow_map_size = std::uint32_t(shadow_map_size);
+      o.transmission = transmission == "local" ? reference::Transmission::Local
+                       : transmission == "off" ? reference::Transmission::Off
+                                               : reference::Transmission::Profile;
       if (probe) {
         o.estimator = reference::Estimator::Probe;
         o.spp = spp;

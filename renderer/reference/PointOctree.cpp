@@ -257,8 +257,8 @@ glm::dvec3 PointOctree::gather(const glm::vec3& x_mm, const glm::vec3& normal,
   const bool through = k.has_transmittance();
   const double eps = options_.max_solid_angle;
   // Without transmission every contribution is reflect(distance), 0 beyond the support.
-  const double cull2 = through ? std::numeric_limits<double>::infinity()
-                               : k.support_radius() * k.support_radius();
+  const double cull2 = through && !k.far_side_dark() ? std::numeric_limits<double>::infinity()
+                                                     : k.support_radius() * k.support_radius();
 
   NearField near(x, n_o, through, k, point_area_, options_.normalize_near);
   std::array<std::int32_t, kStackSize> stack;

@@ -85,6 +85,14 @@ double RadialSampler::sample(double u) const {
   return std::min(edges_[k] + t * (edges_[k + 1] - edges_[k]), std::nextafter(support_, 0.0));
 }
 
+double RadialSampler::mass_beyond(double r) const {
+  if (!(r > 0.0)) return total_;
+  if (r >= support_) return 0.0;
+  const std::size_t k = cell_of(r);
+  const double within = (r - edges_[k]) / (edges_[k + 1] - edges_[k]);
+  return total_ * std::max(0.0, 1.0 - (cdf_[k] + within * (cdf_[k + 1] - cdf_[k])));
+}
+
 double RadialSampler::density(double r) const {
   if (!(r >= 0.0) || r >= support_) return 0.0;
   const std::size_t k = cell_of(r);

@@ -60,6 +60,9 @@ class RadialSampler {
   RadialSampler(const ProfileTable& R, double inner_mm, double support_mm);
   double sample(double u) const;    // u in [0, 1)
   double density(double r) const;   // f(r), per mm; 0 beyond S
+  // ∫_r^S 2πs R(s) ds as the cells hold it (total() at r <= 0, 0 from S on): the light a
+  // point source at depth r below a plane sends through it, R's tail beyond r.
+  double mass_beyond(double r) const;
   double support() const { return support_; }
   double total() const { return total_; }  // ∫_0^S 2πr R dr as the cells hold it
 

@@ -10,6 +10,7 @@
 #include "renderer/reference/SingleScatter.h"
 #include "renderer/reference/SurfaceSampling.h"
 
+#include "profiles/Fresnel.h"
 #include "profiles/GaussianSumProfile.h"
 
 #include <glm/geometric.hpp>
@@ -20,6 +21,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -101,6 +103,9 @@ void check_options(const ReferenceOptions& o) {
   if (o.estimator == Estimator::Probe) {
     check_sample_counts(o.spp, o.target_error, "probe batches");
     check_tile(o.tile, o.height, o.target_error);
+    if (o.transmission != Transmission::Profile)
+      throw std::invalid_argument("transmission: " + std::string(transmission_name(o.transmission)) +
+                                  " applies to the octree estimator only");
   } else if (!o.tile.whole()) {
     throw std::invalid_argument("tile: applies to the probe estimator only (the octree renders whole frames)");
   } else if (o.spp != 0 || o.target_error != 0.0) {
@@ -175,6 +180,9 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
 std::string_view estimator_name(Estimator e) { return e == Estimator::Probe ? "probe" : "octree"; }
 std::string_view kernel_source_name(KernelSource k) { return k == KernelSource::Fit ? "fit" : "exact"; }
 std::string_view shadows_name(Shadows s) { return s == Shadows::ShadowMap ? "shadow-map" : "ray-traced"; }
+std::string_view transmission_name(Transmission t) {
+  return t == Transmission::Local ? "local" : t == Transmission::Off ? "off" : "profile";
+}
 
 std::unique_ptr<profiles::RgbProfile> reference_profile(const scene::SssMaterial& sss, KernelSource kernel,
                                                         const profiles::ModelOptions& model_options) {
@@ -198,6 +206,21 @@ void check_scene(const scene::Scene& s) {
     if (mesh.material >= s.materials.size())
       throw std::invalid_argument("mesh '" + mesh.name + "': material index out of range");
   }
+}
+
+// Transmission::Local's path towards the light from p: the distance to the last surface
+// along l before the light (the first one the light meets, what a shadow map stores), 0
+// where nothing lies between p and the light.
+double thickness_towards(const RayScene& rays, const glm::vec3& p, const glm::vec3& l, float distance_mm) {
+  float t_near = 1e-4f * std::max(1.0f, glm::length(p)), last = 0.0f;
+  const float t_far = std::isfinite(distance_mm) ? distance_mm : std::numeric_limits<float>::max();
+  for (int guard = 0; guard < 256 && t_near < t_far; ++guard) {
+    const std::optional<Hit> hit = rays.intersect(p, l, t_near, t_far);
+    if (!hit) break;
+    last = hit->t;
+    t_near = hit->t + 1e-5f * std::max(1.0f, std::abs(hit->t) + glm::length(p));
+  }
+  return double(last);
 }
 
 double median(std::vector<double> v) {
@@ -352,6 +375,37 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
     const bool pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
     const glm::dvec3 eta(sss.medium.eta[0], sss.medium.eta[1], sss.medium.eta[2]);
     const glm::dvec3* entry_eta = fresnel ? &eta : nullptr;
+    // Transmission::Local: T(d) / R_d per channel, from R's tail (RadialSampler holds its
+    // cumulative mass), or a slab's total transmittance / R_d.
+    const bool local = o.transmission == Transmission::Local;
+    const Rgb slab_t = g.profile->total_transmittance(), slab_r = g.profile->total_reflectance();
+    const bool slab = slab_t[0] > 0.0 || slab_t[1] > 0.0 || slab_t[2] > 0.0;
+    std::vector<ProfileTable> tables;
+    std::vector<RadialSampler> tails;
+    if (local && !slab) {
+      const double inner = g.profile->inner_radius(), S = g.profile->support_radius();
+      const bool costly = profiles::model_is_costly(g.profile->model());
+      for (int c = 0; c < 3; ++c) tables.emplace_back(g.profile->channel(c), false, costly, 1e-7 * inner, S);
+      for (int c = 0; c < 3; ++c) tails.emplace_back(tables[std::size_t(c)], inner, S);
+    }
+    const auto transmitted = [&](const SurfacePoint& p, const glm::vec3& n) {
+      glm::dvec3 sum(0.0);
+      for (std::size_t i = 0; i < s.lights.size(); ++i) {
+        // The GPU transmits only lights with a shadow map, which point lights lack.
+        if (s.lights[i].type == scene::LightType::Point) continue;
+        const std::optional<LightArrival> a = light_arrival(s, i, p.position_mm, maps.get());
+        if (!a) continue;
+        const double cosine = -double(glm::dot(n, a->l));
+        if (!(cosine > 0.0)) continue;
+        const double d = thickness_towards(rays, p.position_mm, a->l, a->distance_mm);
+        for (int c = 0; c < 3; ++c) {
+          const double t = slab ? slab_t[c] / slab_r[c] : tails[std::size_t(c)].mass_beyond(d) / tails[std::size_t(c)].total();
+          const double f = fresnel ? profiles::fresnel_transmittance(cosine, eta[c]) : 1.0;
+          sum[c] += a->radiance[c] * cosine * f * t;
+        }
+      }
+      return sum;
+    };
     std::vector<IrradiancePoint> points(g.surface.points.size());
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024),
@@ -366,6 +420,7 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
                             const glm::vec3 n = shading_normal(s, p, sp.normal);
                             const DirectLight d = direct_light(s, rays, p, n, nullptr, maps.get(), entry_eta);
                             glm::dvec3 e = d.irradiance;
+                            if (local) e += transmitted(p, n);
                             if (pre_post) e *= glm::sqrt(glm::dvec3(base_colour(s, p)));
                             points[i] = {sp.position_mm, sp.normal, glm::vec3(e)};
                           }
@@ -375,7 +430,8 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
     });
     reporter.check();
     arena.execute([&] {  // its table is built with TBB: within --threads too
-      g.kernel = std::make_unique<ScatterKernel>(*g.profile, std::max(g.surface.point_area_mm2, 1e-12));
+      g.kernel = std::make_unique<ScatterKernel>(*g.profile, std::max(g.surface.point_area_mm2, 1e-12),
+                                                 o.transmission != Transmission::Profile);
     });
     g.points_for_octree = std::move(points);
   }

@@ -60,6 +60,23 @@ enum class Shadows {
 };
 std::string_view shadows_name(Shadows s);  // "ray-traced" | "shadow-map"
 
+// How light crosses thin parts (the error budget's transmission link, issue 17).
+enum class Transmission {
+  // Through the profile itself: far-side points are summed like the others, with
+  // R(|x_o − x_i|) (a slab's with T(ρ)): the diffusion model's own answer.
+  Profile,
+  // As the real-time renderers (shaders/shared/shading.glsl): the far side is dark, and
+  // each point facing away from a light (n·l < 0) adds E (−n·l) T(d) / R_d to its
+  // irradiance, d the path through the geometry towards the light (ray-cast to the last
+  // surface the light meets: what a shadow map stores), T(d) = ∫_d^∞ 2πs R(s) ds the
+  // light a point source at depth d sends through the surface (for the Gaussian fit,
+  // Σ w_i exp(−d²/2v_i), the GPU's own), a slab's total transmittance for slabs. Octree only.
+  Local,
+  // Far side dark, no local term: sss-viewer --transmission off. Octree only.
+  Off,
+};
+std::string_view transmission_name(Transmission t);  // "profile" | "local" | "off"
+
 struct ReferenceOptions {
   std::uint32_t width = 640;
   std::uint32_t height = 360;
@@ -104,6 +121,7 @@ struct ReferenceOptions {
   KernelSource kernel = KernelSource::Exact;
   Shadows shadows = Shadows::RayTraced;
   std::uint32_t shadow_map_size = 1024;  // Shadows::ShadowMap: the GPU's (RenderOptions)
+  Transmission transmission = Transmission::Profile;
 };
 
 // The profile the reference sums for an SSS material: its model's exact R(r), or with

@@ -153,7 +153,7 @@ class DiscAverage {
 
 }  // namespace
 
-ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_area_mm2) {
+ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_area_mm2, bool far_side_dark) {
   if (!std::isfinite(point_area_mm2) || !(point_area_mm2 > 0.0))
     throw std::invalid_argument("point_area_mm2: must be finite and > 0, got " +
                                 message_number(point_area_mm2));
@@ -212,7 +212,14 @@ ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_a
     return t;
   };
   reflect_ = build(false);
-  if (has_transmittance_) transmit_ = build(true);
+  if (far_side_dark) {  // the reflectance table's cells, all zero
+    far_side_dark_ = has_transmittance_ = true;
+    transmit_ = reflect_;
+    std::fill(transmit_.coef.begin(), transmit_.coef.end(), 0.0f);
+    transmit_.at_kink = glm::dvec3(0.0);
+  } else if (has_transmittance_) {
+    transmit_ = build(true);
+  }
   // ∫_0^ρ 2πd K(d) dd through the table, with a break at the kink d = a.
   near_radius_ = kNearSpacings * std::sqrt(point_area_mm2);
   const auto ring = [&](double lo, double hi) {

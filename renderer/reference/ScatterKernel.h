@@ -49,7 +49,11 @@ namespace sss::reference {
 class ScatterKernel {
  public:
   // Throws std::invalid_argument for a point area that is not finite and > 0.
-  ScatterKernel(const profiles::RgbProfile& profile, double point_area_mm2);
+  // far_side_dark: points on the far side (n_i · n_o < 0) contribute nothing, whatever the
+  // profile (transmit() is 0 and has_transmittance() true, so that the octree keeps the
+  // sides apart): the real-time renderers' view, which blurs only the surface it sees and
+  // brings light through thin parts by a local term instead (Transmission::Local/Off).
+  ScatterKernel(const profiles::RgbProfile& profile, double point_area_mm2, bool far_side_dark = false);
 
   glm::dvec3 reflect(double d_mm) const;     // K(d), mm^-2
   glm::dvec3 transmit(double rho_mm) const;  // disc-averaged T(ρ), mm^-2
@@ -63,6 +67,7 @@ class ScatterKernel {
   Jet reflect_jet(double d_mm) const;
   Jet transmit_jet(double rho_mm) const;
   bool has_transmittance() const { return has_transmittance_; }
+  bool far_side_dark() const { return far_side_dark_; }
   double support_radius() const { return support_mm_; }
   // The near field of the octree's ratio estimate (PointOctree.h): points closer than
   // near_radius() = kNearSpacings · √A (4: about 50 points), and ∫_0^ρ 2πd K(d) dd over that disc, what the
@@ -86,6 +91,7 @@ class ScatterKernel {
   };
   Table reflect_, transmit_;
   bool has_transmittance_ = false;
+  bool far_side_dark_ = false;
   double support_mm_ = 0.0;
   double near_radius_ = 0.0;
   glm::dvec3 near_integral_{0.0};

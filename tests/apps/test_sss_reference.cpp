@@ -90,6 +90,11 @@ TEST(SssReferenceApp, AutoEstimatorSaysWhatItChoseAndRendersWithIt) {
   const CliRun o = reference("builtin:edge --width 400 --height 1 --spacing 2 --out " + edge.string());
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_EQ(o.err.find("--estimator auto chose"), std::string::npos) << o.err;
+  // --transmission (ReferenceTransmission.* checks what it does) belongs to the octree.
+  const CliRun t = reference("builtin:sphere --width 16 --height 9 --transmission local --stats --out " + bunny.string());
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_EQ(t.err.find("--estimator auto chose"), std::string::npos) << t.err;
+  EXPECT_NE(t.err.find("irradiance points"), std::string::npos) << "not the octree's stats: " << t.err;
   const CliRun q = reference("builtin:bunny --width 16 --height 9 --quiet --out " + bunny.string());
   ASSERT_EQ(q.code, 0) << q.err;
   EXPECT_EQ(q.err.find("note"), std::string::npos) << "--quiet prints no note: " << q.err;

@@ -279,6 +279,9 @@ TEST(SssReferenceProbe, WritesMeanVarianceAndSummaryAndRefusesOctreeOptions) {
       // The budget's switches (issue 17): named values, diffusion only, the size with the maps only.
       {octree + " --kernel gaussian", "--kernel"},
       {octree + " --shadows soft", "--shadows"},
+      {octree + " --transmission sideways", "--transmission"},
+      {probe + " --transmission local", "--transmission"},
+      {"builtin:sphere --method random-walk --transmission off --spp 2 --quiet --out " + out, "--transmission"},
       {octree + " --shadow-map-size 512", "--shadow-map-size"},
       {octree + " --shadows shadow-map --shadow-map-size 0", "--shadow-map-size"},
       {"builtin:sphere --method random-walk --kernel fit --spp 2 --quiet --out " + out, "--kernel"},
