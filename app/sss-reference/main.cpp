@@ -297,9 +297,9 @@ int main(int argc, char** argv) {
                  "diffusion (default): the exact diffusion profile over irradiance points; random-walk: the ground "
                  "truth, true transport through the meshes");
   app.add_option("--estimator", estimator,
-                 "diffusion: auto (default): probe where the pixels are finer than the octree's point spacing on "
-                 "the surface (the median over the frame), else octree, or as the options given ask (--spacing... "
-                 "octree, --spp... probe); octree: irradiance points summed through the Jensen-Buhler octree, its "
+                 "diffusion: auto (default): the octree, its points made as dense as the pixels where these are "
+                 "finer (the median footprint over the frame), or the probe where that many points would exceed "
+                 "--max-points; an option of one estimator picks it (--spacing... octree, --spp... probe); octree: irradiance points summed through the Jensen-Buhler octree, its "
                  "error set by --spacing and --error-bound; probe: per-pixel profile importance sampling with probe "
                  "rays, unbiased, with a standard error per pixel (--spp, --target-error, --variance)");
   add_material_override_options(app, material);
