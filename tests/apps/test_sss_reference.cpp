@@ -73,13 +73,13 @@ TEST(SssReferenceApp, AutoEstimatorSaysWhatItChoseAndRendersWithIt) {
   const fs::path edge = scratch() / "auto-edge.exr", bunny = scratch() / "auto-bunny.exr";
   const CliRun e = reference("builtin:edge --width 400 --height 1 --diffuse-only --out " + edge.string());
   ASSERT_EQ(e.code, 0) << e.err;
-  EXPECT_NE(e.err.find("--estimator auto chose probe (16 batches per pixel)"), std::string::npos) << e.err;
+  EXPECT_NE(e.err.find("--estimator auto chose probe (24 batches per pixel)"), std::string::npos) << e.err;
   EXPECT_NE(e.err.find("would exceed --max-points"), std::string::npos) << e.err;
   auto image = sss::image::read_image(edge.string());
   ASSERT_TRUE(std::holds_alternative<sss::image::Image>(image));
   bool probe_attributes = false;
   for (const auto& [key, value] : std::get<sss::image::Image>(image).attributes)
-    if (key == "sssSpp" && value == "16") probe_attributes = true;
+    if (key == "sssSpp" && value == "24") probe_attributes = true;
   EXPECT_TRUE(probe_attributes) << "the frame is not the probe's";
 
   const CliRun b = reference("builtin:bunny --width 320 --height 180 --stats --out " + bunny.string());
