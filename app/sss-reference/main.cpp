@@ -498,16 +498,31 @@ int main(int argc, char** argv) {
   add_material_warnings(s, std::uint32_t(height));
   print_messages("sss-reference", "warning", s.warnings);
 
+  // What the diffusion reference renders with (the auto choice below reads its size, spacing,
+  // point cap and threads, and sets its spacing).
+  reference::ReferenceOptions diffusion;
+  diffusion.width = std::uint32_t(width);
+  diffusion.height = std::uint32_t(height);
+  diffusion.spacing_mfp = spacing;
+  diffusion.max_points = max_points;
+  diffusion.max_solid_angle = error_bound;
+  diffusion.brute_force = brute;
+  diffusion.diffuse_only = diffuse_only;
+  diffusion.fresnel = fresnel == "on";
+  diffusion.single_scattering = single_scattering == "on";
+  diffusion.threads = threads;
+  diffusion.seed = seed;
+  diffusion.exposure = exposure;
+  diffusion.kernel = kernel == "fit" ? reference::KernelSource::Fit : reference::KernelSource::Exact;
+  diffusion.shadows = shadows == "shadow-map" ? reference::Shadows::ShadowMap : reference::Shadows::RayTraced;
+  diffusion.shadow_map_size = std::uint32_t(shadow_map_size);
+  diffusion.transmission = transmission == "local" ? reference::Transmission::Local
+                           : transmission == "off" ? reference::Transmission::Off
+                                                   : reference::Transmission::Profile;
   if (choose_later) {
-    reference::ReferenceOptions o;
-    o.width = std::uint32_t(width);
-    o.height = std::uint32_t(height);
-    o.spacing_mfp = spacing;
-    o.max_points = max_points;
-    o.threads = threads;
     reference::EstimatorChoice choice;
     try {
-      choice = reference::choose_estimator(s, o);
+      choice = reference::choose_estimator(s, diffusion);
     } catch (const std::invalid_argument& e) {
       return usage(e.what());
     } catch (const std::exception& e) {
@@ -516,7 +531,7 @@ int main(int argc, char** argv) {
     }
     probe = choice.estimator == reference::Estimator::Probe;
     if (probe) spp = kProbeBatches;
-    spacing = choice.spacing_mfp;
+    diffusion.spacing_mfp = choice.spacing_mfp;
     if (!quiet) {
       char what[160], why[320];
       if (probe)
@@ -527,7 +542,7 @@ int main(int argc, char** argv) {
       std::snprintf(why, sizeof why,
                     "the pixels' median footprint on the surface is %.3g mm, the octree's point spacing %.3g mm at "
                     "--spacing %.3g (median ratio %.3g over %zu subsurface pixels)%s",
-                    choice.footprint_mm, choice.spacing_mm, o.spacing_mfp, choice.ratio, choice.pixels,
+                    choice.footprint_mm, choice.spacing_mm, spacing, choice.ratio, choice.pixels,
                     probe ? "; points as dense as the pixels would exceed --max-points" : "");
       std::cerr << "sss-reference: note: --estimator auto chose " << what << ": "
                 << (choice.pixels ? why : "no pixel sees a medium") << "; --estimator octree|probe to choose\n";
@@ -540,25 +555,7 @@ int main(int argc, char** argv) {
   auto progress = [&](const char* stage, double f) { bar(stage, f); };
   try {
     if (!walk) {
-      reference::ReferenceOptions o;
-      o.width = std::uint32_t(width);
-      o.height = std::uint32_t(height);
-      o.spacing_mfp = spacing;
-      o.max_points = max_points;
-      o.max_solid_angle = error_bound;
-      o.brute_force = brute;
-      o.diffuse_only = diffuse_only;
-      o.fresnel = fresnel == "on";
-      o.single_scattering = single_scattering == "on";
-      o.threads = threads;
-      o.seed = seed;
-      o.exposure = exposure;
-      o.kernel = kernel == "fit" ? reference::KernelSource::Fit : reference::KernelSource::Exact;
-      o.shadows = shadows == "shadow-map" ? reference::Shadows::ShadowMap : reference::Shadows::RayTraced;
-      o.shadow_map_size = std::uint32_t(shadow_map_size);
-      o.transmission = transmission == "local" ? reference::Transmission::Local
-                       : transmission == "off" ? reference::Transmission::Off
-                                               : reference::Transmission::Profile;
+      reference::ReferenceOptions o = diffusion;
       if (probe) {
         o.estimator = reference::Estimator::Probe;
         o.spp = spp;

@@ -9,6 +9,7 @@
 
 #include "profiles/Fresnel.h"
 #include "profiles/Medium.h"
+#include "profiles/Presets.h"
 
 #include <glm/vec3.hpp>
 
@@ -96,6 +97,38 @@ inline double chi_square_upper_tail(double x, int k) {
   const double h = 2.0 / (9.0 * k);
   const double z = (std::cbrt(x / k) - (1.0 - h)) / std::sqrt(h);
   return 0.5 * std::erfc(z / std::sqrt(2.0));
+}
+
+// A 120 x 120 mm slab of skin1 `thickness_mm` thick (top face at y = 0), lit with E = 1
+// from below by a directional light; an orthographic camera 100 mm above sees 10 mm of
+// its top face, which no light reaches directly. `finite_slab`: the medium carries the
+// thickness (the multipole's slab), else the model is semi-infinite.
+inline scene::Scene back_lit_slab(profiles::Model model, bool finite_slab, double thickness_mm) {
+  const profiles::Preset* preset = profiles::find_preset("skin1");
+  if (!preset) throw std::invalid_argument("no skin1 preset");
+  profiles::Medium medium = profiles::preset_medium(*preset);
+  if (finite_slab) medium.thickness_mm = thickness_mm;
+  auto made = scene::make_sss_material(scene::CoefficientSource{medium}, model);
+  if (auto* e = std::get_if<FieldError>(&made)) throw std::invalid_argument(e->what());
+  scene::Scene s;
+  scene::Material m;
+  m.metallic = 0.0f;
+  m.specular = 0.0f;
+  m.roughness = 1.0f;
+  m.sss = std::get<scene::SssMaterial>(made);
+  s.materials.push_back(m);
+  const float mm = 1e-3f;
+  s.meshes.push_back(scene::make_box({-60 * mm, -float(thickness_mm) * mm, -60 * mm}, {60 * mm, 0.0f, 60 * mm}, 0));
+  s.instances.push_back({0, glm::mat4(1.0f), "slab"});
+  scene::Camera cam;
+  cam.projection = scene::Projection::Orthographic;
+  cam.xmag = 5 * mm;
+  cam.znear = 1 * mm;
+  cam.zfar = 1000 * mm;
+  cam.world = scene::look_at_world({0.0f, 100 * mm, 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
+  s.cameras.push_back(cam);
+  s.lights.push_back(scene::directional_light("light", {0.0f, 1.0f, 0.0f}, 1.0f));
+  return s;
 }
 
 }  // namespace sss::reference::testing

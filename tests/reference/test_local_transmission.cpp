@@ -16,49 +16,20 @@
 // wrong surface) moves the local term by the whole tail ratio (R_d / T(2 mm) > 3 here).
 #include "renderer/reference/ReferenceRenderer.h"
 
+#include "GroundTruthTestSupport.h"
+
 #include "profiles/Integrate.h"
-#include "profiles/Presets.h"
-#include "renderer/scene/Shapes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
-#include <variant>
 
 namespace sss::reference {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr const char* kChannel[3] = {"R", "G", "B"};
-
-// A 120 x 120 mm slab `thickness` mm thick (top face at y = 0), lit with E = 1 from
-// below; an orthographic camera sees 10 mm of its top face, 9 x 9 pixels.
-scene::Scene slab_scene(profiles::Model model, bool finite_slab, double thickness) {
-  const profiles::Preset* preset = profiles::find_preset("skin1");
-  profiles::Medium medium = profiles::preset_medium(*preset);
-  if (finite_slab) medium.thickness_mm = thickness;
-  auto made = scene::make_sss_material(scene::CoefficientSource{medium}, model);
-  scene::Scene s;
-  scene::Material m;
-  m.metallic = 0.0f;
-  m.specular = 0.0f;
-  m.roughness = 1.0f;
-  m.sss = std::get<scene::SssMaterial>(made);
-  s.materials.push_back(m);
-  const float mm = 1e-3f;
-  s.meshes.push_back(scene::make_box({-60 * mm, -float(thickness) * mm, -60 * mm}, {60 * mm, 0.0f, 60 * mm}, 0));
-  s.instances.push_back({0, glm::mat4(1.0f), "slab"});
-  scene::Camera cam;
-  cam.projection = scene::Projection::Orthographic;
-  cam.xmag = 5 * mm;
-  cam.znear = 1 * mm;
-  cam.zfar = 1000 * mm;
-  cam.world = scene::look_at_world({0.0f, 100 * mm, 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
-  s.cameras.push_back(cam);
-  s.lights.push_back(scene::directional_light("light", {0.0f, 1.0f, 0.0f}, 1.0f));
-  return s;
-}
 
 // The mean exitant flux M = π · hdr over the 81 pixels, per channel.
 Rgb mean_exitance(const scene::Scene& s, Transmission t) {
@@ -78,7 +49,7 @@ Rgb mean_exitance(const scene::Scene& s, Transmission t) {
 
 TEST(ReferenceTransmission, SemiInfiniteProfileThroughAThinSlabIsRsTailEitherWay) {
   const double d = 2.0;
-  const scene::Scene s = slab_scene(profiles::Model::McTable, false, d);
+  const scene::Scene s = testing::back_lit_slab(profiles::Model::McTable, false, d);
   const profiles::RgbProfile profile = s.materials[0].sss.profile();
   const Rgb profile_m = mean_exitance(s, Transmission::Profile);
   const Rgb local_m = mean_exitance(s, Transmission::Local);
@@ -98,7 +69,7 @@ TEST(ReferenceTransmission, SemiInfiniteProfileThroughAThinSlabIsRsTailEitherWay
 
 TEST(ReferenceTransmission, SlabProfileTransmitsItsTotalEitherWay) {
   const double d = 2.0;
-  const scene::Scene s = slab_scene(profiles::Model::Multipole, true, d);
+  const scene::Scene s = testing::back_lit_slab(profiles::Model::Multipole, true, d);
   const profiles::RgbProfile profile = s.materials[0].sss.profile();
   const Rgb total = profile.total_transmittance();
   const Rgb profile_m = mean_exitance(s, Transmission::Profile);
@@ -112,7 +83,7 @@ TEST(ReferenceTransmission, SlabProfileTransmitsItsTotalEitherWay) {
 }
 
 TEST(ReferenceTransmission, ProbeRefusesTheRealTimeSwitches) {
-  const scene::Scene s = slab_scene(profiles::Model::McTable, false, 2.0);
+  const scene::Scene s = testing::back_lit_slab(profiles::Model::McTable, false, 2.0);
   ReferenceOptions o;
   o.width = 4;
   o.height = 4;

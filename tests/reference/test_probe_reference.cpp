@@ -244,30 +244,8 @@ TEST(ProbeReference, KernelFitConvergesToTheFitsClosedFormEdgeResponse) {
 // integral (K = T(ρ) for points whose normal faces away from n_o) against it, as a
 // Z-test per channel over the 9 x 9 central pixels (each an independent estimate).
 TEST(ProbeReference, ThinSlabLitFromBehindTransmitsTheMultipoleTotal) {
-  const profiles::Preset* preset = profiles::find_preset("skin1");
-  ASSERT_NE(preset, nullptr);
-  profiles::Medium medium = profiles::preset_medium(*preset);
-  medium.thickness_mm = 2.0;
-  auto made = scene::make_sss_material(scene::CoefficientSource{medium}, profiles::Model::Multipole);
-  ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(made));
-  scene::Scene s;
-  scene::Material m;
-  m.metallic = 0.0f;
-  m.specular = 0.0f;
-  m.roughness = 1.0f;
-  m.sss = std::get<scene::SssMaterial>(made);
-  s.materials.push_back(m);
-  const float mm = 1e-3f;
-  s.meshes.push_back(scene::make_box({-60 * mm, -2 * mm, -60 * mm}, {60 * mm, 0.0f, 60 * mm}, 0));
-  s.instances.push_back({0, glm::mat4(1.0f), "slab"});
-  scene::Camera cam;
-  cam.projection = scene::Projection::Orthographic;
-  cam.xmag = 5 * mm;
-  cam.znear = 1 * mm;
-  cam.zfar = 1000 * mm;
-  cam.world = scene::look_at_world({0.0f, 100 * mm, 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f});
-  s.cameras.push_back(cam);
-  s.lights.push_back(scene::directional_light("light", {0.0f, 1.0f, 0.0f}, 1.0f));
+  const scene::Scene s = testing::back_lit_slab(profiles::Model::Multipole, true, 2.0);
+  const scene::Material& m = s.materials[0];
   ReferenceOptions o;
   o.width = 9;
   o.height = 9;
