@@ -435,13 +435,7 @@ int main(int argc, char** argv) {
   if (app.count("--target-error") > 0 && !(std::isfinite(target_error) && target_error > 0.0 && target_error < 1.0))
     return usage("--target-error: expected a relative standard error in (0, 1), got " + message_number(target_error));
   if (walk && spp == 0 && target_error == 0.0) target_error = 0.02;
-  // The probe's default batches. At a light edge (builtin:edge, 0.1 mm pixels, every preset
-  // and model) 16 batches leave a standard error of ~0.45% of R_d on the lit pixels, and
-  // the worst of the frame's ~10^4 pixel-channels lies ~2.4 of them out: 0.83-1.14%
-  // measured, over the 1% goal. 24 scale the error by sqrt(16/24) = 0.82, to a
-  // worst of about 0.9%, in 1.5x the time (8-10 s there on 2 cores).
-  constexpr std::uint64_t kProbeBatches = 24;
-  if (probe && spp == 0 && target_error == 0.0) spp = kProbeBatches;
+  if (probe && spp == 0 && target_error == 0.0) spp = reference::kDefaultProbeBatches;  // its comment: why 24
   if (app.count("--target-error") > 0 && spp == 1)
     return usage("--spp: a target error needs at least 2 samples per pixel to measure the noise, got 1");
   reference::TileSpec tile;
@@ -530,23 +524,11 @@ int main(int argc, char** argv) {
       return kExitRuntime;
     }
     probe = choice.estimator == reference::Estimator::Probe;
-    if (probe) spp = kProbeBatches;
-    diffusion.spacing_mfp = choice.spacing_mfp;
-    if (!quiet) {
-      char what[160], why[320];
-      if (probe)
-        std::snprintf(what, sizeof what, "probe (%llu batches per pixel)", (unsigned long long)kProbeBatches);
-      else
-        std::snprintf(what, sizeof what, "octree at spacing %.3g mfp (%.3g points)", choice.spacing_mfp,
-                      choice.planned_points);
-      std::snprintf(why, sizeof why,
-                    "the pixels' median footprint on the surface is %.3g mm, the octree's point spacing %.3g mm at "
-                    "--spacing %.3g (median ratio %.3g over %zu subsurface pixels)%s",
-                    choice.footprint_mm, choice.spacing_mm, spacing, choice.ratio, choice.pixels,
-                    probe ? "; points as dense as the pixels would exceed --max-points" : "");
-      std::cerr << "sss-reference: note: --estimator auto chose " << what << ": "
-                << (choice.pixels ? why : "no pixel sees a medium") << "; --estimator octree|probe to choose\n";
-    }
+    if (probe) spp = reference::kDefaultProbeBatches;
+    if (!quiet)
+      std::cerr << "sss-reference: note: --estimator auto chose " << reference::describe(choice, spacing)
+                << "; --estimator octree|probe to choose\n";
+    diffusion = reference::with_choice(diffusion, choice);
   }
   const int used_threads = threads > 0 ? threads : int(std::thread::hardware_concurrency());
   std::signal(SIGINT, on_interrupt);

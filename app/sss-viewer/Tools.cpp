@@ -93,21 +93,30 @@ std::string describe(const scene::Material& m) {
 
 // ---- ReferenceJob ----------------------------------------------------------------
 
-void ReferenceJob::start(scene::Scene scene, const reference::ReferenceOptions& options) {
+void ReferenceJob::start(scene::Scene scene, const reference::ReferenceOptions& options, bool choose) {
   cancel();
   {
     std::lock_guard lock(mutex_);
-    stage_ = "starting";
+    stage_ = choose ? "choosing" : "starting";
     fraction_ = 0.0;
     result_.reset();
     error_.clear();
+    chosen_.clear();
   }
   cancel_ = false;
   running_ = true;
-  worker_ = std::thread([this, s = std::move(scene), options] {
+  worker_ = std::thread([this, s = std::move(scene), options, choose] {
     try {
+      reference::ReferenceOptions o = options;
+      if (choose) {
+        const reference::EstimatorChoice choice = reference::choose_estimator(s, o);
+        o = reference::with_choice(o, choice);
+        std::lock_guard lock(mutex_);
+        chosen_ = reference::describe(choice, options.spacing_mfp);
+      }
+      if (cancel_) throw reference::Cancelled();
       reference::ReferenceImage img = reference::render_reference(
-          s, options,
+          s, o,
           [this](const char* stage, double f) {
             std::lock_guard lock(mutex_);
             stage_ = stage;
@@ -149,6 +158,11 @@ std::optional<reference::ReferenceImage> ReferenceJob::take() {
   std::optional<reference::ReferenceImage> out = std::move(result_);
   result_.reset();
   return out;
+}
+
+std::string ReferenceJob::chosen() const {
+  std::lock_guard lock(mutex_);
+  return chosen_;
 }
 
 std::string ReferenceJob::take_error() {
@@ -542,9 +556,13 @@ void ViewerTools::start_reference(const renderer::Renderer& r, const LiveState& 
   o.max_solid_angle = error_bound_;
   // Leave a core to the window when there are few.
   o.threads = int(std::max(2u, std::thread::hardware_concurrency()) - 1);
+  if (estimator_ == int(ReferenceEstimator::Probe)) {
+    o.estimator = reference::Estimator::Probe;
+    o.spp = reference::kDefaultProbeBatches;
+  }
   job_key_ = live_key(r, live);
   compare_error_.clear();
-  job_.start(std::move(s), o);
+  job_.start(std::move(s), o, estimator_ == int(ReferenceEstimator::Auto));
 }
 
 void ViewerTools::poll(renderer::Renderer& r, const LiveState& live) {
@@ -575,8 +593,16 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
   expand_ = false;
   if (!ImGui::CollapsingHeader("Compare with the CPU reference")) return;
 
-  ImGui::SliderFloat("spacing (mfp)", &spacing_mfp_, 0.25f, 2.0f, "%.2f");
-  ImGui::SliderFloat("error bound (sr)", &error_bound_, 0.05f, 1.0f, "%.2f");
+  ImGui::Combo("estimator", &estimator_, "auto\0octree\0probe\0");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("auto: as sss-reference does, per view: the octree, with finer points where the "
+                      "pixels are finer than its spacing, or the per-pixel probe where that many points "
+                      "would not fit. probe: %llu batches per pixel, no point spacing, slower.",
+                      (unsigned long long)reference::kDefaultProbeBatches);
+  if (estimator_ != int(ReferenceEstimator::Probe)) {
+    ImGui::SliderFloat("spacing (mfp)", &spacing_mfp_, 0.25f, 2.0f, "%.2f");
+    ImGui::SliderFloat("error bound (sr)", &error_bound_, 0.05f, 1.0f, "%.2f");
+  }
   if (job_.running()) {
     ImGui::ProgressBar(float(job_.fraction()), ImVec2(-1, 0), job_.progress().c_str());
     if (ImGui::Button("Cancel")) job_.cancel();
@@ -584,10 +610,15 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
     start_reference(r, live);
   }
   if (!compare_error_.empty()) ImGui::TextColored(kRed, "%s", compare_error_.c_str());
+  if (const std::string chose = job_.chosen(); !chose.empty()) ImGui::TextWrapped("auto chose %s", chose.c_str());
   bool stale = false;
   if (reference_) {
     const reference::ReferenceStats& st = reference_->stats;
-    ImGui::Text("reference: %zu points, %.1f s", st.points, st.total_ms / 1000.0);
+    if (st.spp > 0)
+      ImGui::Text("reference: probe, %llu batches, frame's relative standard error %.2f%%, %.1f s",
+                  (unsigned long long)st.spp, 100.0 * st.relative_standard_error, st.total_ms / 1000.0);
+    else
+      ImGui::Text("reference: %zu points, %.1f s", st.points, st.total_ms / 1000.0);
     stale = live_key(r, live) != reference_key_;
     if (stale) ImGui::TextColored(kYellow, "The view or a material changed since: render again.");
   }

@@ -62,7 +62,9 @@ class ReferenceJob {
   ReferenceJob(const ReferenceJob&) = delete;
   ReferenceJob& operator=(const ReferenceJob&) = delete;
 
-  void start(scene::Scene scene, const reference::ReferenceOptions& options);
+  // choose: pick the estimator for this view first (reference::choose_estimator, as
+  // sss-reference --estimator auto does), then render with it.
+  void start(scene::Scene scene, const reference::ReferenceOptions& options, bool choose = false);
   void cancel();  // waits for the worker to stop
   bool running() const { return running_.load(); }
   // "points 42%" while running.
@@ -71,6 +73,8 @@ class ReferenceJob {
   // The finished image, once (then empty); or the error of a failed run.
   std::optional<reference::ReferenceImage> take();
   std::string take_error();
+  // With choose: what was chosen and why, once chosen (else empty).
+  std::string chosen() const;
 
  private:
   std::thread worker_;
@@ -80,6 +84,7 @@ class ReferenceJob {
   double fraction_ = 0.0;
   std::optional<reference::ReferenceImage> result_;
   std::string error_;
+  std::string chosen_;
 };
 
 class ViewerTools {
@@ -94,6 +99,14 @@ class ViewerTools {
   // renderer draws now (same camera, size, exposure, materials and lights).
   void start_reference(const renderer::Renderer& r, const LiveState& live);
   bool reference_running() const { return job_.running(); }
+  // The panel's estimator: auto (the default: choose per view, as sss-reference does),
+  // the octree at the spacing slider's value, or the probe at its default batches.
+  enum class ReferenceEstimator { Auto, Octree, Probe };
+  void set_reference_estimator(ReferenceEstimator e) { estimator_ = int(e); }
+  // Auto's choice for the last reference started ("octree at spacing ...: ..."), once made.
+  std::string reference_choice() const { return job_.chosen(); }
+  // The finished reference poll() took, if any.
+  const std::optional<reference::ReferenceImage>& reference() const { return reference_; }
   // Takes a finished reference and runs a comparison that is due (a new reference or
   // ground truth, the Compare button) once the frame is drawn at full size. draw() calls
   // it every frame; tests call it directly.
@@ -197,6 +210,7 @@ class ViewerTools {
   bool show_open_ = false;  // expand the window (and its Open section) at the next draw
 
   ReferenceJob job_;
+  int estimator_ = int(ReferenceEstimator::Auto);
   float spacing_mfp_ = 0.5f;
   float error_bound_ = 0.3f;
   std::string job_key_;                          // the state the running job renders

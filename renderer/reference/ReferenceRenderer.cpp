@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <limits>
 #include <cmath>
 #include <memory>
@@ -303,6 +304,33 @@ EstimatorChoice choose_estimator(const scene::Scene& s, const ReferenceOptions& 
   choice.estimator = !ratios.empty() && choice.ratio < 1.0 && !fits ? Estimator::Probe : Estimator::Octree;
   if (choice.estimator == Estimator::Probe) choice.spacing_mfp = o.spacing_mfp;
   return choice;
+}
+
+ReferenceOptions with_choice(ReferenceOptions o, const EstimatorChoice& choice) {
+  o.estimator = choice.estimator;
+  o.spacing_mfp = choice.spacing_mfp;
+  if (choice.estimator == Estimator::Probe) {
+    o.spp = kDefaultProbeBatches;
+    o.target_error = 0.0;
+  }
+  return o;
+}
+
+std::string describe(const EstimatorChoice& choice, double asked_spacing_mfp) {
+  const bool probe = choice.estimator == Estimator::Probe;
+  char what[160], why[400];
+  if (probe)
+    std::snprintf(what, sizeof what, "probe (%llu batches per pixel)", (unsigned long long)kDefaultProbeBatches);
+  else
+    std::snprintf(what, sizeof what, "octree at spacing %.3g mfp (%.3g points)", choice.spacing_mfp,
+                  choice.planned_points);
+  if (choice.pixels == 0) return std::string(what) + ": no pixel sees a medium";
+  std::snprintf(why, sizeof why,
+                "the pixels' median footprint on the surface is %.3g mm, the octree's point spacing %.3g mm at "
+                "--spacing %.3g (median ratio %.3g over %zu subsurface pixels)%s",
+                choice.footprint_mm, choice.spacing_mm, asked_spacing_mfp, choice.ratio, choice.pixels,
+                probe ? "; points as dense as the pixels would exceed --max-points" : "");
+  return std::string(what) + ": " + why;
 }
 
 ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o,

@@ -201,6 +201,22 @@ struct EstimatorChoice {
 // Throws as render_reference for a scene without a camera or with broken meshes.
 EstimatorChoice choose_estimator(const scene::Scene& scene, const ReferenceOptions& options);
 
+// The probe's batches per pixel where nothing else says (auto's pick, sss-reference
+// --estimator probe, the viewer's Compare panel). At a light edge (builtin:edge, 0.1 mm
+// pixels, every preset and model) 16 batches leave a standard error of ~0.45% of R_d on
+// the lit pixels, and the worst of the frame's ~10^4 pixel-channels lies ~2.4 of them
+// out: 0.83-1.14% measured, over issue 17's 1% goal. 24 scale the error by
+// sqrt(16/24) = 0.82, to a worst of about 0.9%, in 1.5x the time (8-10 s there on 2 cores).
+inline constexpr std::uint64_t kDefaultProbeBatches = 24;
+
+// `options` as `choice` says: its estimator, the octree's spacing, and for the probe
+// kDefaultProbeBatches with no target error.
+ReferenceOptions with_choice(ReferenceOptions options, const EstimatorChoice& choice);
+// What was chosen and why, in one line, e.g. "octree at spacing 0.223 mfp (1.48e+05
+// points): the pixels' median footprint on the surface is 0.598 mm, ...". `asked_spacing`
+// is the spacing the choice started from (options.spacing_mfp before with_choice).
+std::string describe(const EstimatorChoice& choice, double asked_spacing_mfp);
+
 // Throws std::invalid_argument for unusable options or scenes (no camera, zero size,
 // bad spacing, too many points; the message names the option), Cancelled when `cancel`
 // becomes true (checked between rows and stages), std::runtime_error for Embree failures.

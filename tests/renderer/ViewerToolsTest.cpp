@@ -677,6 +677,45 @@ TEST_F(ViewerCompare, LogRatioViewOfTheFrameAgainstTheReference) {
   std::filesystem::remove(path);
 }
 
+// The panel's estimator: auto chooses per view as sss-reference does (the same choice,
+// said in the panel); the probe renders at its default batches with a variance.
+TEST_F(ViewerCompare, ReferenceEstimatorAutoChoosesAsTheCliAndTheProbeCanBeAsked) {
+  const scene::Scene scene = scene::sphere_scene();
+  renderer::Renderer r(ctx(), scene, renderer::testing::small_options(48, 27));
+  r.render_frame();
+  ViewerTools tools(ctx());
+  const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 48, 27};
+  auto wait = [&] {
+    for (int i = 0; i < 1200 && tools.reference_running(); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ASSERT_FALSE(tools.reference_running());
+    tools.poll(r, live);
+    ASSERT_TRUE(tools.compare_error().empty()) << tools.compare_error();
+    ASSERT_TRUE(tools.reference().has_value());
+  };
+  tools.start_reference(r, live);  // auto is the default
+  wait();
+  // What sss-reference --estimator auto would choose for this view.
+  reference::ReferenceOptions o;
+  o.width = 48;
+  o.height = 27;
+  scene::Scene view = scene;
+  view.cameras = {r.camera()};
+  const reference::EstimatorChoice choice = reference::choose_estimator(view, o);
+  EXPECT_EQ(choice.estimator, reference::Estimator::Octree);  // 48x27 px over a 30 mm sphere
+  EXPECT_EQ(tools.reference_choice(), reference::describe(choice, o.spacing_mfp));
+  EXPECT_GT(tools.reference()->stats.points, 0u);
+  EXPECT_EQ(tools.reference()->stats.spp, 0u);
+
+  tools.set_reference_estimator(ViewerTools::ReferenceEstimator::Probe);
+  tools.start_reference(r, live);
+  wait();
+  EXPECT_TRUE(tools.reference_choice().empty());
+  EXPECT_EQ(tools.reference()->stats.spp, reference::kDefaultProbeBatches);
+  EXPECT_EQ(tools.reference()->variance.width, 48);
+  EXPECT_TRUE(tools.metrics().has_value());
+}
+
 // A truth that is not of this view's size, one that is not there, its variance instead
 // of its mean, a PNG: a message naming the file, nothing loaded, nothing compared.
 TEST_F(ViewerCompare, AGroundTruthThatDoesNotFitIsRefusedWithAMessage) {
