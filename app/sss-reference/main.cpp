@@ -277,7 +277,7 @@ int main(int argc, char** argv) {
       "sss-reference"};
   std::string scene_name = std::string(scene::kDefaultScene);
   std::string out, png, method = "diffusion", estimator = "auto", variance, tile_text, summary;
-  std::string kernel = "exact", shadows = "ray-traced", transmission = "profile";
+  std::string kernel = "exact", shadows = "ray-traced", transmission = "profile", thickness = "ray-cast";
   int width = 640, height = 360, threads = 0, shadow_map_size = 1024;
   double spacing = 0.5, error_bound = 0.3, target_error = 0.0;
   std::size_t max_points = 8'000'000;
@@ -325,8 +325,12 @@ int main(int argc, char** argv) {
                  "away from a light given E (-n.l) T(d) / R_d, d ray-cast towards the light, T(d) R's tail beyond "
                  "d), or off (far side dark, nothing transmitted: sss-viewer --transmission off); the error "
                  "budget's transmission link");
+  app.add_option("--thickness-from", thickness,
+                 "diffusion, --transmission local: the thickness d towards each light, ray-cast (default: the last "
+                 "surface on the light's line) or shadow-map (read as sss-viewer reads it from the light's "
+                 "unbiased shadow map at --shadow-map-size; the error budget's thickness link)");
   app.add_option("--shadow-map-size", shadow_map_size,
-                 "diffusion --shadows shadow-map: texels a side (default 1024, as sss-viewer's)")
+                 "diffusion --shadows shadow-map or --thickness-from shadow-map: texels a side (default 1024, as sss-viewer's)")
       ->check(CLI::Range(1, 16384));
   app.add_flag("--brute-force", brute, "diffusion: sum every irradiance point at every pixel (no octree)");
   app.add_option("--spp", spp,
@@ -397,7 +401,8 @@ int main(int argc, char** argv) {
     bool wants_probe = false, wants_octree = false;
     for (const char* name : {"--spp", "--target-error", "--variance", "--summary", "--tile"})
       wants_probe = wants_probe || app.count(name) > 0;
-    for (const char* name : {"--spacing", "--max-points", "--error-bound", "--brute-force", "--transmission"})
+    for (const char* name : {"--spacing", "--max-points", "--error-bound", "--brute-force", "--transmission",
+                             "--thickness-from"})
       wants_octree = wants_octree || app.count(name) > 0;
     if (wants_octree) estimator = "octree";  // with probe options too: refused below, naming them
     else if (wants_probe) estimator = "probe";
@@ -411,12 +416,16 @@ int main(int argc, char** argv) {
     return usage("--transmission: expected profile, local or off, got '" + transmission + "'");
   if (app.count("--transmission") > 0 && (walk || probe))
     return usage("--transmission: applies to --method diffusion with --estimator octree only");
+  if (thickness != "ray-cast" && thickness != "shadow-map")
+    return usage("--thickness-from: expected ray-cast or shadow-map, got '" + thickness + "'");
+  if (app.count("--thickness-from") > 0 && transmission != "local")
+    return usage("--thickness-from: applies to --transmission local only (the other transmissions use no thickness)");
   for (const char* name : {"--kernel", "--shadows", "--shadow-map-size"})
     if (app.count(name) > 0 && walk)
       return usage(std::string(name) + ": applies to --method diffusion only (the ground truth has neither a "
                                        "profile nor shadow maps)");
-  if (app.count("--shadow-map-size") > 0 && shadows != "shadow-map")
-    return usage("--shadow-map-size: applies to --shadows shadow-map only");
+  if (app.count("--shadow-map-size") > 0 && shadows != "shadow-map" && thickness != "shadow-map")
+    return usage("--shadow-map-size: applies to --shadows shadow-map or --thickness-from shadow-map only");
   for (const char* name : {"--spacing", "--max-points", "--error-bound", "--brute-force"})
     if (app.count(name) > 0 && (walk || probe))
       return usage(std::string(name) + ": applies to --method diffusion with --estimator octree only");
@@ -510,6 +519,7 @@ int main(int argc, char** argv) {
   diffusion.kernel = kernel == "fit" ? reference::KernelSource::Fit : reference::KernelSource::Exact;
   diffusion.shadows = shadows == "shadow-map" ? reference::Shadows::ShadowMap : reference::Shadows::RayTraced;
   diffusion.shadow_map_size = std::uint32_t(shadow_map_size);
+  diffusion.thickness = thickness == "shadow-map" ? reference::Thickness::ShadowMap : reference::Thickness::RayCast;
   diffusion.transmission = transmission == "local" ? reference::Transmission::Local
                            : transmission == "off" ? reference::Transmission::Off
                                                    : reference::Transmission::Profile;

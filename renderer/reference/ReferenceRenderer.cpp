@@ -98,7 +98,11 @@ void check_options(const ReferenceOptions& o) {
   if (std::uint64_t(o.width) * o.height > image::kMaxImagePixels)
     throw std::invalid_argument("width/height: at most " + std::to_string(image::kMaxImagePixels) +
                                 " pixels (what image files are read back with)");
-  if (o.shadows == Shadows::ShadowMap && (o.shadow_map_size < 1 || o.shadow_map_size > 16384))
+  if (o.thickness == Thickness::ShadowMap && o.transmission != Transmission::Local)
+    throw std::invalid_argument("thickness: shadow-map applies to transmission local only, not " +
+                                std::string(transmission_name(o.transmission)));
+  if ((o.shadows == Shadows::ShadowMap || o.thickness == Thickness::ShadowMap) &&
+      (o.shadow_map_size < 1 || o.shadow_map_size > 16384))
     throw std::invalid_argument("shadow map size: must be 1..16384, got " + std::to_string(o.shadow_map_size));
   if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
   if (o.estimator == Estimator::Probe) {
@@ -184,6 +188,7 @@ std::string_view shadows_name(Shadows s) { return s == Shadows::ShadowMap ? "sha
 std::string_view transmission_name(Transmission t) {
   return t == Transmission::Local ? "local" : t == Transmission::Off ? "off" : "profile";
 }
+std::string_view thickness_name(Thickness t) { return t == Thickness::ShadowMap ? "shadow-map" : "ray-cast"; }
 
 std::unique_ptr<profiles::RgbProfile> reference_profile(const scene::SssMaterial& sss, KernelSource kernel,
                                                         const profiles::ModelOptions& model_options) {
@@ -346,9 +351,12 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
 
   RayScene rays(s, o.threads);
   auto t0 = Clock::now();
-  std::unique_ptr<ShadowMaps> maps;
-  if (o.shadows == Shadows::ShadowMap)
-    arena.execute([&] { maps = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size); });
+  // The GPU's maps, for its shadows, its thickness or both; `shadow_maps` is what shadows.
+  std::unique_ptr<ShadowMaps> built;
+  if (o.shadows == Shadows::ShadowMap || o.thickness == Thickness::ShadowMap)
+    arena.execute([&] { built = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size); });
+  const ShadowMaps* shadow_maps = o.shadows == Shadows::ShadowMap ? built.get() : nullptr;
+  const ShadowMaps* thickness_maps = o.thickness == Thickness::ShadowMap ? built.get() : nullptr;
   std::vector<Group> groups = make_groups(s, rays, o, reporter);
   stats.profile_ms = ms_since(t0);
 
@@ -421,11 +429,13 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
       for (std::size_t i = 0; i < s.lights.size(); ++i) {
         // The GPU transmits only lights with a shadow map, which point lights lack.
         if (s.lights[i].type == scene::LightType::Point) continue;
-        const std::optional<LightArrival> a = light_arrival(s, i, p.position_mm, maps.get());
+        const std::optional<LightArrival> a = light_arrival(s, i, p.position_mm, shadow_maps);
         if (!a) continue;
         const double cosine = -double(glm::dot(n, a->l));
         if (!(cosine > 0.0)) continue;
-        const double d = thickness_towards(rays, p.position_mm, a->l, a->distance_mm);
+        const double d = thickness_maps ? thickness_maps->thickness_mm(i, p.position_mm)
+                                        : thickness_towards(rays, p.position_mm, a->l, a->distance_mm);
+        if (d < 0.0) continue;  // outside the light's map: the GPU transmits nothing
         for (int c = 0; c < 3; ++c) {
           const double t = slab ? slab_t[c] / slab_r[c] : tails[std::size_t(c)].mass_beyond(d) / tails[std::size_t(c)].total();
           const double f = fresnel ? profiles::fresnel_transmittance(cosine, eta[c]) : 1.0;
@@ -446,7 +456,7 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
                             p.position_mm = sp.position_mm;
                             // The G-buffer's normal: normal-mapped, not flipped (no viewer).
                             const glm::vec3 n = shading_normal(s, p, sp.normal);
-                            const DirectLight d = direct_light(s, rays, p, n, nullptr, maps.get(), entry_eta);
+                            const DirectLight d = direct_light(s, rays, p, n, nullptr, shadow_maps, entry_eta);
                             glm::dvec3 e = d.irradiance;
                             if (local) e += transmitted(p, n);
                             if (pre_post) e *= glm::sqrt(glm::dvec3(base_colour(s, p)));
@@ -498,8 +508,8 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
         const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
         float* px = out.hdr.pixel(int(x), int(y));
         if (!hit) continue;
-        VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only, maps.get());
-        if (o.applies_single_scattering()) add_single_scattering(s, rays, v, maps.get());
+        VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only, shadow_maps);
+        if (o.applies_single_scattering()) add_single_scattering(s, rays, v, shadow_maps);
         const int gi = group_of[v.point.material];
         glm::dvec3 L;
         if (gi >= 0) {

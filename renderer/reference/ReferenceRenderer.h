@@ -77,6 +77,13 @@ enum class Transmission {
 };
 std::string_view transmission_name(Transmission t);  // "profile" | "local" | "off"
 
+// Transmission::Local's thickness d towards each light: ray-cast (the last surface on the
+// light's line through the point), or read as the GPU reads it from the light's unbiased
+// shadow map at shadow_map_size (ShadowMaps::thickness_mm: the texel's depth moved along
+// its neighbours' gradient; -1 outside the map, where the GPU transmits nothing).
+enum class Thickness { RayCast, ShadowMap };
+std::string_view thickness_name(Thickness t);  // "ray-cast" | "shadow-map"
+
 struct ReferenceOptions {
   std::uint32_t width = 640;
   std::uint32_t height = 360;
@@ -122,6 +129,7 @@ struct ReferenceOptions {
   Shadows shadows = Shadows::RayTraced;
   std::uint32_t shadow_map_size = 1024;  // Shadows::ShadowMap: the GPU's (RenderOptions)
   Transmission transmission = Transmission::Profile;
+  Thickness thickness = Thickness::RayCast;  // Transmission::Local only
 };
 
 // The profile the reference sums for an SSS material: its model's exact R(r), or with

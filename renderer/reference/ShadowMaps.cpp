@@ -37,6 +37,7 @@ ShadowMaps::ShadowMaps(const scene::Scene& s, const RayScene& rays, std::uint32_
     map.frustum = scene::shadow_frustum(s.lights[l], bounds, size);
     if (!map.frustum.shadowed) continue;
     map.depth.assign(std::size_t(size) * size, 1.0f);
+    map.raw.assign(std::size_t(size) * size, 1.0f);
     const glm::mat4& inv = map.frustum.inverse;
     const glm::mat4& vp = map.frustum.view_proj;
     const float mm = mm_per_unit_;
@@ -67,9 +68,51 @@ ShadowMaps::ShadowMaps(const scene::Scene& s, const RayScene& rays, std::uint32_
         if (std::fabs(normal.z) > 1e-12f)
           slope = std::max(std::fabs(normal.x / normal.z), std::fabs(normal.y / normal.z));
         map.depth[std::size_t(y) * size + x] = z + scene::kShadowSlopeBias * slope;
+        map.raw[std::size_t(y) * size + x] = z;
       }
     });
   }
+}
+
+float ShadowMaps::unbiased_depth(std::size_t index, std::uint32_t x, std::uint32_t y) const {
+  const Map& m = maps_.at(index);
+  if (m.raw.empty() || x >= size_ || y >= size_) return 1.0f;
+  return m.raw[std::size_t(y) * size_ + x];
+}
+
+double ShadowMaps::thickness_mm(std::size_t index, const glm::vec3& p_mm) const {
+  if (index >= maps_.size() || maps_[index].raw.empty()) return -1.0;
+  const Map& m = maps_[index];
+  const glm::vec3 p = p_mm / mm_per_unit_;
+  const glm::vec3 s = project(m.frustum.view_proj, p);
+  const float u = s.x * 0.5f + 0.5f, v = s.y * 0.5f + 0.5f;
+  if (u < 0.0f || v < 0.0f || u > 1.0f || v > 1.0f || s.z > 1.0f || s.z < 0.0f) return -1.0;
+  const int last = int(size_) - 1;
+  const auto at = [&](int x, int y) {
+    return m.raw[std::size_t(std::clamp(y, 0, last)) * size_ + std::size_t(std::clamp(x, 0, last))];
+  };
+  const float fx = u * float(size_), fy = v * float(size_);
+  const int tx = std::clamp(int(fx), 0, last), ty = std::clamp(int(fy), 0, last);
+  const float d = at(tx, ty);
+  // The depth step to the neighbour on the side where it is smaller (the other side may
+  // lie on another triangle, or on the background at a silhouette).
+  const auto step = [&](int ax, int ay) {
+    const float back = d - at(tx - ax, ty - ay), ahead = at(tx + ax, ty + ay) - d;
+    return std::fabs(back) < std::fabs(ahead) ? back : ahead;
+  };
+  float z = 1.0f;
+  if (d < 1.0f) z = d + step(1, 0) * (fx - (float(tx) + 0.5f)) + step(0, 1) * (fy - (float(ty) + 0.5f));
+  if (z >= s.z) {
+    // No surface on p's texel nearer the light than p: the middle of 0 and p's distance to
+    // the nearest surface on the texels around it (0 for a lit surface).
+    float nearest = 1.0f;
+    for (int j = -1; j <= 1; ++j)
+      for (int i = -1; i <= 1; ++i) nearest = std::min(nearest, at(tx + i, ty + j));
+    if (nearest >= s.z) return 0.0;
+    z = 0.5f * (nearest + s.z);
+  }
+  const glm::vec3 q = project(m.frustum.inverse, {s.x, s.y, std::max(z, 0.0f)});
+  return double(glm::length(p - q)) * double(mm_per_unit_);
 }
 
 float ShadowMaps::depth(std::size_t index, std::uint32_t x, std::uint32_t y) const {

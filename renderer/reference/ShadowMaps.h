@@ -14,6 +14,14 @@
 // (LESS_OR_EQUAL) with the 4x4 texels around it weighted (1-f, 1, 1, f)/3 per axis (the
 // 3x3 bilinear PCF), clamped to the map's edge; 1 outside the map. Point lights have no
 // map on the GPU, so no shadow here either; lights past SSS_MAX_LIGHTS are not shaded.
+//
+// Thickness (`--thickness-from shadow-map`): the GPU's transmission reads a second map of each
+// light without the slope-scaled bias (targets.light_depth) and turns it into the path
+// from P back to the surface nearest the light on P's texel, the texel's depth moved to
+// P's own position along the gradient of its neighbours (shaders/shared/thickness.glsl's
+// shadow_thickness, ported here line for line). Against the ray-cast thickness that is the
+// budget's thickness link: a texel's footprint and the gradient's plane instead of the
+// exact last surface on the light's line through P.
 #pragma once
 
 #include "renderer/reference/RayScene.h"
@@ -40,14 +48,22 @@ class ShadowMaps {
   // The filtered visibility of light `index` at p (world mm) with shading normal n (unit):
   // 1 for a light without a map.
   double visibility(std::size_t index, const glm::vec3& p_mm, const glm::vec3& n) const;
-  // The stored depth of texel (x, y) of light `index`'s map (tests).
+  // The path through the geometry from p (world mm) towards light `index`, as the GPU
+  // reads it from the unbiased map (above), in mm: 0 where nothing lies between p and the
+  // light; -1 where p is outside the map or the light has no map (the GPU then transmits
+  // nothing from it).
+  double thickness_mm(std::size_t index, const glm::vec3& p_mm) const;
+  // The stored depth of texel (x, y) of light `index`'s map (tests); unbiased: the
+  // thickness map's.
   float depth(std::size_t index, std::uint32_t x, std::uint32_t y) const;
+  float unbiased_depth(std::size_t index, std::uint32_t x, std::uint32_t y) const;
   std::uint32_t size() const { return size_; }
 
  private:
   struct Map {
     scene::ShadowFrustum frustum;
     std::vector<float> depth;  // size², row y = NDC y from -1 up; empty without a map
+    std::vector<float> raw;    // the same without the slope-scaled bias (thickness)
   };
   std::vector<Map> maps_;
   std::uint32_t size_ = 0;

@@ -95,6 +95,12 @@ TEST(SssReferenceApp, AutoEstimatorSaysWhatItChoseAndRendersWithIt) {
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_EQ(t.err.find("--estimator auto chose"), std::string::npos) << t.err;
   EXPECT_NE(t.err.find("irradiance points"), std::string::npos) << "not the octree's stats: " << t.err;
+  // So does --thickness (ShadowMaps.Thickness* checks what it reads), with its map's size.
+  const CliRun m = reference("builtin:sphere --width 16 --height 9 --transmission local --thickness-from shadow-map "
+                             "--shadow-map-size 256 --stats --out " + bunny.string());
+  ASSERT_EQ(m.code, 0) << m.err;
+  EXPECT_EQ(m.err.find("--estimator auto chose"), std::string::npos) << m.err;
+  EXPECT_NE(m.err.find("irradiance points"), std::string::npos) << "not the octree's stats: " << m.err;
   const CliRun q = reference("builtin:bunny --width 16 --height 9 --quiet --out " + bunny.string());
   ASSERT_EQ(q.code, 0) << q.err;
   EXPECT_EQ(q.err.find("note"), std::string::npos) << "--quiet prints no note: " << q.err;

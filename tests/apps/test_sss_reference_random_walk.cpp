@@ -282,7 +282,11 @@ TEST(SssReferenceProbe, WritesMeanVarianceAndSummaryAndRefusesOctreeOptions) {
       {octree + " --transmission sideways", "--transmission"},
       {probe + " --transmission local", "--transmission"},
       {"builtin:sphere --method random-walk --transmission off --spp 2 --quiet --out " + out, "--transmission"},
+      {octree + " --thickness-from shadow-map", "--thickness-from"},  // without --transmission local
+      {octree + " --transmission local --thickness-from sonar", "--thickness-from"},
+      {probe + " --thickness-from shadow-map", "--thickness-from"},
       {octree + " --shadow-map-size 512", "--shadow-map-size"},
+      {octree + " --transmission local --thickness-from shadow-map --shadow-map-size 0", "--shadow-map-size"},
       {octree + " --shadows shadow-map --shadow-map-size 0", "--shadow-map-size"},
       {"builtin:sphere --method random-walk --kernel fit --spp 2 --quiet --out " + out, "--kernel"},
       {"builtin:sphere --method random-walk --shadows shadow-map --spp 2 --quiet --out " + out, "--shadows"},

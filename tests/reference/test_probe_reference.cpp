@@ -339,8 +339,8 @@ TEST(ChooseEstimator, FootprintMatchesClosedFormsAndPicksByIt) {
 // px of 0.1 mm, the CLI's default 24 batches, every preset and model; prints the worst
 // error against the exact M(x) in % of R_d and the time. Run with
 //   build/tests/test_reference --gtest_also_run_disabled_tests --gtest_filter='ProbeStudy.*'
-// The CLI's default batches (app/sss-reference/main.cpp says why 24).
-constexpr std::uint64_t kCliBatches = 24;
+// The CLI's default batches (ReferenceRenderer.h says why 24).
+constexpr std::uint64_t kCliBatches = kDefaultProbeBatches;
 // SSS_STUDY_PROBE_ONLY=1 leaves the octree out (on media of short mean free path its
 // default points over the whole 200 mm block take minutes a model).
 TEST(ProbeStudy, DISABLED_EdgeGoalEveryPresetAndModel) {

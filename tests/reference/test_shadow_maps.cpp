@@ -118,6 +118,66 @@ TEST(ShadowMaps, VisibilityIsTheMeanOfNineBilinearComparisonTaps) {
   EXPECT_GT(partial, 5);
 }
 
+// The thickness the GPU's transmission reads (thickness.glsl, ported as thickness_mm):
+// through the block along the light, from a point on its bottom face, is the block's
+// depth over the light's cosine, 10 mm / cos θ, exactly: the top face is one plane, so
+// the texel's depth moved along its neighbours' gradient lands on it wherever the point
+// projects. On the lit top face nothing lies between: 0 where the light is normal to it,
+// and where it is tilted, half the depth step to a neighbouring texel (the GPU's reading
+// of a surface it grazes, thickness.glsl; bound below). Under the plate it is the path
+// to the plate's top, (6 mm − y) / cos θ (the air gap counts, as for the GPU: the map
+// stores the first surface the light meets). Tolerance: 1e-3 mm, a hundred times float's resolution of
+// the map's ~100 mm depth range (3 r), whatever the texel size.
+TEST(ShadowMaps, ThicknessIsThePathBackToTheFirstSurfaceTheLightMeets) {
+  for (double theta_deg : {0.0, 20.0, 45.0}) {
+    const double theta = theta_deg * 3.14159265358979323846 / 180.0;
+    const glm::vec3 dir(float(std::sin(theta)), float(-std::cos(theta)), 0.0f);
+    for (const bool plate : {false, true}) {
+      const scene::Scene s = scene_with(dir, plate);
+      const RayScene rays(s, 1);
+      const ShadowMaps maps(s, rays, 64);
+      SCOPED_TRACE(std::to_string(theta_deg) + (plate ? " deg, plate" : " deg"));
+      // The light's line from a point of height y (mm) reaches the plate's top (y = 6) at
+      // x - (6 - y) tan θ: under the plate when that is < 0. Points within 3 mm (three
+      // texels) of the plate's edge are left out: there the map's texels straddle it.
+      const double tan_t = std::tan(theta);
+      const double texel_mm = 2.0 * s.bounds().radius() / kMm / 64.0;  // the fit spans 2 r (ShadowFrustum)
+      int checked = 0;
+      for (float x : {-12.0f, -6.0f, 2.0f, 5.0f, 6.3f, 8.0f, 15.0f})
+        for (float z : {-8.0f, -1.7f, 0.0f, 4.1f, 8.0f})
+          for (const float y : {-10.0f, 0.0f}) {
+            const double at_plate = x - (6.0 - y) * tan_t, entry = x + y * tan_t;  // entry: on the top face
+            if (entry < -18.0 || (plate && std::fabs(at_plate) < 3.0)) continue;
+            const bool under = plate && at_plate < 0.0 && at_plate > -28.0;
+            const double got = maps.thickness_mm(0, {x, y, z});
+            if (!under && y == 0.0f) {
+              // Lit: the map holds nothing nearer the light on P's texel, so (as the GPU)
+              // half the depth drop to the nearest of the 3x3 texel centres around it, at
+              // most 1.5 texels from P along each axis: ≤ ½ · 1.5√2 · texel · tan θ.
+              EXPECT_GE(got, 0.0) << "lit, x " << x << " z " << z;
+              EXPECT_LE(got, 0.75 * std::sqrt(2.0) * texel_mm * tan_t + 1e-3) << "lit, x " << x << " z " << z;
+            } else {
+              const double expected = under ? (6.0 - y) / std::cos(theta) : -y / std::cos(theta);
+              EXPECT_NEAR(got, expected, 1e-3) << "x " << x << " y " << y << " z " << z;
+            }
+            ++checked;
+          }
+      EXPECT_GT(checked, 30);
+      EXPECT_EQ(maps.thickness_mm(0, {500.0f, 0.0f, 0.0f}), -1.0);  // outside the map
+    }
+  }
+  // A light without a map (point) and one past the shaded ones: no thickness, as on the GPU.
+  scene::Scene s = scene_with(glm::vec3(0.0f, -1.0f, 0.0f), false);
+  scene::Light bulb;
+  bulb.name = "bulb";
+  bulb.type = scene::LightType::Point;
+  s.lights.push_back(bulb);
+  const RayScene rays(s, 1);
+  const ShadowMaps maps(s, rays, 32);
+  EXPECT_EQ(maps.thickness_mm(1, {0.0f, -10.0f, 0.0f}), -1.0);
+  EXPECT_EQ(maps.thickness_mm(7, {0.0f, -10.0f, 0.0f}), -1.0);
+}
+
 // Point lights have no shadow map on the GPU (no cube maps): nothing shadows them here
 // either, and lights past the GPU's SSS_MAX_LIGHTS are not shaded at all.
 TEST(ShadowMaps, PointLightsAreUnshadowedAndExtraLightsUnshaded) {

@@ -112,17 +112,23 @@ std::string model_of(const scene::Scene& s) {
   return out.empty() ? "none" : out;
 }
 
-// The error budget (DESIGN.md §1), GPU frame minus ground truth split into four links,
+// The error budget (DESIGN.md §1), GPU frame minus ground truth split into six links,
 // each the difference of two images that differ in one approximation:
-//   1 model    diffusion reference (exact R, ray-traced shadows) - ground truth
-//   2 fit      reference with the GPU's Gaussian fit - diffusion reference
-//   3 lighting reference with the fit, lit by the GPU's shadow maps - reference with the fit
-//   4 blur     GPU frame - reference with the fit and the shadow maps
-// The differences telescope: link 1 + 2 + 3 + 4 = GPU - truth, pixel for pixel. Each is
+//   1 model        diffusion reference (exact R, ray-traced shadows) - ground truth
+//   2 fit          reference with the GPU's Gaussian fit - diffusion reference
+//   3 lighting     reference with the fit, lit by the GPU's shadow maps - reference with the fit
+//   4 transmission that, with the GPU's transmission rule (the far side dark, E T(d) / R_d at
+//                  points facing away from a light, d ray-cast: --transmission local) - that
+//                  with the profile's own (the far side's points summed)
+//   5 thickness    that, with d read from the shadow map as the GPU reads it - d ray-cast
+//   6 blur         GPU frame - the reference with the fit, the shadow maps and the GPU's
+//                  transmission and thickness (the real-time blur, fp16 targets)
+// The differences telescope: link 1 + ... + 6 = GPU - truth, pixel for pixel. Each is
 // a relative RMSE over the same pixels, normalised by the truth's signal (its noise
 // taken off); bias is the signed Σ difference / Σ truth, which adds up exactly.
+constexpr int kLinks = 6;
 struct Links {
-  double rmse[4] = {0, 0, 0, 0}, bias[4] = {0, 0, 0, 0};
+  double rmse[kLinks] = {}, bias[kLinks] = {};
   double total = 0.0, total_bias = 0.0;  // GPU - truth
 };
 
@@ -141,12 +147,14 @@ struct Row {
   // The GPU frame against the diffusion reference on the scattered light (issue 17's bunny goal).
   double gpu_vs_reference_scattered = 0.0;
   // The limit, derived (tests/golden/reference/tolerances.json, "_comment"): by the triangle
-  // inequality ‖G − D‖ ≤ ‖F − D‖ + ‖S − F‖ + ‖G − S‖ (D reference, F with the fit, S also
-  // lit by the shadow maps, G the frame; relative to ‖D‖ over the compared pixels). The
-  // fit and lighting links are CPU renders, computed in every run; the blur link is the
-  // GPU's, bounded by the value stored at bless plus 3 q, q the reference's own quadrature
-  // noise (S rendered with another seed of its point sets: what the reference cannot resolve).
-  double fit_d = 0.0, lit_d = 0.0, blur_d = 0.0, quadrature = 0.0, blur_bound = 0.0;
+  // inequality ‖G − D‖ ≤ ‖F − D‖ + ‖S − F‖ + ‖L − S‖ + ‖M − L‖ + ‖G − M‖ (D reference, F
+  // with the fit, S also lit by the shadow maps, L also with the GPU's transmission rule,
+  // M also with the shadow map's thickness, G the frame; relative to ‖D‖ over the compared
+  // pixels). The fit, lighting, transmission and thickness links are CPU renders, computed
+  // in every run; the blur link is the GPU's, bounded by
+  // the value stored at bless plus 3 q, q the reference's own quadrature noise (S rendered
+  // with another seed of its point sets: what the reference cannot resolve).
+  double fit_d = 0.0, lit_d = 0.0, trans_d = 0.0, thick_d = 0.0, blur_d = 0.0, quadrature = 0.0, blur_bound = 0.0;
   double limit = 0.0;
   bool pass = false;
   double gpu_ms = 0.0, reference_ms = 0.0;
@@ -183,12 +191,13 @@ DiffSums difference(const image::Image& a, const image::Image& b, const std::vec
   return d;
 }
 
-// The four links of the chain truth -> reference -> with the fit -> lit by the shadow maps
-// -> GPU over `mask` (Links above). `noise` is Σ over the mask of the truth's variance of
+// The six links of the chain truth -> reference -> with the fit -> lit by the shadow maps
+// -> with the GPU's transmission rule -> with its thickness -> GPU over `mask` (Links above). `noise` is Σ over the mask of the truth's variance of
 // the mean: E[Σ T²] = Σ T_true² + noise and E[Σ(x - T)²] = Σ(x - T_true)² + noise, so it is
 // taken off the signal, link 1 and the total. Nullopt when the truth has no signal there.
 std::optional<Links> budget_links(const image::Image& truth, double noise, const image::Image& reference,
-                                  const image::Image& fit, const image::Image& lit, const image::Image& gpu,
+                                  const image::Image& fit, const image::Image& lit, const image::Image& local,
+                                  const image::Image& local_map, const image::Image& gpu,
                                   const std::vector<std::uint8_t>& mask) {
   double signal = -noise, truth_sum = 0.0;
   for (std::size_t i = 0; i < mask.size(); ++i)
@@ -198,9 +207,9 @@ std::optional<Links> budget_links(const image::Image& truth, double noise, const
         truth_sum += truth.rgba[4 * i + ch];
       }
   if (!(signal > 0.0 && truth_sum > 0.0)) return std::nullopt;
-  const image::Image* chain[5] = {&truth, &reference, &fit, &lit, &gpu};
+  const image::Image* chain[kLinks + 1] = {&truth, &reference, &fit, &lit, &local, &local_map, &gpu};
   Links l;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < kLinks; ++k) {
     const DiffSums d = difference(*chain[k + 1], *chain[k], mask);
     l.rmse[k] = std::sqrt((k == 0 ? std::max(0.0, d.squares - noise) : d.squares) / signal);
     l.bias[k] = d.sum / truth_sum;
@@ -252,20 +261,25 @@ void write_report(const fs::path& path, const std::vector<Row>& rows, const nloh
        << (r.has_truth ? fixed(100.0 * r.reference_vs_truth, 1) + "%" : "—") << " | "
        << (r.has_truth ? fixed(100.0 * r.gpu_vs_truth, 1) + "%" : "—") << " |\n";
   md << "\n## The error budget\n\n"
-        "Each frame's distance from the ground truth, split into four links, each measured by switching one\n"
+        "Each frame's distance from the ground truth, split into six links, each measured by switching one\n"
         "approximation (DESIGN.md §1): **1 model** = diffusion reference − ground truth (the flat\n"
         "semi-infinite profile on this geometry, similarity, no directional or single-scattering terms);\n"
         "**2 fit** = the reference summing the GPU's Gaussian fit (`sss-reference --kernel fit`) − the\n"
         "reference; **3 lighting** = that, lit by the GPU's shadow maps and PCF rebuilt on the CPU\n"
-        "(`--shadows shadow-map --shadow-map-size 512`) − the reference with the fit; **4 blur** = the GPU\n"
-        "frame − the reference with the fit and the shadow maps (the real-time blur, the GPU's\n"
-        "transmission term with the shadow map's thickness, fp16 targets). Each is a relative RMSE over the\n"
+        "(`--shadows shadow-map --shadow-map-size 512`) − the reference with the fit; **4 transmission** =\n"
+        "that with the GPU's transmission rule (`--transmission local`: the far side's points dark, and each\n"
+        "point facing away from a light gets E (−n·l) T(d) / R_d, T the fit's tail beyond the thickness d,\n"
+        "ray-cast) − that with the profile's own (the far side's points summed with R or a slab's T);\n"
+        "**5 thickness** = that with d read from the light's shadow map as the GPU reads it\n"
+        "(`--thickness-from shadow-map`) − d ray-cast; **6 blur** = the GPU frame − the reference with the fit,\n"
+        "the shadow maps and the GPU's transmission and thickness (the real-time blur, fp16 targets).\n"
+        "Each is a relative RMSE over the\n"
         "same pixels (silhouettes left out), divided by the ground truth's signal with its noise taken off;\n"
-        "in brackets the bias, Σ difference / Σ truth. The four differences add up to GPU − truth pixel\n"
+        "in brackets the bias, Σ difference / Σ truth. The six differences add up to GPU − truth pixel\n"
         "for pixel, so the biases add up exactly; the RMSEs add in quadrature plus the links' cross terms:\n"
         "*left over* = total² − Σ link² (signed square root; positive where links push the same way).\n\n"
-        "| scene | mode | model | 1 model | 2 fit | 3 lighting | 4 blur | √Σ link² | GPU vs truth | left over | truth noise |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "| scene | mode | model | 1 model | 2 fit | 3 lighting | 4 transmission | 5 thickness | 6 blur | √Σ link² | GPU vs truth | left over | truth noise |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   auto pct = [](double v) { return fixed(100.0 * v, 1) + "%"; };
   auto link_cell = [&](double rmse, double bias) {
     return pct(rmse) + " (" + (bias >= 0.0 ? "+" : "") + fixed(100.0 * bias, 1) + "%)";
@@ -276,7 +290,7 @@ void write_report(const fs::path& path, const std::vector<Row>& rows, const nloh
     for (double l : r.whole.rmse) quad += l * l;
     const double left = r.whole.total * r.whole.total - quad;
     md << "| " << r.scene << " | " << r.mode << " | " << r.model;
-    for (int k = 0; k < 4; ++k) md << " | " << link_cell(r.whole.rmse[k], r.whole.bias[k]);
+    for (int k = 0; k < kLinks; ++k) md << " | " << link_cell(r.whole.rmse[k], r.whole.bias[k]);
     md << " | " << pct(std::sqrt(quad)) << " | " << link_cell(r.whole.total, r.whole.total_bias) << " | "
        << (left >= 0.0 ? "+" : "−") << pct(std::sqrt(std::fabs(left))) << " | " << pct(r.truth_noise) << " |\n";
   }
@@ -285,12 +299,12 @@ void write_report(const fs::path& path, const std::vector<Row>& rows, const nloh
         "specular term; the truth's specular is the diffusion reference's, the same code on the same ray):\n"
         "what subsurface scattering itself gets wrong. *GPU vs reference* is the frame against the\n"
         "diffusion reference (exact profile, ray-traced shadows) on the scattered light, relative RMSE.\n\n"
-        "| scene | mode | model | 1 model | 2 fit | 3 lighting | 4 blur | GPU vs truth | GPU vs reference |\n"
-        "|---|---|---|---|---|---|---|---|---|\n";
+        "| scene | mode | model | 1 model | 2 fit | 3 lighting | 4 transmission | 5 thickness | 6 blur | GPU vs truth | GPU vs reference |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     if (!r.has_budget) continue;
     md << "| " << r.scene << " | " << r.mode << " | " << r.model;
-    for (int k = 0; k < 4; ++k) md << " | " << pct(r.scattered.rmse[k]);
+    for (int k = 0; k < kLinks; ++k) md << " | " << pct(r.scattered.rmse[k]);
     md << " | " << link_cell(r.scattered.total, r.scattered.total_bias) << " | " << pct(r.gpu_vs_reference_scattered)
        << " |\n";
   }
@@ -326,18 +340,21 @@ void write_report(const fs::path& path, const std::vector<Row>& rows, const nloh
         "  raster of the objects (the lookup) instead of a screen blur.\n";
   md << "\n## How each limit is derived\n\n"
         "The limit on a row's relative RMSE against the reference is the sum of its links' bounds (the\n"
-        "triangle inequality ‖G − D‖ ≤ ‖F − D‖ + ‖S − F‖ + ‖G − S‖, all relative to the reference D over the\n"
-        "compared pixels): the fit and lighting links are CPU renders, computed in every run; the blur link\n"
-        "(the GPU frame G against S, the reference with the fit and the shadow maps) is bounded by the value\n"
+        "triangle inequality ‖G − D‖ ≤ ‖F − D‖ + ‖S − F‖ + ‖L − S‖ + ‖M − L‖ + ‖G − M‖, all relative to the\n"
+        "reference D over the compared pixels): the fit, lighting, transmission and thickness links are CPU\n"
+        "renders, computed in every run; the blur link (the GPU frame G against M, the reference with the fit,\n"
+        "the shadow maps and the GPU's transmission and thickness) is bounded by the value\n"
         "stored at bless (`blur_link` in tests/golden/reference/tolerances.json) plus 3 q, where q is the\n"
         "reference's own quadrature noise (S rendered again with another seed of its irradiance points;\n"
         "q = ‖S − S'‖/√2): a change of the frame smaller than that cannot be told from the reference's\n"
         "sampling. Both the blur bound and the limit are asserted.\n\n"
-        "| scene | mode | model | fit (computed) | lighting (computed) | blur (stored) | 3 q | limit | measured total | blur now |\n"
-        "|---|---|---|---|---|---|---|---|---|---|\n";
+        "| scene | mode | model | fit (computed) | lighting (computed) | transmission (computed) | thickness (computed) | blur (stored) | 3 q | limit | measured total | blur now |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows)
     md << "| " << r.scene << " | " << r.mode << " | " << r.model << " | " << fixed(100.0 * r.fit_d, 2) << "% | "
-       << fixed(100.0 * r.lit_d, 2) << "% | " << fixed(100.0 * (r.blur_bound - 3.0 * r.quadrature), 2) << "% | "
+       << fixed(100.0 * r.lit_d, 2) << "% | " << fixed(100.0 * r.trans_d, 2) << "% | "
+       << fixed(100.0 * r.thick_d, 2) << "% | "
+       << fixed(100.0 * (r.blur_bound - 3.0 * r.quadrature), 2) << "% | "
        << fixed(300.0 * r.quadrature, 2) << "% | " << fixed(100.0 * r.limit, 2) << "% | "
        << fixed(100.0 * r.m.relative_rmse, 2) << "% | " << fixed(100.0 * r.blur_d, 2) << "% |\n";
   md << "\n## Why each mode deviates\n\n";
@@ -407,10 +424,11 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
 
   // The references of one scene + model + size: the diffusion reference (D), the budget's
   // intermediate ones (F: the GPU's Gaussian fit summed, link 2; S: that lit by the GPU's
-  // shadow maps at the suite's 512², link 3), and S with another seed of the irradiance
-  // points (its difference from S is the reference's quadrature noise).
+  // shadow maps at the suite's 512², link 3; L: that with the GPU's transmission rule,
+  // link 4; M: that with the shadow map's thickness, link 5), and S with another seed of
+  // the irradiance points (its difference from S is the reference's quadrature noise).
   struct References {
-    reference::ReferenceImage exact, fit, lit, lit_seed2;
+    reference::ReferenceImage exact, fit, lit, local, local_map, lit_seed2;
   };
   std::map<std::string, References> references;
   // The stored ground truths, by short scene name: read, never rendered here.
@@ -476,6 +494,12 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
       ro.shadows = reference::Shadows::ShadowMap;
       ro.shadow_map_size = small_options(c.width, c.height).shadow_map_size;
       r.lit = reference::render_reference(s, ro);
+      ro.transmission = reference::Transmission::Local;
+      r.local = reference::render_reference(s, ro);
+      ro.thickness = reference::Thickness::ShadowMap;
+      r.local_map = reference::render_reference(s, ro);
+      ro.thickness = reference::Thickness::RayCast;
+      ro.transmission = reference::Transmission::Profile;
       ro.seed = 2;
       r.lit_seed2 = reference::render_reference(s, ro);
     }
@@ -510,24 +534,28 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
       const Truth& truth = t->second;
       const image::Image& fit = refs.fit.hdr;
       const image::Image& lit = refs.lit.hdr;
+      const image::Image& local = refs.local.hdr;
+      const image::Image& local_map = refs.local_map.hdr;
       std::vector<std::uint8_t> mask(std::size_t(c.width) * c.height, 0);
       double noise = 0.0;
       for (std::size_t i = 0; i < mask.size(); ++i) {
         bool on = true;
-        for (const image::Image* im : std::initializer_list<const image::Image*>{&gpu_hdr, &truth.mean, &ref.hdr, &fit, &lit})
+        for (const image::Image* im : std::initializer_list<const image::Image*>{&gpu_hdr, &truth.mean, &ref.hdr, &fit, &lit, &local, &local_map})
           on = on && im->rgba[4 * i + 3] > image::kGeometryAlpha;
         mask[i] = on;
         if (on)
           for (int ch = 0; ch < 3; ++ch) noise += truth.variance.rgba[4 * i + ch];
       }
-      if (const auto whole = budget_links(truth.mean, noise, ref.hdr, fit, lit, gpu_hdr, mask)) {
+      if (const auto whole = budget_links(truth.mean, noise, ref.hdr, fit, lit, local, local_map, gpu_hdr, mask)) {
         row.whole = *whole;
         row.has_budget = true;
         const image::Image d_sc = image::subtract_rgb(ref.hdr, ref.specular);
         const image::Image g_sc = image::subtract_rgb(gpu_hdr, f.specular);
         if (const auto sc = budget_links(image::subtract_rgb(truth.mean, ref.specular), noise, d_sc,
                                          image::subtract_rgb(fit, refs.fit.specular),
-                                         image::subtract_rgb(lit, refs.lit.specular), g_sc, mask))
+                                         image::subtract_rgb(lit, refs.lit.specular),
+                                         image::subtract_rgb(local, refs.local.specular),
+                                         image::subtract_rgb(local_map, refs.local_map.specular), g_sc, mask))
           row.scattered = *sc;
         double ref_sc = 0.0;
         for (std::size_t i = 0; i < mask.size(); ++i)
@@ -541,6 +569,8 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
       // The derived limit's parts over the compared pixels (gpu_hdr's mask), relative to the reference.
       const image::Image& fit = refs.fit.hdr;
       const image::Image& lit = refs.lit.hdr;
+      const image::Image& local = refs.local.hdr;
+      const image::Image& local_map = refs.local_map.hdr;
       const image::Image& lit2 = refs.lit_seed2.hdr;
       std::vector<std::uint8_t> cmp(std::size_t(c.width) * c.height, 0);
       double ref_sq = 0.0;
@@ -552,7 +582,9 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
       ASSERT_GT(ref_sq, 0.0);
       row.fit_d = std::sqrt(difference(fit, ref.hdr, cmp).squares / ref_sq);
       row.lit_d = std::sqrt(difference(lit, fit, cmp).squares / ref_sq);
-      row.blur_d = std::sqrt(difference(f.hdr, lit, cmp).squares / ref_sq);
+      row.trans_d = std::sqrt(difference(local, lit, cmp).squares / ref_sq);
+      row.thick_d = std::sqrt(difference(local_map, local, cmp).squares / ref_sq);
+      row.blur_d = std::sqrt(difference(f.hdr, local_map, cmp).squares / ref_sq);
       row.quadrature = std::sqrt(difference(lit, lit2, cmp).squares / 2.0 / ref_sq);
     }
     if (bless) {
@@ -566,10 +598,11 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
     ASSERT_TRUE(tolerances[row.key].contains("blur_link")) << row.key << ": no blur_link in " << tolerance_path
                                                            << " (run tests/golden/bless.sh)";
     row.blur_bound = tolerances[row.key].at("blur_link").get<double>() + 3.0 * row.quadrature;
-    row.limit = row.fit_d + row.lit_d + row.blur_bound;
+    row.limit = row.fit_d + row.lit_d + row.trans_d + row.thick_d + row.blur_bound;
     row.pass = row.m.relative_rmse <= row.limit && row.blur_d <= row.blur_bound;
     EXPECT_LE(row.blur_d, row.blur_bound)
-        << row.key << ": the GPU's blur link (frame against the reference with the fit and the shadow maps) is "
+        << row.key << ": the GPU's blur link (frame against the reference with the fit, the shadow maps and the GPU's "
+        << "transmission and thickness) is "
         << row.blur_d << ", beyond the " << tolerances[row.key].at("blur_link").get<double>()
         << " stored at bless plus 3x the reference's quadrature noise " << row.quadrature << "; GPU, reference and "
         << "heat map written to " << out;
@@ -577,17 +610,20 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
     // on the metric's own pixels and normalisation: this checks that bookkeeping.
     EXPECT_LE(row.m.relative_rmse, row.limit)
         << row.key << ": relative RMSE " << row.m.relative_rmse << " against the reference exceeds the derived limit "
-        << row.limit << " (fit " << row.fit_d << " + lighting " << row.lit_d << " + blur bound " << row.blur_bound
+        << row.limit << " (fit " << row.fit_d << " + lighting " << row.lit_d << " + transmission " << row.trans_d << " + thickness " << row.thick_d
+        << " + blur bound " << row.blur_bound
         << "; measured " << tolerances[row.key].value("measured_relative_rmse", -1.0) << " at bless)";
     std::printf("[ %-36s ] rel RMSE %6.2f%% (limit %5.1f%%) SSIM %.4f  GPU %.1f ms  reference %.0f ms (%zu points)"
-                "  vs truth: reference %.1f%%, GPU %.1f%%  budget: model %.1f%% fit %.1f%% lighting %.1f%% blur %.1f%%"
-                " (total %.1f%%); scattered light: %.1f%% %.1f%% %.1f%% %.1f%% (total %.1f%%, GPU vs reference %.1f%%)\n",
+                "  vs truth: reference %.1f%%, GPU %.1f%%  budget: model %.1f%% fit %.1f%% lighting %.1f%% "
+                "transmission %.1f%% thickness %.1f%% blur %.1f%% (total %.1f%%); scattered light: %.1f%% %.1f%% "
+                "%.1f%% %.1f%% %.1f%% %.1f%% (total %.1f%%, GPU vs reference %.1f%%)\n",
                 row.key.c_str(), 100.0 * row.m.relative_rmse, 100.0 * row.limit, row.m.ssim, row.gpu_ms,
                 row.reference_ms, row.points, 100.0 * row.reference_vs_truth, 100.0 * row.gpu_vs_truth,
                 100.0 * row.whole.rmse[0], 100.0 * row.whole.rmse[1], 100.0 * row.whole.rmse[2],
-                100.0 * row.whole.rmse[3], 100.0 * row.whole.total, 100.0 * row.scattered.rmse[0],
-                100.0 * row.scattered.rmse[1], 100.0 * row.scattered.rmse[2], 100.0 * row.scattered.rmse[3],
-                100.0 * row.scattered.total,
+                100.0 * row.whole.rmse[3], 100.0 * row.whole.rmse[4], 100.0 * row.whole.rmse[5],
+                100.0 * row.whole.total, 100.0 * row.scattered.rmse[0], 100.0 * row.scattered.rmse[1],
+                100.0 * row.scattered.rmse[2], 100.0 * row.scattered.rmse[3], 100.0 * row.scattered.rmse[4],
+                100.0 * row.scattered.rmse[5], 100.0 * row.scattered.total,
                 100.0 * row.gpu_vs_reference_scattered);
     if (!row.pass || bless) {
       std::string file = row.key;
