@@ -32,11 +32,11 @@ struct SeparableKernel {
 //
 // Quadrature: every M above is an edge_response() integral (~1200 evaluations of R), and
 // the range alone takes ~30 bisection steps per channel, so a kernel costs ~1.4e5
-// evaluations of R. That is ~5 ms for the closed-form models but ~0.5 s for pbd, whose
-// R(r) is itself a 64-sample beam integral. Tabulated evaluates each channel's R once on
-// a log grid (kTabulatedNodesPerDecade nodes per decade from 1e-4·inner_radius to the
-// support, cubic log-log interpolation, the exact R outside the grid) and integrates the
-// table: ~9 ms instead of ~560 ms for pbd, and the weights differ from Exact's by < 4e-7
+// evaluations of R: cheap for the closed-form models, not for pbd, whose R(r) is itself a
+// 64-sample beam integral (docs/PROFILES.md, "Benchmarks", has both). Tabulated evaluates
+// each channel's R once on a log grid (kTabulatedNodesPerDecade nodes per decade from
+// 1e-4·inner_radius to the support, cubic log-log interpolation, the exact R outside the
+// grid) and integrates the table, and the weights differ from Exact's by < 4e-7
 // (absolute; they sum to 1, and the GPU stores them as floats), the range by < 1e-5
 // relative (tests/profiles/test_separable_kernel_quadrature.cpp, pbd and multipole).
 // Auto picks Tabulated for the models whose R is costly (pbd, multipole, qd) and Exact for

@@ -87,7 +87,7 @@ class GpuScene {
   // For each mesh without SSS UVs whose material did not scatter at construction and
   // does in `materials`: builds its UV atlas as load_scene would (scene::ensure_sss_atlases)
   // and uploads its vertices again with it (waiting for the device first). The atlas build
-  // runs on the calling thread (the bunny: 27 ms).
+  // runs on the calling thread (its cost: renderer/README.md, "Costs").
   void ensure_sss_uvs(const vk::Context& context, const std::vector<scene::Material>& materials);
 
  private:

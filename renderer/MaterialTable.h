@@ -32,10 +32,8 @@ struct MaterialProfile {
 // The GPU view of the scene's materials; profiles[i] is set for SSS materials. Throws
 // std::invalid_argument for more than SSS_MAX_MATERIALS materials or a bad tap count.
 // build_material_data is pure CPU work with no shared state: the viewer runs it on a
-// worker thread (6 ms for better-dipole, ~20 ms for pbd, per SSS material; the default
-// mc-table about 1.4x better-dipole: refit + upload 11.9 ms against 8.6 ms per material
-// change in a 700-frame bunny soak on lavapipe, 2 busy cores) and hands
-// the result to Renderer::set_materials(materials, data) on the render thread.
+// worker thread (its cost: renderer/README.md, "Costs") and hands the result to
+// Renderer::set_materials(materials, data) on the render thread.
 struct MaterialData {
   std::vector<shader::GpuMaterial> gpu;
   std::vector<std::optional<MaterialProfile>> profiles;  // one per material

@@ -183,7 +183,8 @@ struct Cancelled : std::runtime_error {
 // pixels are finer than the points (issue 17: builtin:edge at 0.1 mm pixels, 30% of R_d
 // for mc-table at the default spacing, where the probe's 16 batches give 0.84% in less
 // time); where each pixel covers a point or more the octree is as exact and far cheaper
-// (builtin:bunny at 160x90: within 0.24% of the probe in 1.6 s against 57 s). So, with r
+// (builtin:bunny at 160x90: within 0.24% of the probe, and 36x faster; README,
+// "sss-reference"). So, with r
 // the median over the frame's subsurface pixels of (the pixel's footprint on the surface)
 // / (the octree's spacing for its material):
 //   r >= 1: the octree at its spacing;
@@ -214,7 +215,8 @@ EstimatorChoice choose_estimator(const scene::Scene& scene, const ReferenceOptio
 // pixels, every preset and model) 16 batches leave a standard error of ~0.45% of R_d on
 // the lit pixels, and the worst of the frame's ~10^4 pixel-channels lies ~2.4 of them
 // out: 0.83-1.14% measured, over issue 17's 1% goal. 24 scale the error by
-// sqrt(16/24) = 0.82, to a worst of about 0.9%, in 1.5x the time (8-10 s there on 2 cores).
+// sqrt(16/24) = 0.82, to a worst of about 0.9%, in 1.5x the time (README, "sss-reference",
+// has the times).
 inline constexpr std::uint64_t kDefaultProbeBatches = 24;
 
 // `options` as `choice` says: its estimator, the octree's spacing, and for the probe

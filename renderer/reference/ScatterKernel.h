@@ -26,8 +26,8 @@
 // d far from it. Each cell holds the cubic through K at t = 0, 1/3, 2/3, 1; closer than
 // 2^-20 a to the kink K is K(a). The table agrees with the integral above to 1e-3
 // relative wherever K > 1e-6 K(0) (measured: 2e-5 against an independent polar
-// integral, tests/reference/test_scatter_kernel.cpp); about 800 cells (50 KB) a table,
-// built in 0.1-0.3 s, evaluated in ~6 ns.
+// integral, tests/reference/test_scatter_kernel.cpp); about 800 cells (50 KB) a table
+// (its cost: renderer/reference/README.md, "Performance").
 // R is taken as 0 beyond the profile's support radius S, so K is exactly 0 beyond
 // support_radius() = S + a.
 //

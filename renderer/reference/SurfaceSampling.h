@@ -12,10 +12,10 @@
 //   are divided by the fraction of the weight kernel inside the surface, which brings the
 //   density within one spacing of the rim from 1.18x to 1.10x of the mean;
 // - measured on a plane: nearest-neighbour distance >= 0.74 spacing, mean 0.85 spacing
-//   (independent points: mean 0.5; hexagonal packing: 1.07 for all); 1M points take
-//   ~9 s and ~0.5 GB on one core of the development VM (the elimination is bound by
-//   memory latency: each removal updates ~18 neighbours among ~53 candidates, at a
-//   random place in memory).
+//   (independent points: mean 0.5; hexagonal packing: 1.07 for all). The elimination
+//   is bound by memory latency: each removal updates ~18 neighbours among ~53
+//   candidates, at a random place in memory (its cost: renderer/reference/README.md,
+//   "Performance").
 #pragma once
 
 #include <glm/vec2.hpp>

@@ -74,10 +74,6 @@ GraphicsPipelineBuilder& GraphicsPipelineBuilder::vertex_attribute(uint32_t loca
   attributes_.push_back({location, binding, format, offset});
   return *this;
 }
-GraphicsPipelineBuilder& GraphicsPipelineBuilder::topology(VkPrimitiveTopology topology) {
-  topology_ = topology;
-  return *this;
-}
 GraphicsPipelineBuilder& GraphicsPipelineBuilder::color(VkFormat format, Blend blend) {
   color_formats_.push_back(format);
   blends_.push_back(blend);
@@ -93,10 +89,6 @@ GraphicsPipelineBuilder& GraphicsPipelineBuilder::depth(VkFormat format, DepthTe
 GraphicsPipelineBuilder& GraphicsPipelineBuilder::cull(VkCullModeFlags mode, VkFrontFace front) {
   cull_ = mode;
   front_ = front;
-  return *this;
-}
-GraphicsPipelineBuilder& GraphicsPipelineBuilder::polygon_mode(VkPolygonMode mode) {
-  polygon_mode_ = mode;
   return *this;
 }
 GraphicsPipelineBuilder& GraphicsPipelineBuilder::dynamic_depth_bias() {
@@ -132,7 +124,7 @@ PipelineHandle GraphicsPipelineBuilder::build(const Context& context, VkPipeline
 
   VkPipelineInputAssemblyStateCreateInfo assembly{};
   assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-  assembly.topology = topology_;
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
 
   VkPipelineViewportStateCreateInfo viewport{};
   viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
@@ -141,7 +133,7 @@ PipelineHandle GraphicsPipelineBuilder::build(const Context& context, VkPipeline
 
   VkPipelineRasterizationStateCreateInfo raster{};
   raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-  raster.polygonMode = polygon_mode_;
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
   raster.cullMode = cull_;
   raster.frontFace = front_;
   raster.depthBiasEnable = dynamic_depth_bias_ ? VK_TRUE : VK_FALSE;

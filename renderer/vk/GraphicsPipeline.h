@@ -39,6 +39,7 @@ enum class DepthTest {
   Write,     // test and write
 };
 
+// Triangle lists, filled: the only kind the renderer draws.
 class GraphicsPipelineBuilder {
  public:
   // The spans must stay valid until build().
@@ -49,7 +50,6 @@ class GraphicsPipelineBuilder {
                                           VkVertexInputRate rate = VK_VERTEX_INPUT_RATE_VERTEX);
   GraphicsPipelineBuilder& vertex_attribute(uint32_t location, uint32_t binding, VkFormat format,
                                             uint32_t offset);
-  GraphicsPipelineBuilder& topology(VkPrimitiveTopology topology);
 
   // One colour attachment, in attachment order.
   GraphicsPipelineBuilder& color(VkFormat format, Blend blend = Blend::Off);
@@ -58,7 +58,6 @@ class GraphicsPipelineBuilder {
                                  VkCompareOp compare = VK_COMPARE_OP_LESS);
   GraphicsPipelineBuilder& cull(VkCullModeFlags mode,
                                 VkFrontFace front = VK_FRONT_FACE_COUNTER_CLOCKWISE);
-  GraphicsPipelineBuilder& polygon_mode(VkPolygonMode mode);
   // Depth bias set per draw with vkCmdSetDepthBias (shadow maps).
   GraphicsPipelineBuilder& dynamic_depth_bias();
   GraphicsPipelineBuilder& samples(VkSampleCountFlagBits samples);
@@ -72,7 +71,6 @@ class GraphicsPipelineBuilder {
   std::span<const uint32_t> fragment_;
   std::vector<VkVertexInputBindingDescription> bindings_;
   std::vector<VkVertexInputAttributeDescription> attributes_;
-  VkPrimitiveTopology topology_ = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   std::vector<VkFormat> color_formats_;
   std::vector<Blend> blends_;
   VkFormat depth_format_ = VK_FORMAT_UNDEFINED;
@@ -80,7 +78,6 @@ class GraphicsPipelineBuilder {
   VkCompareOp depth_compare_ = VK_COMPARE_OP_LESS;
   VkCullModeFlags cull_ = VK_CULL_MODE_NONE;
   VkFrontFace front_ = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  VkPolygonMode polygon_mode_ = VK_POLYGON_MODE_FILL;
   bool dynamic_depth_bias_ = false;
   VkSampleCountFlagBits samples_ = VK_SAMPLE_COUNT_1_BIT;
 };

@@ -10,9 +10,6 @@
 // (tests/vk/ShaderConfigTest.cpp checks it at compile time).
 #define SSS_MAX_GAUSSIANS 8
 
-// The most SSS materials (profiles) in one frame; the G-buffer stores the index.
-#define SSS_MAX_PROFILES 16
-
 // Compute workgroup sizes. 8x8 suits image passes (subgroup size 8 on lavapipe, 32-64 on
 // GPUs); 64 suits 1D passes over buffers.
 #define SSS_WORKGROUP_2D_X 8
@@ -25,7 +22,6 @@ namespace sss::shader {
 // GLSL scalar names, so that structs in shaders/shared/*.h read the same in both.
 using uint = std::uint32_t;
 inline constexpr uint kMaxGaussians = SSS_MAX_GAUSSIANS;
-inline constexpr uint kMaxProfiles = SSS_MAX_PROFILES;
 inline constexpr uint kWorkgroup2DX = SSS_WORKGROUP_2D_X;
 inline constexpr uint kWorkgroup2DY = SSS_WORKGROUP_2D_Y;
 inline constexpr uint kWorkgroup1D = SSS_WORKGROUP_1D;
