@@ -3,8 +3,9 @@
 // Handle<T, Destroy> owns one object T created from a VkDevice and destroys it with
 // Destroy(device, object, nullptr) when it goes out of scope or is reset. Moving leaves
 // the source empty. A Handle never outlives its device by itself: the Context must be
-// destroyed last, and objects the GPU may still use go through a DeletionQueue rather
-// than being destroyed on the spot.
+// destroyed last. There is one frame in flight (Renderer::render_frame waits for its
+// fence), so an object the GPU may still use is one a window's blit reads; the owner
+// calls Context::wait_idle before replacing it (Renderer's resize, set_options).
 //
 // Objects that are freed with their parent (command buffers with their pool, descriptor
 // sets with their pool) have no Handle. Instance-level objects (instance, surface,
