@@ -1,6 +1,7 @@
 #include "renderer/image/Image.h"
 
 #include "renderer/image/AtomicFile.h"
+#include "shaders/shared/tonemap.h"
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -160,12 +161,14 @@ std::string check_png_chunks(std::span<const unsigned char> b) {
 
 float srgb_encode(float v) {
   if (!(v > 0.0f)) return 0.0f;
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+  return v <= SSS_SRGB_ENCODE_CUTOFF ? SSS_SRGB_LINEAR_SLOPE * v
+                                     : SSS_SRGB_SCALE * std::pow(v, 1.0f / SSS_SRGB_GAMMA) - SSS_SRGB_OFFSET;
 }
 
 float srgb_decode(float v) {
   if (!(v > 0.0f)) return 0.0f;
-  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+  return v <= SSS_SRGB_DECODE_CUTOFF ? v / SSS_SRGB_LINEAR_SLOPE
+                                     : std::pow((v + SSS_SRGB_OFFSET) / SSS_SRGB_SCALE, SSS_SRGB_GAMMA);
 }
 
 Image encode_srgb(const Image& linear) {

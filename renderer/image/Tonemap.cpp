@@ -1,5 +1,7 @@
 #include "renderer/image/Tonemap.h"
 
+#include "shaders/shared/tonemap.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,7 +9,7 @@ namespace sss::image {
 
 float filmic(float x) {
   x = std::max(x, 0.0f);
-  return std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+  return std::clamp(SSS_FILMIC_CURVE(x), 0.0f, 1.0f);
 }
 
 Image tonemap(const Image& hdr, float exposure) {

@@ -6,12 +6,13 @@
 
 // Needs: frame (FrameUniforms), materials (GpuMaterial[]), common.glsl.
 
+#include "tonemap.h"
+
 // Narkowicz's fit of the ACES filmic curve.
-vec3 filmic(vec3 x) {
-  return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-}
+vec3 filmic(vec3 x) { return clamp(SSS_FILMIC_CURVE(x), 0.0, 1.0); }
 vec3 srgb_encode(vec3 c) {
-  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+  return mix(c * SSS_SRGB_LINEAR_SLOPE, SSS_SRGB_SCALE * pow(c, vec3(1.0 / SSS_SRGB_GAMMA)) - SSS_SRGB_OFFSET,
+             greaterThan(c, vec3(SSS_SRGB_ENCODE_CUTOFF)));
 }
 // The display image's value for linear radiance L: exposure, filmic, sRGB encoding.
 vec3 display_encode(vec3 L) { return srgb_encode(filmic(L * frame.scale.w)); }

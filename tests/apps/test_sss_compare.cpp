@@ -565,7 +565,7 @@ TEST_F(SssCompare, LogRatioMapIsWrittenWithItsStatistics) {
     for (std::size_t i = 0; i < p.rgba.size(); ++i)
       if (i % 4 != 3) {
         const float v = 0.4f * p.rgba[i];
-        p.rgba[i] = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+        p.rgba[i] = sss::image::srgb_encode(v);
       }
     return p;
   };

@@ -15,6 +15,8 @@
 
 #include "profiles/SingleScattering.h"
 #include "renderer/DebugViewPass.h"
+#include "renderer/image/Image.h"
+#include "renderer/image/Tonemap.h"
 #include "renderer/scene/BuiltinScenes.h"
 
 #include <gtest/gtest.h>
@@ -36,12 +38,9 @@ namespace {
 constexpr float kPi = std::numbers::pi_v<float>;
 constexpr float kCode = 1.0f / 255.0f;
 
-// composite.glsl's display_encode (exposure applied by the caller).
-float filmic(float x) {
-  return std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
-}
-float srgb(float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
-float encode(float x) { return srgb(filmic(x)); }
+// composite.glsl's display_encode (exposure applied by the caller): the same formulas
+// (shaders/shared/tonemap.h) on the CPU.
+float encode(float x) { return image::srgb_encode(image::filmic(x)); }
 
 // debug_view.comp's viridis fit.
 std::array<float, 3> viridis(float t) {
