@@ -14,18 +14,19 @@
 
 namespace sss::profiles {
 
+bool valid_gaussian_count(double n) { return n >= kMinGaussians && n <= kMaxGaussians && n == std::floor(n); }
+
+std::string gaussian_count_rule() {
+  return "must be an integer in [" + std::to_string(kMinGaussians) + ", " + std::to_string(kMaxGaussians) + "]";
+}
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
 void validate(const FitTarget& t, int n) {
-  if (n < 1 || n > kMaxGaussians) {
-    std::string msg = "fit_gaussians: gaussians must be in [1, ";
-    msg += std::to_string(kMaxGaussians);
-    msg += "], got ";
-    msg += std::to_string(n);
-    throw std::invalid_argument(msg);
-  }
+  if (!valid_gaussian_count(n))
+    throw std::invalid_argument("fit_gaussians: gaussians " + gaussian_count_rule() + ", got " + std::to_string(n));
   const std::size_t m = t.r_mm.size();
   if (m < static_cast<std::size_t>(n) + 1)
     throw std::invalid_argument("fit_gaussians: the target needs more samples than gaussians");

@@ -13,11 +13,21 @@
 #include "profiles/Medium.h"
 #include "profiles/Profile.h"
 
+#include <string>
 #include <vector>
 
 namespace sss::profiles {
 
-inline constexpr int kMaxGaussians = 8;
+inline constexpr int kMinGaussians = 1;
+inline constexpr int kMaxGaussians = 8;  // = SSS_MAX_GAUSSIANS (tests/vk/ShaderConfigTest.cpp)
+inline constexpr int kDefaultGaussians = 6;
+
+// The one range check of a Gaussian count, wherever one comes in (the fit, glTF extras,
+// the CLIs' options and material specs, the editor): an integer in [kMinGaussians,
+// kMaxGaussians]. The rule reads "must be an integer in [1, 8]"; callers add ", got X"
+// as their input shows it.
+bool valid_gaussian_count(double n);
+std::string gaussian_count_rule();
 
 // G(v, r) above.
 double gaussian_2d(double variance_mm2, double r_mm);

@@ -216,8 +216,8 @@ std::variant<SssMaterialSpec, FieldError> parse_sss_material_spec(const std::str
       auto v = parse_number(field + ": gaussians", value);
       if (auto* e = std::get_if<FieldError>(&v)) return *e;
       const double n = std::get<double>(v);
-      if (!(n >= scene::kMinGaussians && n <= scene::kMaxGaussians) || n != std::floor(n))
-        return FieldError{field + ": gaussians", "must be an integer in 1..8, got '" + value + "'"};
+      if (!profiles::valid_gaussian_count(n))
+        return FieldError{field + ": gaussians", profiles::gaussian_count_rule() + ", got '" + value + "'"};
       spec.gaussians = int(n);
     } else {
       return FieldError{field + ": " + key, std::string("unknown key (keys: ") + kSpecKeys + ")"};
@@ -271,9 +271,8 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
       return FieldError{"--model", "unknown model '" + args.model + "' (expected one of " +
                                        profiles::model_names() + ")"};
   }
-  if (args.gaussians && (*args.gaussians < scene::kMinGaussians ||
-                         *args.gaussians > scene::kMaxGaussians))
-    return FieldError{"--gaussians", "must be in 1..8, got " + std::to_string(*args.gaussians)};
+  if (args.gaussians && !profiles::valid_gaussian_count(*args.gaussians))
+    return FieldError{"--gaussians", profiles::gaussian_count_rule() + ", got " + std::to_string(*args.gaussians)};
   if (args.scale && !valid_scale(*args.scale))
     return FieldError{"--scale", "must be a finite number > 0, got " + message_number(*args.scale)};
   std::optional<scene::AlbedoMode> albedo;

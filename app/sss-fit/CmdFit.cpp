@@ -156,9 +156,8 @@ LogLogPlot make_plot(const FitArgs& a, const ProfileSource& src, const profiles:
 }  // namespace
 
 int run_fit(const FitArgs& a) {
-  if (a.gaussians < 1 || a.gaussians > profiles::kMaxGaussians)
-    return usage_error("--gaussians: must be in [1, " + std::to_string(profiles::kMaxGaussians) +
-                       "], got " + std::to_string(a.gaussians));
+  if (!profiles::valid_gaussian_count(a.gaussians))
+    return usage_error("--gaussians: " + profiles::gaussian_count_rule() + ", got " + std::to_string(a.gaussians));
   if (a.taps != 0 && (a.taps < 3 || a.taps % 2 == 0 || a.taps > 255))
     return usage_error("--taps: must be odd and in [3, 255], got " + std::to_string(a.taps));
   // The file names say the format: an SVG named .png would not open as one.

@@ -429,8 +429,7 @@ std::optional<SssSpec> MaterialEditor::spec_from_fields(MaterialEdit& e) {
         return std::nullopt;
       }
     }
-  } else if (s.gaussians < scene::kMinGaussians || s.gaussians > scene::kMaxGaussians ||
-             !std::isfinite(s.scale) || !(s.scale > 0.0)) {
+  } else if (!profiles::valid_gaussian_count(s.gaussians) || !std::isfinite(s.scale) || !(s.scale > 0.0)) {
     auto made = scene::make_sss_material(scene::PresetSource{"skin1"}, s.model, s.gaussians,
                                          s.scale, s.albedo_mode);
     if (auto* err = std::get_if<FieldError>(&made)) e.error = err->what();

@@ -103,10 +103,8 @@ std::variant<profiles::Medium, FieldError> resolve_medium(const SssSource& sourc
 std::variant<SssMaterial, FieldError> make_sss_material(SssSource source,
                                                         profiles::Model model, int gaussians,
                                                         double scale, AlbedoMode albedo_mode) {
-  if (gaussians < kMinGaussians || gaussians > kMaxGaussians)
-    return FieldError{"gaussians", "must be an integer in [" + std::to_string(kMinGaussians) +
-                                       ", " + std::to_string(kMaxGaussians) + "], got " +
-                                       std::to_string(gaussians)};
+  if (!profiles::valid_gaussian_count(gaussians))
+    return FieldError{"gaussians", profiles::gaussian_count_rule() + ", got " + std::to_string(gaussians)};
   if (!std::isfinite(scale) || !(scale > 0.0))
     return FieldError{"scale", "must be a finite number > 0, got " + str(scale)};
   auto medium = resolve_medium(source, model);

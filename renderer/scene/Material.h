@@ -7,6 +7,7 @@
 #pragma once
 
 #include "profiles/ArtistMapping.h"
+#include "profiles/GaussianFit.h"
 #include "profiles/Layered.h"
 #include "profiles/Medium.h"
 #include "profiles/OpenPbr.h"
@@ -24,9 +25,9 @@
 
 namespace sss::scene {
 
-inline constexpr int kMinGaussians = 1;
-inline constexpr int kMaxGaussians = 8;
-inline constexpr int kDefaultGaussians = 6;
+using profiles::kDefaultGaussians;
+using profiles::kMaxGaussians;
+using profiles::kMinGaussians;
 
 // Where the albedo (base colour) multiplies the scattered light: after scattering only,
 // or √albedo before and after (d'Eon & Luebke 2007).

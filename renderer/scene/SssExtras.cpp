@@ -200,10 +200,8 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
   if (o.contains("gaussians")) {
     const json& n = o["gaussians"];
     const double v = n.is_number() ? n.get<double>() : std::nan("");
-    if (!(v >= kMinGaussians && v <= kMaxGaussians && v == std::floor(v)))
-      return FieldError{"gaussians", "must be an integer in [" + std::to_string(kMinGaussians) +
-                                         ", " + std::to_string(kMaxGaussians) + "], got " +
-                                         n.dump()};
+    if (!profiles::valid_gaussian_count(v))
+      return FieldError{"gaussians", profiles::gaussian_count_rule() + ", got " + n.dump()};
     gaussians = static_cast<int>(v);
   }
   double scale = 1.0;

@@ -169,7 +169,7 @@ TEST(SssMaterialOption, ErrorsNameWhatIsThereAndChangeNothing) {
       {{"plastic=preset=marble;preset=skin1"}, "", "", "preset: given twice"},
       {{"plastic=scale=2"}, "", "", "has no subsurface medium yet"},
       {{"plastic=marble;scale=-1"}, "", "", "scale: must be a finite number > 0"},
-      {{"plastic=marble;gaussians=9"}, "", "", "gaussians: must be an integer in 1..8"},
+      {{"plastic=marble;gaussians=9"}, "", "", "gaussians: must be an integer in [1, 8]"},
       {{"plastic=sigma-a=-1;sigma-s=1"}, "", "", "--sss-material plastic=sigma-a=-1;sigma-s=1: sigma-a"},
       {{"plastic=marble;model=layered"}, "", "", "model: unknown model 'layered'"},
       // Every SSS material set by a spec: a MEDIUM flag has nothing left to change.
