@@ -556,10 +556,8 @@ void ViewerTools::start_reference(const renderer::Renderer& r, const LiveState& 
   o.max_solid_angle = error_bound_;
   // Leave a core to the window when there are few.
   o.threads = int(std::max(2u, std::thread::hardware_concurrency()) - 1);
-  if (estimator_ == int(ReferenceEstimator::Probe)) {
-    o.estimator = reference::Estimator::Probe;
-    o.spp = reference::kDefaultProbeBatches;
-  }
+  if (estimator_ == int(ReferenceEstimator::Probe))  // the probe at its defaults, as auto sets it
+    o = reference::with_choice(o, {reference::Estimator::Probe, o.spacing_mfp});
   job_key_ = live_key(r, live);
   compare_error_.clear();
   job_.start(std::move(s), o, estimator_ == int(ReferenceEstimator::Auto));

@@ -619,6 +619,18 @@ TEST_F(ViewerCompare, LogRatioViewOfTheFrameAgainstAGroundTruth) {
   std::filesystem::remove(path);
 }
 
+// Waits for the panel's reference worker (at most 120 s), then lets poll() take the image
+// and run the comparison that is due.
+::testing::AssertionResult reference_taken(ViewerTools& tools, renderer::Renderer& r, const LiveState& live) {
+  for (int i = 0; i < 1200 && tools.reference_running(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  if (tools.reference_running()) return ::testing::AssertionFailure() << "the reference did not finish in 120 s";
+  tools.poll(r, live);
+  if (!tools.compare_error().empty()) return ::testing::AssertionFailure() << tools.compare_error();
+  if (!tools.reference()) return ::testing::AssertionFailure() << "poll() took no reference";
+  return ::testing::AssertionSuccess();
+}
+
 // The reference of the view, rendered by the panel's worker, against the frame: the
 // log-ratio view of frame vs reference; with a truth loaded too, all three pairs.
 TEST_F(ViewerCompare, LogRatioViewOfTheFrameAgainstTheReference) {
@@ -628,11 +640,7 @@ TEST_F(ViewerCompare, LogRatioViewOfTheFrameAgainstTheReference) {
   ViewerTools tools(ctx());
   const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 48, 27};
   tools.start_reference(r, live);
-  for (int i = 0; i < 1200 && tools.reference_running(); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  ASSERT_FALSE(tools.reference_running());
-  tools.poll(r, live);
-  ASSERT_TRUE(tools.compare_error().empty()) << tools.compare_error();
+  ASSERT_TRUE(reference_taken(tools, r, live));
   ASSERT_TRUE(tools.metrics().has_value());
   const auto& res = tools.result(ViewerTools::Pair::FrameVsReference);
   ASSERT_TRUE(res.has_value());
@@ -685,16 +693,8 @@ TEST_F(ViewerCompare, ReferenceEstimatorAutoChoosesAsTheCliAndTheProbeCanBeAsked
   r.render_frame();
   ViewerTools tools(ctx());
   const LiveState live{&scene, "builtin:sphere", scene.materials, scene.lights, 48, 27};
-  auto wait = [&] {
-    for (int i = 0; i < 1200 && tools.reference_running(); ++i)
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    ASSERT_FALSE(tools.reference_running());
-    tools.poll(r, live);
-    ASSERT_TRUE(tools.compare_error().empty()) << tools.compare_error();
-    ASSERT_TRUE(tools.reference().has_value());
-  };
   tools.start_reference(r, live);  // auto is the default
-  wait();
+  ASSERT_TRUE(reference_taken(tools, r, live));
   // What sss-reference --estimator auto would choose for this view.
   reference::ReferenceOptions o;
   o.width = 48;
@@ -709,7 +709,7 @@ TEST_F(ViewerCompare, ReferenceEstimatorAutoChoosesAsTheCliAndTheProbeCanBeAsked
 
   tools.set_reference_estimator(ViewerTools::ReferenceEstimator::Probe);
   tools.start_reference(r, live);
-  wait();
+  ASSERT_TRUE(reference_taken(tools, r, live));
   EXPECT_TRUE(tools.reference_choice().empty());
   EXPECT_EQ(tools.reference()->stats.spp, reference::kDefaultProbeBatches);
   EXPECT_EQ(tools.reference()->variance.width, 48);
