@@ -188,7 +188,6 @@ std::string_view shadows_name(Shadows s) { return s == Shadows::ShadowMap ? "sha
 std::string_view transmission_name(Transmission t) {
   return t == Transmission::Local ? "local" : t == Transmission::Off ? "off" : "profile";
 }
-std::string_view thickness_name(Thickness t) { return t == Thickness::ShadowMap ? "shadow-map" : "ray-cast"; }
 
 std::unique_ptr<profiles::RgbProfile> reference_profile(const scene::SssMaterial& sss, KernelSource kernel,
                                                         const profiles::ModelOptions& model_options) {

@@ -82,7 +82,6 @@ std::string_view transmission_name(Transmission t);  // "profile" | "local" | "o
 // shadow map at shadow_map_size (ShadowMaps::thickness_mm: the texel's depth moved along
 // its neighbours' gradient; -1 outside the map, where the GPU transmits nothing).
 enum class Thickness { RayCast, ShadowMap };
-std::string_view thickness_name(Thickness t);  // "ray-cast" | "shadow-map"
 
 struct ReferenceOptions {
   std::uint32_t width = 640;

@@ -74,12 +74,6 @@ ShadowMaps::ShadowMaps(const scene::Scene& s, const RayScene& rays, std::uint32_
   }
 }
 
-float ShadowMaps::unbiased_depth(std::size_t index, std::uint32_t x, std::uint32_t y) const {
-  const Map& m = maps_.at(index);
-  if (m.raw.empty() || x >= size_ || y >= size_) return 1.0f;
-  return m.raw[std::size_t(y) * size_ + x];
-}
-
 double ShadowMaps::thickness_mm(std::size_t index, const glm::vec3& p_mm) const {
   if (index >= maps_.size() || maps_[index].raw.empty()) return -1.0;
   const Map& m = maps_[index];

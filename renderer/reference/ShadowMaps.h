@@ -53,10 +53,8 @@ class ShadowMaps {
   // light; -1 where p is outside the map or the light has no map (the GPU then transmits
   // nothing from it).
   double thickness_mm(std::size_t index, const glm::vec3& p_mm) const;
-  // The stored depth of texel (x, y) of light `index`'s map (tests); unbiased: the
-  // thickness map's.
+  // The stored depth of texel (x, y) of light `index`'s map (tests).
   float depth(std::size_t index, std::uint32_t x, std::uint32_t y) const;
-  float unbiased_depth(std::size_t index, std::uint32_t x, std::uint32_t y) const;
   std::uint32_t size() const { return size_; }
 
  private:
