@@ -497,7 +497,8 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
   //    turns at the chart's border (a projection along the chart's axis would fold there),
   //    out to 1.5 x the padding's width in scene units (surface path between centroids).
   {
-    const double reach = 3.0 * pad / std::max(s, 1e-30);
+    double reach = 3.0 * pad / std::max(s, 1e-30);
+    if (options.max_gutter_reach > 0.0) reach = std::min(reach, options.max_gutter_reach);
     std::vector<glm::dvec3> to_u(C), to_v(C);
     std::vector<glm::dvec2> offset(C);
     for (std::size_t c = 0; c < C; ++c) {
@@ -763,7 +764,8 @@ std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options) {
       reach_mm = 0.0;  // a profile that cannot be made: the renderer reports it
     }
     if (reach_mm > 0.0) {
-      const double s = build_atlas(mesh, options).stats.uv_per_unit;  // UV per scene unit
+      o.max_gutter_reach = kGutterReachInReaches * reach_mm / scene.mm_per_unit;
+      const double s = build_atlas(mesh, o).stats.uv_per_unit;  // UV per scene unit
       const double needed = reach_mm / scene.mm_per_unit * s * options.resolution / kGutterReachInPaddings;
       const double cap = double(kMaxPaddingTexels) * options.resolution / 1024.0;
       o.padding_texels = std::uint32_t(std::max(double(options.padding_texels), std::ceil(std::min(needed, cap))));

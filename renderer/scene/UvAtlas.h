@@ -76,6 +76,11 @@ UvCheck check_uvs(const Mesh& mesh, const std::vector<glm::vec2>& uv,
 struct AtlasOptions {
   std::uint32_t resolution = 1024;    // texels per side the padding is measured at
   std::uint32_t padding_texels = 4;   // empty texels around each chart (>= 2 between charts)
+  // How far (scene units, along the surface) a seam gutter may continue past its chart;
+  // 0: as far as the padding holds (3 paddings). ensure_sss_atlases sets it from the
+  // material's reach: where charts are packed small (many charts, s tiny) 3 paddings span
+  // the whole mesh, and every chart's gutter would copy every other triangle.
+  double max_gutter_reach = 0.0;
 };
 
 // What load_scene generates with: at least 12 texels of padding at 1024², more for a wide
@@ -162,6 +167,11 @@ inline constexpr double kGutterReachInPaddings = 1.5;
 // from the frame; tests/scene/test_uv_atlas.cpp prints the gutter's reach in mm and the
 // share of skin1's reflectance within it, at 1 and at 1.5 paddings, for 12 and 28 texels.
 inline constexpr std::uint32_t kMaxPaddingTexels = 28;
+// The gutter's reach along the surface, in reflectance reaches (AtlasOptions::
+// max_gutter_reach): a blur tap never lands further from a chart's border than the kernel
+// reaches, and 2 x the radius holding 90% holds 99.99% of a Gaussian (r90 = 2.15σ) and
+// more than 99% of the dipole-like profiles' exponential tails.
+inline constexpr double kGutterReachInReaches = 2.0;
 
 // For every mesh drawn with a subsurface material whose uv0 fails check_uvs and that has
 // no uv_atlas yet: generate_atlas() and a note in Scene::texture_notes, "mesh NAME:

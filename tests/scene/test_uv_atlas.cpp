@@ -2,6 +2,7 @@
 // sphere and a box (whose faces all share [0,1]^2) get atlases that pass check_uvs, keep
 // every triangle's vertices, and stretch every edge by a factor in [s/√3, s].
 #include "renderer/scene/BuiltinScenes.h"
+#include "renderer/scene/Material.h"
 #include "renderer/scene/Shapes.h"
 #include "renderer/scene/UvAtlas.h"
 #include "profiles/GaussianSumProfile.h"
@@ -13,6 +14,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 #include <cmath>
@@ -314,6 +316,89 @@ TEST(UvAtlas, ThePaddingCoversTheKernelsReachUpToTheCap) {
   ASSERT_EQ(ensure_sss_atlases(narrow, kLoadAtlasOptions), 1u);
   std::printf("[ padding ] bunny at scale 50: %s\n", narrow.texture_notes.back().c_str());
   EXPECT_EQ(padding_in(narrow.texture_notes.back()), kLoadAtlasOptions.padding_texels);
+}
+
+// A gently folded sheet (scene units = mm): `strips` strips 1 mm wide, 4 mm long, at 40°
+// and 50° to the x axis in turn. Their normals lean to +z and to -x in turn, so the box
+// projection makes every strip its own chart and packs many charts small, while the sheet
+// stays nearly flat: a long path along it is long in a straight line too.
+Mesh folded_sheet(std::uint32_t strips) {
+  Mesh m;
+  m.name = "folded";
+  constexpr std::uint32_t rows = 5;  // vertices along y, 1 mm apart
+  glm::vec3 at(0.0f);
+  for (std::uint32_t i = 0; i <= strips; ++i) {
+    for (std::uint32_t j = 0; j < rows; ++j) {
+      m.positions.emplace_back(at.x, float(j), at.z);
+      m.normals.emplace_back(0.0f, 0.0f, 1.0f);
+    }
+    const float angle = float(std::numbers::pi / 180.0) * (i % 2 == 0 ? 40.0f : 50.0f);
+    at += glm::vec3(std::cos(angle), 0.0f, std::sin(angle));
+  }
+  for (std::uint32_t i = 0; i < strips; ++i)
+    for (std::uint32_t j = 0; j + 1 < rows; ++j) {
+      const std::uint32_t a = i * rows + j, b = (i + 1) * rows + j;
+      for (std::uint32_t v : {a, b, a + 1, a + 1, b, b + 1}) m.indices.push_back(v);
+    }
+  compute_bounds(m);
+  return m;
+}
+
+// The seam gutter stops at kGutterReachInReaches x the material's reach (found on
+// 2CylinderEngine.glb with --sss-material all=marble: 2,000-odd charts per mesh left 3
+// paddings wider than the mesh, every chart's gutter copied the whole mesh, a 2.4 GB
+// vertex buffer failed in every SSS mode after 40 s and 7 GB of memory). The gutter's
+// distance is a path along the surface between centroids, never shorter than the straight
+// line, so no gutter triangle's centroid may lie further than the reach, in a straight
+// line, from every centroid of its host chart. Without the bound some do: the folded sheet
+// at 1,000 charts packs them so small that 3 paddings span 8 mm of it (126,432 gutter
+// triangles against 31,952 with the bound; at 2,500 charts 50 M against 80 k).
+TEST(UvAtlas, TheSeamGutterStopsAtTheKernelsReach) {
+  Scene scene;
+  scene.mm_per_unit = 1.0;
+  Material m;
+  m.name = "skin";
+  m.sss = std::get<SssMaterial>(make_sss_material(PresetSource{"skin1"}, profiles::kDefaultModel,
+                                                  kDefaultGaussians, 5.0));  // 2.7 mm reach
+  scene.materials.push_back(m);
+  scene.meshes.push_back(folded_sheet(1000));
+  const double reach = kGutterReachInReaches *
+                       reflectance_reach_mm(scene.materials[0].sss.profile(), kGutterReflectanceShare);
+  const Mesh before = scene.meshes[0];
+  ASSERT_EQ(ensure_sss_atlases(scene, kLoadAtlasOptions), 1u);
+  std::printf("[ gutter ] %s; reach %.2f mm\n", scene.texture_notes.back().c_str(), reach);
+
+  const auto farthest = [&](const UvAtlas& atlas) {
+    std::vector<glm::dvec3> centroid(before.indices.size() / 3);
+    for (std::size_t t = 0; t < centroid.size(); ++t)
+      centroid[t] = (glm::dvec3(before.positions[before.indices[3 * t]]) +
+                     glm::dvec3(before.positions[before.indices[3 * t + 1]]) +
+                     glm::dvec3(before.positions[before.indices[3 * t + 2]])) / 3.0;
+    std::vector<std::vector<std::size_t>> faces(atlas.charts.size());
+    for (std::size_t t = 0; t < centroid.size(); ++t) faces.at(atlas.triangle_chart[t]).push_back(t);
+    double worst = 0.0;
+    for (const GutterTriangle& g : atlas.gutter) {
+      const glm::dvec3 c = (glm::dvec3(before.positions[g.source[0]]) + glm::dvec3(before.positions[g.source[1]]) +
+                            glm::dvec3(before.positions[g.source[2]])) / 3.0;
+      double nearest = 1e300;
+      for (std::size_t t : faces.at(atlas.triangle_chart.at(g.host_triangle)))
+        nearest = std::min(nearest, glm::length(c - centroid[t]));
+      worst = std::max(worst, nearest);
+    }
+    return worst;
+  };
+  AtlasOptions bounded = kLoadAtlasOptions;
+  bounded.max_gutter_reach = reach;
+  const UvAtlas capped = build_atlas(before, bounded), open = build_atlas(before, kLoadAtlasOptions);
+  std::printf("[ gutter ] %zu charts: %zu gutter triangles within %.2f mm (farthest %.2f), "
+              "%zu without the bound (farthest %.2f)\n",
+              capped.charts.size(), capped.gutter.size(), reach, farthest(capped), open.gutter.size(),
+              farthest(open));
+  EXPECT_GE(capped.charts.size(), 1000u);
+  EXPECT_LE(farthest(capped), reach);
+  EXPECT_GT(farthest(open), reach);
+  // What ensure_sss_atlases applied is the bounded atlas: as many gutter corners.
+  EXPECT_EQ(scene.meshes[0].uv_atlas_gutter.vertices.size(), 3 * capped.gutter.size());
 }
 
 }  // namespace
