@@ -93,9 +93,9 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
     const bool scatters =
         mesh.material < scene.materials.size() && scene.materials[mesh.material].sss.enabled;
     MeshBuffers b = upload_geometry(context, mesh, scatters);
-    // A mesh that does not scatter now and has no SSS UVs: kept to build its atlas if its
-    // material is given subsurface scattering on the live renderer (ensure_sss_uvs).
-    deferred_.push_back(b.sss_uvs || scatters ? std::nullopt : std::optional<scene::Mesh>(mesh));
+    // A mesh without SSS UVs: kept to build its atlas when texture-space SSS needs it
+    // (ensure_sss_uvs: its material scatters, now or once the live renderer says so).
+    deferred_.push_back(b.sss_uvs ? std::nullopt : std::optional<scene::Mesh>(mesh));
     if (mesh.material < scene.materials.size()) {
       const scene::Material& m = scene.materials[mesh.material];
       if (m.base_color_texture && has_uv) b.base_slot = slot_for(*m.base_color_texture, true);
@@ -204,15 +204,19 @@ void GpuScene::ensure_sss_uvs(const vk::Context& context, const std::vector<scen
     if (!deferred_[i]) continue;
     const std::uint32_t m = meshes_[i].material;
     if (m >= materials.size() || !materials[m].sss.enabled) continue;
-    // What load_scene does for a mesh whose material scatters: an atlas sized for the
-    // material's reach (scene::ensure_sss_atlases), on a scene of this mesh alone.
+    // An atlas sized for the material's reach (scene::ensure_sss_atlases), on a scene of
+    // this mesh alone.
     scene::Scene one;
     one.mm_per_unit = mm_per_unit_;
     one.materials = materials;
     one.meshes.push_back(*deferred_[i]);
     scene::ensure_sss_atlases(one, scene::kLoadAtlasOptions);
     MeshBuffers b = upload_geometry(context, one.meshes[0], true);
-    if (!b.sss_uvs) continue;  // no atlas could be made: drawn without spread, as at load
+    if (!b.sss_uvs) {  // no atlas could be made: drawn without spread, and not tried again
+      deferred_[i].reset();
+      continue;
+    }
+    atlas_notes_.insert(atlas_notes_.end(), one.texture_notes.begin(), one.texture_notes.end());
     if (!waited) context.wait_idle();  // a frame in flight may still read the old buffers
     waited = true;
     b.base_slot = meshes_[i].base_slot;

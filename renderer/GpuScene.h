@@ -70,24 +70,28 @@ class GpuScene {
   const std::string& mesh_name(std::uint32_t mesh) const { return meshes_[mesh].name; }
   // Whether the mesh's SSS UVs (scene::sss_uvs) can hold an irradiance texture: a
   // generated atlas, or a uv0 that passes scene::check_uvs. Checked at construction for
-  // every mesh; a mesh without either gets an atlas when ensure_sss_uvs gives its
-  // material subsurface scattering.
+  // every mesh; a mesh without either gets an atlas when ensure_sss_uvs finds its
+  // material scattering (the renderer asks in texture mode only).
   bool has_sss_uvs(std::uint32_t mesh) const { return meshes_[mesh].sss_uvs; }
 
   // SSS_MAX_TEXTURES descriptors (SHADER_READ_ONLY_OPTIMAL); unused slots hold a white
   // 1x1 texture.
   std::vector<VkDescriptorImageInfo> texture_descriptors() const;
   const std::vector<std::string>& warnings() const { return warnings_; }
+  // "mesh NAME: generated a UV atlas (...)" for each atlas ensure_sss_uvs built, in order.
+  const std::vector<std::string>& atlas_notes() const { return atlas_notes_; }
 
   // The material constants the draws push (colour, roughness, normal scale) come from
   // `materials` from now on. Same count and the same textures as the scene's (the texture
   // slots are not rebuilt): otherwise std::invalid_argument and nothing changes.
   void set_materials(const std::vector<scene::Material>& materials);
   const std::vector<scene::Material>& materials() const { return materials_; }
-  // For each mesh without SSS UVs whose material did not scatter at construction and
-  // does in `materials`: builds its UV atlas as load_scene would (scene::ensure_sss_atlases)
-  // and uploads its vertices again with it (waiting for the device first). The atlas build
-  // runs on the calling thread (its cost: renderer/README.md, "Costs").
+  // For each mesh without SSS UVs whose material scatters in `materials`: builds its UV
+  // atlas (scene::ensure_sss_atlases, sized for the material's reach) and uploads its
+  // vertices again with it (waiting for the device first), adding a note to
+  // atlas_notes(). Only texture-space SSS reads the atlas, so the renderer calls this
+  // when that mode is on; the screen path and the CPU reference never pay for it. The
+  // atlas build runs on the calling thread (its cost: renderer/README.md, "Costs").
   void ensure_sss_uvs(const vk::Context& context, const std::vector<scene::Material>& materials);
 
  private:
@@ -124,6 +128,7 @@ class GpuScene {
   double mm_per_unit_ = 1000.0;
   std::vector<Slot> slots_;  // slots_[0] is the white dummy
   std::vector<std::string> warnings_;
+  std::vector<std::string> atlas_notes_;
 };
 
 }  // namespace sss::renderer

@@ -205,6 +205,9 @@ void Renderer::update_sss_pass() {
     gaussians_ = std::make_unique<SssGaussiansPass>(resources_, gaussians);
   else
     gaussians_->set_gaussians(gaussians);
+  // Texture space reads the SSS UVs: a scattering mesh without usable ones gets its atlas
+  // now, the first time this mode (or its material's subsurface) is on.
+  if (options_.sss == SssMode::Texture) scene_.ensure_sss_uvs(context_, scene_.materials());
   if (options_.sss != SssMode::Texture) {
     gather_.reset();
     texture_.reset();
@@ -339,9 +342,6 @@ void Renderer::set_materials(const std::vector<scene::Material>& materials, Mate
                                 std::to_string(data.profiles.size()) + " materials, got " +
                                 std::to_string(materials.size()));
   scene_.set_materials(materials);  // checks the count and the textures first
-  // A material given subsurface scattering now: its meshes without SSS UVs get an atlas
-  // for the texture path (update_sss_pass then takes them in).
-  scene_.ensure_sss_uvs(context_, materials);
   materials_.replace(context_, std::move(data));
   update_sss_pass();
   if (texture_) texture_->invalidate();

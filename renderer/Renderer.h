@@ -127,6 +127,8 @@ class Renderer {
   enum class Atlas { Scattered, Irradiance, Stretch };
   image::Image read_atlas(std::size_t object, Atlas which) const;
   const std::vector<std::string>& warnings() const { return warnings_; }
+  // The UV atlases texture space generated so far ("mesh NAME: generated a UV atlas (...)").
+  const std::vector<std::string>& atlas_notes() const { return scene_.atlas_notes(); }
   const RenderOptions& options() const { return options_; }
   // The debug view's heat-map range for the next frame, in the view's unit: the options'
   // debug_range when set, else the view's own: kernel-radius 1 px to the largest radius

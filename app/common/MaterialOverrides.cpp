@@ -3,7 +3,6 @@
 #include "profiles/Presets.h"
 #include "renderer/scene/ScatterScale.h"
 #include "renderer/scene/SssLayers.h"
-#include "renderer/scene/UvAtlas.h"
 
 #include <cmath>
 #include <set>
@@ -310,7 +309,6 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
   }
   std::vector<scene::Material> materials = scene.materials;
   std::vector<bool> by_spec(materials.size(), false);
-  bool newly_enabled = false;
   int changed = 0;
   for (const auto& [spec, matched] : specs)
     for (std::size_t i : matched) {
@@ -320,7 +318,6 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
       } else {
         auto made = material_from_spec(m, spec, args, model, albedo);
         if (auto* e = std::get_if<FieldError>(&made)) return *e;
-        newly_enabled = newly_enabled || !m.sss.enabled;
         m.sss = std::get<scene::SssMaterial>(std::move(made));
       }
       changed += by_spec[i] ? 0 : 1;
@@ -397,7 +394,6 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
                                message_number(1.0 - m.metallic) +
                                " (set pbrMetallicRoughness.metallicFactor to 0 for a dielectric)");
   }
-  if (newly_enabled) scene::ensure_sss_atlases(scene, scene::kLoadAtlasOptions);
   return changed;
 }
 

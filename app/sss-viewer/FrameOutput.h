@@ -42,8 +42,10 @@ inline vk::ContextOptions headless_context_options(const ViewerArgs& a) {
   return o;
 }
 
+// The renderer's warnings, and a note for each UV atlas texture space generated.
 inline void print_warnings(const renderer::Renderer& r) {
   print_messages("sss-viewer", "warning", r.warnings());
+  print_messages("sss-viewer", "note", r.atlas_notes());
 }
 
 // "pass  gpu ms" rows, then the GPU total and the renderer's CPU frame time.

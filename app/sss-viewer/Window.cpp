@@ -251,6 +251,7 @@ std::unique_ptr<Session> open_scene(const vk::Context& ctx, const std::string& p
     message = "opened " + path;
     for (const std::string& w : s->scene.warnings) message += "\nwarning: " + w;
     for (const std::string& w : s->renderer->warnings()) message += "\nwarning: " + w;
+    for (const std::string& n : s->renderer->atlas_notes()) message += "\nnote: " + n;
     return s;
   } catch (const std::exception& e) {
     message = path + ": " + e.what();
@@ -322,8 +323,7 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
   }
   std::unique_ptr<Session> session = make_session(ctx, scene, a.scene, options);
   session->ui->set_interactive_scale(a.interactive_scale);
-  for (const std::string& w : session->renderer->warnings())
-    std::cerr << "sss-viewer: warning: " << w << '\n';
+  print_warnings(*session->renderer);
   glfwSetDropCallback(window, [](GLFWwindow*, int count, const char** paths) {
     for (int i = 0; i < count; ++i) dropped_files().emplace_back(paths[i]);
   });

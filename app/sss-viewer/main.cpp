@@ -319,7 +319,6 @@ int viewer_main(int argc, char** argv) {
     return e->file ? input_error("sss-viewer", e->message) : usage(e->message);
   add_material_warnings(scene, std::uint32_t(a.height));
   print_messages("sss-viewer", "warning", scene.warnings);
-  if (options.sss == renderer::SssMode::Texture) print_messages("sss-viewer", "note", scene.texture_notes);
   if (a.test_host_oom == "load") throw std::bad_alloc();
   // No output may replace a file the scene was loaded from (checked again where a file
   // is written after another scene was opened).

@@ -63,10 +63,8 @@ std::variant<Scene, LoadError> load_scene(std::string_view scene) {
   std::variant<Scene, LoadError> loaded = scene.substr(0, kBuiltinPrefix.size()) == kBuiltinPrefix
                                               ? builtin_scene(scene)
                                               : load_gltf(std::string(scene));
-  // Texture-space SSS (--sss texture) needs usable UVs on every subsurface mesh: the ones
-  // without get a generated atlas now (UvAtlas.h; the screen path and the CPU reference
-  // draw the same triangles, only split at chart seams).
-  if (auto* s = std::get_if<Scene>(&loaded)) ensure_sss_atlases(*s, kLoadAtlasOptions);
+  // No UV atlas here: texture space builds the ones it needs (renderer::GpuScene::
+  // ensure_sss_uvs); the screen path, the CPU reference and sss-fit never read one.
   return loaded;
 }
 

@@ -31,8 +31,7 @@ std::vector<std::string> builtin_scene_names();  // "builtin:bunny", "builtin:ed
 std::variant<Scene, LoadError> builtin_scene(std::string_view name);
 
 // A SCENE argument: a built-in name, else a glTF/GLB path (load_gltf with defaults).
-// Subsurface meshes whose uv0 fails check_uvs get a UV atlas (ensure_sss_atlases, with
-// its warning in Scene::warnings).
+// No UV atlas is built: texture-space SSS builds its own (GpuScene::ensure_sss_uvs).
 std::variant<Scene, LoadError> load_scene(std::string_view scene);
 
 struct EdgeOptions {

@@ -83,9 +83,9 @@ struct AtlasOptions {
   double max_gutter_reach = 0.0;
 };
 
-// What load_scene generates with: at least 12 texels of padding at 1024², more for a wide
-// kernel (ensure_sss_atlases), leave room for the seam gutters a kernel reaches into. Also used where a material is given
-// subsurface scattering after loading (--sss-material).
+// What texture space generates with (GpuScene::ensure_sss_uvs): at least 12 texels of
+// padding at 1024², more for a wide kernel (ensure_sss_atlases), leave room for the seam
+// gutters a kernel reaches into.
 inline constexpr AtlasOptions kLoadAtlasOptions{1024, 12};
 
 struct AtlasChart {
@@ -179,7 +179,8 @@ inline constexpr double kGutterReachInReaches = 2.0;
 // material's profile needs it: enough (up to kMaxPaddingTexels, scaled with the
 // resolution) that kGutterReachInPaddings paddings reach the radius holding
 // kGutterReflectanceShare of its reflectance (reflectance_reach_mm).
-// Returns how many atlases were generated. Not called on load (see README: "UV atlas").
+// Returns how many atlases were generated. Not called on load: the renderer calls it in
+// texture mode (GpuScene::ensure_sss_uvs; README: "UV atlas").
 std::size_t ensure_sss_atlases(Scene& scene, const AtlasOptions& options = {});
 
 }  // namespace sss::scene

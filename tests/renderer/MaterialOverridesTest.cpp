@@ -61,8 +61,8 @@ TEST(SssMaterialOption, EnablesAPlainGltfMaterialByNameIndexOrAll) {
     const profiles::Medium marble = profiles::preset_medium(*profiles::find_preset("marble"));
     for (int c = 0; c < 3; ++c) EXPECT_EQ(m.medium.sigma_a[c], marble.sigma_a[c]);
     EXPECT_FALSE(s.materials[1].sss.enabled);
-    // Texture-space SSS needs UVs: the newly subsurface mesh got an atlas, the other not.
-    EXPECT_EQ(s.meshes[0].uv_atlas.size(), s.meshes[0].positions.size());
+    // No atlas here: texture space builds the ones it needs (GpuScene::ensure_sss_uvs).
+    EXPECT_TRUE(s.meshes[0].uv_atlas.empty());
     EXPECT_TRUE(s.meshes[1].uv_atlas.empty());
   }
   {  // By index, artist values, the spec's keys winning over the global options.
