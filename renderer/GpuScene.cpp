@@ -241,7 +241,7 @@ void GpuScene::push_constants(VkCommandBuffer cmd, VkPipelineLayout layout, cons
   const scene::Material& material = materials_[mesh.material];
   shader::DrawPush push;
   push.model = to_shader(instance.world);
-  push.material = {float(mesh.material), float(light_index), material.roughness, float(object)};
+  push.material = {float(mesh.material), float(light_index), 0.0f, float(object)};
   push.base_color = {material.base_color.r, material.base_color.g, material.base_color.b,
                      material.base_color.a};
   push.textures = {float(mesh.base_slot), float(mesh.normal_slot), material.normal_scale, 0.0f};

@@ -19,6 +19,47 @@ MaterialData build_material_data(const scene::Scene& scene, int separable_taps,
   return build_material_data(scene.materials, separable_taps, single_scattering);
 }
 
+shader::GpuMaterial encode(const scene::Material& m, const MaterialProfile* profile) {
+  shader::GpuMaterial g;
+  g.surface = {0.04f * m.specular, m.metallic, m.roughness, 0.0f};
+  g.reflectance = {1.0f, 1.0f, 1.0f, 0.0f};
+  if (!m.sss.enabled || profile == nullptr) return g;
+  const MaterialProfile& p = *profile;
+  if (p.transmittance) {
+    const Rgb t = p.transmittance->total;
+    g.transmit = {float(t[0]), float(t[1]), float(t[2]), float(m.sss.effective_thickness_mm())};
+  }
+  const Rgb eta = m.sss.medium.eta;  // the scale leaves η alone
+  g.fresnel = {float(eta[0]), float(eta[1]), float(eta[2]), 0.0f};
+  g.exit_norm = {float(1.0 / profiles::fresnel_exit_normalization(eta[0])),
+                 float(1.0 / profiles::fresnel_exit_normalization(eta[1])),
+                 float(1.0 / profiles::fresnel_exit_normalization(eta[2])), 0.0f};
+  // S(1)'s coefficients: the real (not reduced) albedo and g; the scale changes neither.
+  const profiles::Medium& medium = m.sss.medium;
+  for (int c = 0; c < 3; ++c) {
+    const double st = medium.sigma_a[c] + medium.sigma_s[c];
+    (&g.single.x)[c] = float(st > 0.0 ? medium.sigma_s[c] / st : 0.0);
+    (&g.phase.x)[c] = float(medium.g[c]);
+  }
+  const Rgb total = p.kernel.total_reflectance;  // the profile's total_reflectance()
+  g.reflectance = {float(total[0]), float(total[1]), float(total[2]), 1.0f};
+  const auto count = p.fit.variances_mm2.size();
+  g.surface.w = float(count);  // read by the shaders only; the CPU asks MaterialData
+  for (std::size_t i = 0; i < count; ++i) {
+    float* v = &g.variances[i / 4].x;
+    v[i % 4] = float(p.fit.variances_mm2[i]);
+    g.gauss_weights[i] = {float(p.fit.weights[i][0]), float(p.fit.weights[i][1]),
+                          float(p.fit.weights[i][2]), 0.0f};
+  }
+  const bool pre_post = m.sss.albedo_mode == scene::AlbedoMode::PrePost;
+  g.kernel = {float(p.kernel.offsets_mm.size()), float(p.kernel.range_mm), pre_post ? 1.0f : 0.0f,
+              0.0f};
+  for (std::size_t i = 0; i < p.kernel.offsets_mm.size(); ++i)
+    g.taps[i] = {float(p.kernel.weights[i][0]), float(p.kernel.weights[i][1]),
+                 float(p.kernel.weights[i][2]), float(p.kernel.offsets_mm[i])};
+  return g;
+}
+
 namespace {
 
 MaterialData build(const std::vector<scene::Material>& materials, int separable_taps,
@@ -44,56 +85,19 @@ MaterialData build(const std::vector<scene::Material>& materials, int separable_
   model_options.single_scattering_apart = single_scattering;
   for (std::size_t index = 0; index < materials.size(); ++index) {
     const scene::Material& m = materials[index];
-    shader::GpuMaterial g;
-    g.surface = {0.04f * m.specular, m.metallic, m.roughness, 0.0f};
-    g.reflectance = {1.0f, 1.0f, 1.0f, 0.0f};
     std::optional<MaterialProfile> profile;
     if (m.sss.enabled) {
-      MaterialProfile p;
       if (can_reuse && (*reuse)[index] && previous->profiles[index]) {
-        p = *previous->profiles[index];
+        profile = *previous->profiles[index];
       } else {
         const profiles::RgbProfile rgb = m.sss.profile(model_options);
         profiles::KernelFit k = profiles::fit_kernel(rgb, m.sss.gaussians, m.sss.transmits());
-        p = {std::move(k.fit), profiles::make_separable_kernel(rgb, separable_taps), std::move(k.transmittance)};
+        profile = MaterialProfile{std::move(k.fit), profiles::make_separable_kernel(rgb, separable_taps),
+                                  std::move(k.transmittance)};
       }
-      if (p.transmittance) {
-        const Rgb t = p.transmittance->total;
-        g.transmit = {float(t[0]), float(t[1]), float(t[2]),
-                      float(m.sss.effective_thickness_mm())};
-      }
-      const Rgb eta = m.sss.medium.eta;  // the scale leaves η alone
-      g.fresnel = {float(eta[0]), float(eta[1]), float(eta[2]), 0.0f};
-      g.exit_norm = {float(1.0 / profiles::fresnel_exit_normalization(eta[0])),
-                     float(1.0 / profiles::fresnel_exit_normalization(eta[1])),
-                     float(1.0 / profiles::fresnel_exit_normalization(eta[2])), 0.0f};
-      // S(1)'s coefficients: the real (not reduced) albedo and g; the scale changes
-      // neither.
-      const profiles::Medium& medium = m.sss.medium;
-      for (int c = 0; c < 3; ++c) {
-        const double st = medium.sigma_a[c] + medium.sigma_s[c];
-        (&g.single.x)[c] = float(st > 0.0 ? medium.sigma_s[c] / st : 0.0);
-        (&g.phase.x)[c] = float(medium.g[c]);
-      }
-      const Rgb total = p.kernel.total_reflectance;  // the profile's total_reflectance()
-      g.reflectance = {float(total[0]), float(total[1]), float(total[2]), 1.0f};
-      const auto count = p.fit.variances_mm2.size();
-      g.surface.w = float(count);
-      for (std::size_t i = 0; i < count; ++i) {
-        float* v = &g.variances[i / 4].x;
-        v[i % 4] = float(p.fit.variances_mm2[i]);
-        g.gauss_weights[i] = {float(p.fit.weights[i][0]), float(p.fit.weights[i][1]),
-                              float(p.fit.weights[i][2]), 0.0f};
-      }
-      const bool pre_post = m.sss.albedo_mode == scene::AlbedoMode::PrePost;
-      g.kernel = {float(p.kernel.offsets_mm.size()), float(p.kernel.range_mm),
-                  pre_post ? 1.0f : 0.0f, 0.0f};
-      for (std::size_t i = 0; i < p.kernel.offsets_mm.size(); ++i)
-        g.taps[i] = {float(p.kernel.weights[i][0]), float(p.kernel.weights[i][1]),
-                     float(p.kernel.weights[i][2]), float(p.kernel.offsets_mm[i])};
-      data.max_gaussians = std::max(data.max_gaussians, static_cast<int>(count));
-      profile = std::move(p);
+      data.max_gaussians = std::max(data.max_gaussians, MaterialData::gaussian_count(profile));
     }
+    const shader::GpuMaterial g = encode(m, profile ? &*profile : nullptr);
     data.gpu.push_back(g);
     data.profiles.push_back(std::move(profile));
   }

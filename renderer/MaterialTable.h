@@ -35,14 +35,29 @@ struct MaterialProfile {
 // worker thread (its cost: renderer/README.md, "Costs") and hands the result to
 // Renderer::set_materials(materials, data) on the render thread.
 struct MaterialData {
-  std::vector<shader::GpuMaterial> gpu;
+  std::vector<shader::GpuMaterial> gpu;  // encode() of each material
   std::vector<std::optional<MaterialProfile>> profiles;  // one per material
   int max_gaussians = 0;  // over SSS materials
   int separable_taps = 0;  // the kernels' tap count
   // The profiles leave out their once-scattered light (RenderOptions::single_scattering:
   // the lighting pass adds S(1) per pixel; profiles::ModelOptions::single_scattering_apart).
   bool single_scattering = false;
+
+  // The Gaussians material i's fit has (0 when it does not scatter); the CPU's answer,
+  // never read back from the GPU packing.
+  int gaussian_count(std::size_t material) const {
+    return material < profiles.size() ? gaussian_count(profiles[material]) : 0;
+  }
+  static int gaussian_count(const std::optional<MaterialProfile>& p) {
+    return p ? static_cast<int>(p->fit.variances_mm2.size()) : 0;
+  }
 };
+
+// The one function that knows the GPU layout of a material (shaders/shared/frame.h,
+// GpuMaterial): the surface parameters, and for a scattering material (`profile` set) its
+// fit, separable kernel, slab transmittance, η, exit normalization and single-scattering
+// coefficients.
+shader::GpuMaterial encode(const scene::Material& material, const MaterialProfile* profile);
 MaterialData build_material_data(const scene::Scene& scene, int separable_taps,
                                  bool single_scattering = RenderOptions{}.single_scattering);
 MaterialData build_material_data(const std::vector<scene::Material>& materials,

@@ -264,7 +264,7 @@ std::array<float, 2> Renderer::debug_range() const {
     double top = 0.0;
     for (std::size_t i : chosen) {
       const std::uint32_t m = scene_.mesh_material(instances[i].mesh);
-      if (m >= data.gpu.size()) continue;
+      if (m >= data.profiles.size() || !data.profiles[m]) continue;  // does not scatter
       double mm_per_px_plane = mm_per_unit_;  // orthographic: one depth for all
       if (camera_.projection == scene::Projection::Perspective) {
         // The nearest depth: view space looks down -z, so the box's largest z.
@@ -272,7 +272,9 @@ std::array<float, 2> Renderer::debug_range() const {
         if (!(z_min > 0.0)) return kFallback;
         mm_per_px_plane = z_min * mm_per_unit_;
       }
-      top = std::max(top, double(data.gpu[m].kernel.y) * focal_px / mm_per_px_plane);
+      // The width in float, as the shaders see it.
+      const double range_mm = static_cast<float>(data.profiles[m]->kernel.range_mm);
+      top = std::max(top, range_mm * focal_px / mm_per_px_plane);
     }
     return {1.0f, float(std::max(2.0, top))};
   }

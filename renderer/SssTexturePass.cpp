@@ -344,7 +344,7 @@ void SssTexturePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer,
     Textures& t = textures_[i];
     if (!t.dirty && objects_[i].options.update == TextureUpdate::OnChange) continue;
     const std::uint32_t m = objects_[i].material;
-    update(cmd, t, objects_[i], m < materials.gpu.size() ? int(materials.gpu[m].surface.w) : 0);
+    update(cmd, t, objects_[i], materials.gaussian_count(m));
     t.dirty = false;
     ++objects_[i].updates;
   }
