@@ -18,6 +18,7 @@
 #include <exception>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <type_traits>
 #include <unordered_map>
 
@@ -235,16 +236,85 @@ UvCheck check_uvs(const Mesh& mesh, const std::vector<glm::vec2>& uv,
   return r;
 }
 
-UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  UvAtlas atlas;
-  const std::size_t n = mesh.triangle_count();
-  const auto& P = mesh.positions;
-  const auto& I = mesh.indices;
+namespace {
 
+// build_atlas's stages, pbrt-style: each is a method named for what it does, over the
+// state the stages share (members, filled in stage order).
+class AtlasBuilder {
+ public:
+  AtlasBuilder(const Mesh& mesh, const AtlasOptions& options)
+      : options(options), P(mesh.positions), I(mesh.indices), n(mesh.triangle_count()) {}
+  UvAtlas build();
+
+ private:
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  void classify_faces();
+  void find_neighbours();
+  void smooth_axes();
+  void project_faces();
+  void grow_charts();
+  void orient_charts();
+  void pack_charts();
+  void lay_out_uvs();
+  void unfold_gutters();
+  std::optional<std::array<glm::dvec2, 3>> unfold_across(std::uint32_t t, std::uint32_t parent,
+                                                         const std::array<glm::dvec2, 3>& parent_uv) const;
+  void measure_stretch();
+
+  const AtlasOptions& options;
+  const std::vector<glm::vec3>& P;
+  const std::vector<std::uint32_t>& I;
+  const std::size_t n;
+  UvAtlas atlas;
+  std::vector<int> axis;      // per face: 0..5 = +x, -x, +y, -y, +z, -z
+  std::vector<double> area;   // per face, scene units²
+  double diag = 0.0;          // of the bounding box
+  std::vector<std::uint32_t> weld;                      // vertex -> the first at its position
+  std::vector<std::array<std::uint32_t, 3>> neighbour;  // per face edge: the face across, or kNone
+  std::vector<Tri2> proj;     // per face, in its axis plane (scene units)
+  double cell = 1.0;          // of the overlap grid
+  std::vector<std::vector<std::uint32_t>> chart_faces;
+  std::size_t C = 0;          // charts
+  std::vector<double> angle;  // per chart: its rotation
+  std::vector<glm::dvec2> box_min, box_size;  // per chart, rotated (scene units)
+  double pad = 0.0;           // UV
+  double s = 0.0;             // UV per scene unit
+  std::vector<glm::dvec2> origin;  // per chart: its padded box's corner (UV)
+  double covered = 0.0;       // UV area under the triangles
+  double max_stretch = 1.0;
+};
+
+glm::dvec2 rotate(const glm::dvec2& p, double a) {
+  const double cs = std::cos(a), sn = std::sin(a);
+  return glm::dvec2(cs * p.x - sn * p.y, sn * p.x + cs * p.y);
+}
+
+UvAtlas AtlasBuilder::build() {
+  const auto start = std::chrono::steady_clock::now();
+  classify_faces();   // 1
+  find_neighbours();
+  smooth_axes();
+  project_faces();
+  grow_charts();      // 2
+  orient_charts();    // 3
+  pack_charts();      // 4
+  lay_out_uvs();      // 5
+  unfold_gutters();   // 6
+  measure_stretch();
+  atlas.stats.charts = C;
+  atlas.stats.uv_per_unit = s;
+  atlas.stats.utilization = covered;
+  atlas.stats.max_stretch = max_stretch;
+  atlas.stats.split_vertices = atlas.source_vertex.size() - P.size();
+  atlas.stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return std::move(atlas);
+}
+
+void AtlasBuilder::classify_faces() {
   // 1. Face axes: the closest of ±x, ±y, ±z to the (area-weighted) face normal.
-  std::vector<int> axis(n, 0);
-  std::vector<double> area(n, 0.0);
+  axis.assign(n, 0);
+  area.assign(n, 0.0);
   for (std::size_t t = 0; t < n; ++t) {
     const glm::dvec3 a(P[I[3 * t]]), b(P[I[3 * t + 1]]), c(P[I[3 * t + 2]]);
     const glm::dvec3 nrm = glm::cross(b - a, c - a);
@@ -257,17 +327,18 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
     }
     axis[t] = best;
   }
+}
 
+void AtlasBuilder::find_neighbours() {
   // Edge adjacency: triangles across each undirected edge, with vertices welded by
   // position (an input UV seam duplicates vertices; it must not split a chart).
-  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   // Welding snaps positions to a grid of 1e-6 of the bounding-box diagonal, so a seam
   // whose two sides were computed separately (a UV sphere's u = 0 and u = 1) still welds.
   glm::dvec3 pmin(std::numeric_limits<double>::infinity()), pmax(-pmin);
   for (const glm::vec3& p : P) pmin = glm::min(pmin, glm::dvec3(p)), pmax = glm::max(pmax, glm::dvec3(p));
-  const double diag = P.empty() ? 0.0 : glm::length(pmax - pmin);
+  diag = P.empty() ? 0.0 : glm::length(pmax - pmin);
   const double snap = diag > 0.0 ? 1e-6 * diag : 1.0;
-  std::vector<std::uint32_t> weld(P.size());
+  weld.assign(P.size(), 0);
   {
     struct Key {
       std::int64_t x, y, z;
@@ -293,7 +364,7 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
     if (a > b) std::swap(a, b);
     return (std::uint64_t(a) << 32) | b;
   };
-  std::vector<std::array<std::uint32_t, 3>> neighbour(n, {kNone, kNone, kNone});
+  neighbour.assign(n, {kNone, kNone, kNone});
   for (std::uint32_t t = 0; t < n; ++t)
     for (int e = 0; e < 3; ++e) {
       auto [it, fresh] = edge_map.try_emplace(edge_key(I[3 * t + e], I[3 * t + (e + 1) % 3]),
@@ -306,7 +377,9 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
       const auto& pair = edge_map[edge_key(I[3 * t + e], I[3 * t + (e + 1) % 3])];
       neighbour[t][e] = pair[0] == t ? pair[1] : (pair[1] == t ? pair[0] : kNone);
     }
+}
 
+void AtlasBuilder::smooth_axes() {
   // Smoothing: a face whose neighbours mostly (2 or 3) took another axis takes it too,
   // if that axis is within 54.7° of its normal (cos θ ≥ 1/√3, the closest axis's own
   // guarantee, so the stretch bound holds). It removes the one-face charts along the
@@ -328,9 +401,11 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
     }
     axis.swap(next);
   }
+}
 
+void AtlasBuilder::project_faces() {
   // Projected triangles, per face in its own axis plane (scene units).
-  std::vector<Tri2> proj(n);
+  proj.assign(n, Tri2{});
   double edge_sum = 0.0;
   for (std::size_t t = 0; t < n; ++t) {
     glm::dvec3 u, v;
@@ -341,8 +416,10 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
     }
     edge_sum += glm::length(proj[t][1] - proj[t][0]);
   }
-  const double cell = std::max(2.0 * edge_sum / double(std::max<std::size_t>(n, 1)), 1e-30);
+  cell = std::max(2.0 * edge_sum / double(std::max<std::size_t>(n, 1)), 1e-30);
+}
 
+void AtlasBuilder::grow_charts() {
   // 2. Charts: breadth-first growth over edges between faces of one axis, refusing a face
   //    whose projection overlaps the chart's (so the chart stays injective). The tolerance,
   //    1e-7 of the diagonal, lets welded seams touch; it stays far below check_uvs's
@@ -352,7 +429,6 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
   TriGrid grid(cell);
   std::vector<std::uint32_t> stamp(n, kNone), members;
   std::deque<std::uint32_t> queue;
-  std::vector<std::vector<std::uint32_t>> chart_faces;
   for (std::uint32_t seed = 0; seed < n; ++seed) {
     if (atlas.triangle_chart[seed] != kNone) continue;
     const auto c = std::uint32_t(chart_faces.size());
@@ -380,16 +456,15 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
     }
     chart_faces.push_back(members);
   }
+}
 
+void AtlasBuilder::orient_charts() {
   // 3. Per chart: the rotation (of 32 in [0, π/2)) with the smallest bounding box, turned
   //    to lie flat (width >= height) for the shelf packing.
-  const std::size_t C = chart_faces.size();
-  std::vector<double> angle(C, 0.0);
-  std::vector<glm::dvec2> box_min(C), box_size(C);
-  auto rotate = [](const glm::dvec2& p, double a) {
-    const double cs = std::cos(a), sn = std::sin(a);
-    return glm::dvec2(cs * p.x - sn * p.y, sn * p.x + cs * p.y);
-  };
+  C = chart_faces.size();
+  angle.assign(C, 0.0);
+  box_min.assign(C, glm::dvec2(0.0));
+  box_size.assign(C, glm::dvec2(0.0));
   for (std::size_t c = 0; c < C; ++c) {
     double best = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 32; ++k) {
@@ -411,14 +486,16 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
       if (boxed < best) best = boxed, angle[c] = a_final, box_min[c] = lo, box_size[c] = size;
     }
   }
+}
 
+void AtlasBuilder::pack_charts() {
   // 4. One scale for all charts: the largest s for which the shelf packing fits.
   std::vector<std::uint32_t> order(C);
   for (std::uint32_t c = 0; c < C; ++c) order[c] = c;
   std::stable_sort(order.begin(), order.end(),
                    [&](std::uint32_t a, std::uint32_t b) { return box_size[a].y > box_size[b].y; });
-  const double pad = double(options.padding_texels) / double(std::max(options.resolution, 1u));
-  std::vector<glm::dvec2> origin(C);
+  pad = double(options.padding_texels) / double(std::max(options.resolution, 1u));
+  origin.assign(C, glm::dvec2(0.0));
   struct Shelf {
     double y, height, x;
   };
@@ -446,17 +523,18 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
     }
     return true;
   };
-  double total_area = 0.0, max_side = 0.0;
+  double max_side = 0.0;
   for (std::size_t c = 0; c < C; ++c) max_side = std::max({max_side, box_size[c].x, box_size[c].y});
-  for (double a : area) total_area += a;
   double lo_s = 0.0, hi_s = max_side > 0.0 ? 1.0 / max_side : 1.0;
   for (int it = 0; it < 50; ++it) {
     const double mid = 0.5 * (lo_s + hi_s);
     (pack(mid) ? lo_s : hi_s) = mid;
   }
-  const double s = lo_s;
+  s = lo_s;
   pack(s);
+}
 
+void AtlasBuilder::lay_out_uvs() {
   // 5. UVs and the vertex split: one new vertex per (input vertex, chart).
   std::unordered_map<std::uint64_t, std::uint32_t> split;
   split.reserve(2 * P.size());
@@ -468,7 +546,7 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
     atlas.charts[c].uv_min = glm::vec2(origin[c] + pad);
     atlas.charts[c].uv_max = glm::vec2(origin[c] + pad + s * box_size[c]);
   }
-  double covered = 0.0;
+  covered = 0.0;
   for (std::uint32_t t = 0; t < n; ++t) {
     const std::uint32_t c = atlas.triangle_chart[t];
     atlas.charts[c].area += area[t];
@@ -487,7 +565,56 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
         d(atlas.uv[atlas.indices[3 * t + 2]]);
     covered += std::abs(0.5 * cross2(b - a, d - a));
   }
+}
 
+// Face t unfolded across the edge it shares with the placed face `parent` (at UVs
+// parent_uv) into the parent's UV map; nothing where they share no edge or a face is
+// degenerate.
+std::optional<std::array<glm::dvec2, 3>> AtlasBuilder::unfold_across(
+    std::uint32_t t, std::uint32_t parent, const std::array<glm::dvec2, 3>& parent_uv) const {
+  // The shared edge: the parent's corners whose welded vertices t also has.
+  int pe[3] = {-1, -1, -1};  // for each corner of t, the parent's corner (or -1)
+  int shared = 0;
+  for (int k = 0; k < 3; ++k)
+    for (int q = 0; q < 3; ++q)
+      if (weld[I[3 * t + k]] == weld[I[3 * parent + q]]) pe[k] = q, ++shared;
+  if (shared != 2) return std::nullopt;
+  int kc = 0;
+  while (pe[kc] >= 0) ++kc;
+  const int ka = (kc + 1) % 3, kb = (kc + 2) % 3;
+  const glm::dvec3 a(P[I[3 * t + ka]]), b(P[I[3 * t + kb]]), cc(P[I[3 * t + kc]]);
+  const glm::dvec2 A = parent_uv[pe[ka]], B = parent_uv[pe[kb]];
+  const int parent_third = 3 - pe[ka] - pe[kb];
+  // c turned about ab into the parent's plane, on the side away from the parent's
+  // third corner, then mapped by the parent's own affine 3D -> UV map: the gutter
+  // keeps the chart's anisotropic scale (a tilted chart's texels are longer across
+  // the tilt), so the blur's texel sizes agree across the border.
+  const glm::dvec3 third(P[I[3 * parent + parent_third]]);
+  const glm::dvec3 ab = b - a;
+  const double ab2 = glm::dot(ab, ab);
+  if (!(ab2 > 0.0)) return std::nullopt;
+  const double along = glm::dot(cc - a, ab) / ab2;
+  const double height = glm::length(cc - (a + along * ab));
+  glm::dvec3 side = (third - a) - ab * (glm::dot(third - a, ab) / ab2);  // in the parent's plane
+  const double side_len = glm::length(side);
+  if (!(side_len > 0.0)) return std::nullopt;
+  const glm::dvec3 unfolded = a + along * ab - side / side_len * height;
+  // The parent's affine map from barycentric-style coordinates on its edges.
+  const glm::dvec3 e1 = b - a, e2 = third - a, d = unfolded - a;
+  const double g11 = glm::dot(e1, e1), g12 = glm::dot(e1, e2), g22 = glm::dot(e2, e2);
+  const double det = g11 * g22 - g12 * g12;
+  if (!(std::abs(det) > 0.0)) return std::nullopt;
+  const double r1 = glm::dot(d, e1), r2 = glm::dot(d, e2);
+  const double alpha = (r1 * g22 - r2 * g12) / det, beta = (r2 * g11 - r1 * g12) / det;
+  const glm::dvec2 C3 = parent_uv[parent_third];
+  std::array<glm::dvec2, 3> uv;
+  uv[ka] = A;
+  uv[kb] = B;
+  uv[kc] = A + alpha * (B - A) + beta * (C3 - A);
+  return uv;
+}
+
+void AtlasBuilder::unfold_gutters() {
   // 6. Seam gutters: each chart's neighbourhood unfolded into its padding, triangle by
   //    triangle across shared edges (breadth-first): a triangle across edge ab of a placed
   //    triangle (a chart triangle at its chart's map, or a gutter triangle already placed)
@@ -496,109 +623,74 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
   //    continues the surface at the chart's local (anisotropic) scale however sharply it
   //    turns at the chart's border (a projection along the chart's axis would fold there),
   //    out to 1.5 x the padding's width in scene units (surface path between centroids).
-  {
-    double reach = 3.0 * pad / std::max(s, 1e-30);
-    if (options.max_gutter_reach > 0.0) reach = std::min(reach, options.max_gutter_reach);
-    std::vector<glm::dvec3> to_u(C), to_v(C);
-    std::vector<glm::dvec2> offset(C);
-    for (std::size_t c = 0; c < C; ++c) {
-      glm::dvec3 u, v;
-      axis_basis(atlas.charts[c].axis, u, v);
-      const double cs = std::cos(angle[c]), sn = std::sin(angle[c]);
-      to_u[c] = s * (cs * u - sn * v);
-      to_v[c] = s * (sn * u + cs * v);
-      offset[c] = -s * box_min[c] + origin[c] + pad;
+  double reach = 3.0 * pad / std::max(s, 1e-30);
+  if (options.max_gutter_reach > 0.0) reach = std::min(reach, options.max_gutter_reach);
+  std::vector<glm::dvec3> to_u(C), to_v(C);
+  std::vector<glm::dvec2> offset(C);
+  for (std::size_t c = 0; c < C; ++c) {
+    glm::dvec3 u, v;
+    axis_basis(atlas.charts[c].axis, u, v);
+    const double cs = std::cos(angle[c]), sn = std::sin(angle[c]);
+    to_u[c] = s * (cs * u - sn * v);
+    to_v[c] = s * (sn * u + cs * v);
+    offset[c] = -s * box_min[c] + origin[c] + pad;
+  }
+  const auto centroid = [&](std::uint32_t t) {
+    return (glm::dvec3(P[I[3 * t]]) + glm::dvec3(P[I[3 * t + 1]]) + glm::dvec3(P[I[3 * t + 2]])) / 3.0;
+  };
+  struct Placed {
+    std::array<glm::dvec2, 3> uv;
+    double dist = 0.0;  // surface path from the chart, scene units
+  };
+  std::vector<std::uint32_t> seen(n, kNone);
+  std::unordered_map<std::uint32_t, Placed> placed;
+  std::deque<std::pair<std::uint32_t, std::uint32_t>> frontier;  // (triangle, placed parent)
+  for (std::uint32_t c = 0; c < C; ++c) {
+    placed.clear();
+    frontier.clear();
+    for (std::uint32_t t : chart_faces[c]) {
+      seen[t] = c;
+      Placed pl;
+      for (int k = 0; k < 3; ++k) {
+        const glm::dvec3 p(P[I[3 * t + k]]);
+        pl.uv[k] = glm::dvec2(glm::dot(to_u[c], p), glm::dot(to_v[c], p)) + offset[c];
+      }
+      placed[t] = pl;
+      for (std::uint32_t nb : neighbour[t])
+        if (nb != kNone && atlas.triangle_chart[nb] != c) frontier.emplace_back(nb, t);
     }
-    const auto centroid = [&](std::uint32_t t) {
-      return (glm::dvec3(P[I[3 * t]]) + glm::dvec3(P[I[3 * t + 1]]) + glm::dvec3(P[I[3 * t + 2]])) / 3.0;
-    };
-    struct Placed {
-      std::array<glm::dvec2, 3> uv;
-      double dist = 0.0;  // surface path from the chart, scene units
-    };
-    std::vector<std::uint32_t> seen(n, kNone);
-    std::unordered_map<std::uint32_t, Placed> placed;
-    std::deque<std::pair<std::uint32_t, std::uint32_t>> frontier;  // (triangle, placed parent)
-    for (std::uint32_t c = 0; c < C; ++c) {
-      placed.clear();
-      frontier.clear();
-      for (std::uint32_t t : chart_faces[c]) {
-        seen[t] = c;
-        Placed pl;
-        for (int k = 0; k < 3; ++k) {
-          const glm::dvec3 p(P[I[3 * t + k]]);
-          pl.uv[k] = glm::dvec2(glm::dot(to_u[c], p), glm::dot(to_v[c], p)) + offset[c];
-        }
-        placed[t] = pl;
-        for (std::uint32_t nb : neighbour[t])
-          if (nb != kNone && atlas.triangle_chart[nb] != c) frontier.emplace_back(nb, t);
+    const std::uint32_t host = chart_faces[c].front();
+    while (!frontier.empty()) {
+      const auto [t, parent] = frontier.front();
+      frontier.pop_front();
+      if (seen[t] == c) continue;
+      const Placed& pp = placed.at(parent);
+      const auto uv = unfold_across(t, parent, pp.uv);
+      if (!uv) continue;
+      Placed pl;
+      pl.uv = *uv;
+      pl.dist = pp.dist + glm::length(centroid(t) - centroid(parent));
+      if (pl.dist > reach) continue;
+      seen[t] = c;
+      GutterTriangle g;
+      g.host_triangle = host;
+      for (int k = 0; k < 3; ++k) {
+        g.source[k] = I[3 * t + k];
+        g.uv[k] = glm::vec2(pl.uv[k]);
+        g.depth[k] = float(0.25 + 0.5 * std::min(1.0, pl.dist / reach));
       }
-      const std::uint32_t host = chart_faces[c].front();
-      while (!frontier.empty()) {
-        const auto [t, parent] = frontier.front();
-        frontier.pop_front();
-        if (seen[t] == c) continue;
-        const Placed& pp = placed.at(parent);
-        // The shared edge: the parent's corners whose welded vertices t also has.
-        int pe[3] = {-1, -1, -1};  // for each corner of t, the parent's corner (or -1)
-        int shared = 0;
-        for (int k = 0; k < 3; ++k)
-          for (int q = 0; q < 3; ++q)
-            if (weld[I[3 * t + k]] == weld[I[3 * parent + q]]) pe[k] = q, ++shared;
-        if (shared != 2) continue;
-        int kc = 0;
-        while (pe[kc] >= 0) ++kc;
-        const int ka = (kc + 1) % 3, kb = (kc + 2) % 3;
-        const glm::dvec3 a(P[I[3 * t + ka]]), b(P[I[3 * t + kb]]), cc(P[I[3 * t + kc]]);
-        const glm::dvec2 A = pp.uv[pe[ka]], B = pp.uv[pe[kb]];
-        const int parent_third = 3 - pe[ka] - pe[kb];
-        // c turned about ab into the parent's plane, on the side away from the parent's
-        // third corner, then mapped by the parent's own affine 3D -> UV map: the gutter
-        // keeps the chart's anisotropic scale (a tilted chart's texels are longer across
-        // the tilt), so the blur's texel sizes agree across the border.
-        const glm::dvec3 third(P[I[3 * parent + parent_third]]);
-        const glm::dvec3 ab = b - a;
-        const double ab2 = glm::dot(ab, ab);
-        if (!(ab2 > 0.0)) continue;
-        const double along = glm::dot(cc - a, ab) / ab2;
-        const double height = glm::length(cc - (a + along * ab));
-        glm::dvec3 side = (third - a) - ab * (glm::dot(third - a, ab) / ab2);  // in the parent's plane
-        const double side_len = glm::length(side);
-        if (!(side_len > 0.0)) continue;
-        const glm::dvec3 unfolded = a + along * ab - side / side_len * height;
-        // The parent's affine map from barycentric-style coordinates on its edges.
-        const glm::dvec3 e1 = b - a, e2 = third - a, d = unfolded - a;
-        const double g11 = glm::dot(e1, e1), g12 = glm::dot(e1, e2), g22 = glm::dot(e2, e2);
-        const double det = g11 * g22 - g12 * g12;
-        if (!(std::abs(det) > 0.0)) continue;
-        const double r1 = glm::dot(d, e1), r2 = glm::dot(d, e2);
-        const double alpha = (r1 * g22 - r2 * g12) / det, beta = (r2 * g11 - r1 * g12) / det;
-        const glm::dvec2 C3 = pp.uv[parent_third];
-        Placed pl;
-        pl.uv[ka] = A;
-        pl.uv[kb] = B;
-        pl.uv[kc] = A + alpha * (B - A) + beta * (C3 - A);
-        pl.dist = pp.dist + glm::length(centroid(t) - centroid(parent));
-        if (pl.dist > reach) continue;
-        seen[t] = c;
-        GutterTriangle g;
-        g.host_triangle = host;
-        for (int k = 0; k < 3; ++k) {
-          g.source[k] = I[3 * t + k];
-          g.uv[k] = glm::vec2(pl.uv[k]);
-          g.depth[k] = float(0.25 + 0.5 * std::min(1.0, pl.dist / reach));
-        }
-        atlas.gutter.push_back(g);
-        placed[t] = pl;
-        for (std::uint32_t nb : neighbour[t])
-          if (nb != kNone && seen[nb] != c && atlas.triangle_chart[nb] != c) frontier.emplace_back(nb, t);
-      }
+      atlas.gutter.push_back(g);
+      placed[t] = pl;
+      for (std::uint32_t nb : neighbour[t])
+        if (nb != kNone && seen[nb] != c && atlas.triangle_chart[nb] != c) frontier.emplace_back(nb, t);
     }
   }
+}
 
+void AtlasBuilder::measure_stretch() {
   // Stretch: mm per UV over the triangle, relative to 1/s, from the singular values of
   // the 3D -> UV map (its largest is s, its smallest s·cos θ).
-  double max_stretch = 1.0;
+  max_stretch = 1.0;
   for (std::uint32_t t = 0; t < n; ++t) {
     if (!(area[t] > 0.0)) continue;
     const glm::dvec3 p0(P[I[3 * t]]), e1 = glm::dvec3(P[I[3 * t + 1]]) - p0,
@@ -618,16 +710,12 @@ UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
     const double smin = std::sqrt(std::max(E - std::sqrt(std::max(E * E - det * det, 0.0)), 0.0));
     if (smin > 0.0) max_stretch = std::max(max_stretch, s / smin);
   }
+}
 
-  atlas.stats.charts = C;
-  atlas.stats.uv_per_unit = s;
-  atlas.stats.utilization = covered;
-  atlas.stats.max_stretch = max_stretch;
-  atlas.stats.split_vertices = atlas.source_vertex.size() - P.size();
-  atlas.stats.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  (void)total_area;
-  return atlas;
+}  // namespace
+
+UvAtlas build_atlas(const Mesh& mesh, const AtlasOptions& options) {
+  return AtlasBuilder(mesh, options).build();
 }
 
 AtlasStats generate_atlas(Mesh& mesh, const AtlasOptions& options) {
