@@ -10,6 +10,7 @@
 #include "CliSupport.h"
 #include "EnvironmentArgs.h"
 #include "MaterialOverrides.h"
+#include "SceneArgs.h"
 
 #include "renderer/image/AtomicFile.h"
 #include "renderer/image/Image.h"
@@ -505,24 +506,6 @@ std::optional<int> check_files(Args& a) {
   return std::nullopt;
 }
 
-// The scene with its overrides and environment, its warnings printed; an exit status if
-// it cannot be had.
-std::optional<int> load(const Args& a, scene::Scene& s) {
-  auto loaded = scene::load_scene(a.scene_name);
-  if (auto* e = std::get_if<scene::LoadError>(&loaded)) return input_error("sss-reference", e->what());
-  s = std::move(std::get<scene::Scene>(loaded));
-  scene::add_camera_if_missing(s);
-  scene::add_light_if_missing(s);
-  auto overridden = apply_material_overrides(s, a.material);
-  if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
-  if (auto e = apply_environment(s, a.environment))
-    return e->file ? input_error("sss-reference", e->message) : usage(e->message);
-
-  add_material_warnings(s, std::uint32_t(a.height));
-  print_messages("sss-reference", "warning", s.warnings);
-  return std::nullopt;
-}
-
 // What the diffusion reference renders with (the auto choice reads its size, spacing,
 // point cap and threads, and sets its spacing).
 reference::ReferenceOptions diffusion_options(const Args& a) {
@@ -675,8 +658,9 @@ int main(int argc, char** argv) {
   if (const auto stop = check_modes(app, a)) return *stop;
   if (const auto stop = check_values(app, a)) return *stop;
   if (const auto stop = check_files(a)) return *stop;
-  scene::Scene s;
-  if (const auto stop = load(a, s)) return *stop;
+  auto loaded = load_cli_scene("sss-reference", a.scene_name, a.material, a.environment, std::uint32_t(a.height));
+  if (const int* stop = std::get_if<int>(&loaded)) return *stop;
+  const scene::Scene& s = std::get<scene::Scene>(loaded);
   reference::ReferenceOptions diffusion = diffusion_options(a);
   if (a.choose_later)
     if (const auto stop = choose(a, s, diffusion)) return *stop;

@@ -3,6 +3,7 @@
 //   sss-viewer [SCENE] [--screenshot FILE --frames N] [--vsync on|off] [options]
 //   sss-viewer [SCENE] --headless --out FILE.png|FILE.exr [options]
 // The command-line contract is DESIGN.md §4; errors exit 2 (usage, input) or 1 (runtime).
+#include "SceneArgs.h"
 #include "CliSupport.h"
 #include "FrameOutput.h"
 #include "InputFiles.h"
@@ -88,10 +89,8 @@ void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
   std::printf("%-16s %10.3f\n", "cpu mean", cpu_total_ms / frames);
 }
 
-int viewer_main(int argc, char** argv) {
-  CLI::App app{"sss-viewer: real-time subsurface scattering (Vulkan), in a window or headless.",
-               "sss-viewer"};
-  ViewerArgs a;
+// The scene and how it is drawn.
+void add_render_options(CLI::App& app, ViewerArgs& a) {
   app.add_option("scene", a.scene, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
   app.add_flag("--headless", a.headless, "Render without a window and write --out");
   app.add_option("--out", a.out, "Output image: FILE.png (tonemapped) or FILE.exr (linear)");
@@ -154,6 +153,10 @@ int viewer_main(int argc, char** argv) {
                "Headless, EXR --out: write the frame less its specular, the light that scattered (with its "
                "albedo) and the opaque diffuse; compare with sss-reference --no-specular (the error budget's "
                "scattered light)");
+}
+
+// How the viewer runs: statistics, the device, the window, the soak, and the tests' hooks.
+void add_run_options(CLI::App& app, ViewerArgs& a) {
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
   app.add_option("--vsync", a.vsync, "Window: on (FIFO, default) | off (MAILBOX or IMMEDIATE)");
@@ -196,17 +199,17 @@ int viewer_main(int argc, char** argv) {
       ->check(CLI::Range(0L, 1L << 30));
   app.add_option("--soak-csv", a.soak_csv, "--soak: write frame,rss_kb,vk_objects,material here");
   app.add_option("--soak-svg", a.soak_svg, "--soak: plot resident memory and objects here (SVG)");
-  if (const auto stop = parse_command_line(app, argc, argv, "sss-viewer")) return *stop;
+}
 
-  if (const char* v = std::getenv("SSS_VALIDATION"); v != nullptr && std::string(v) == "1")
-    a.validation = true;
-  std::string ext;
+// Which outputs go with which run (window, headless, soak) and the tests' scripts; an
+// exit status where they do not fit.
+std::optional<int> check_outputs(const ViewerArgs& a) {
   const bool soak_options = a.soak > 0 || !a.soak_csv.empty() || !a.soak_svg.empty();
   if (soak_options && (!a.headless || a.soak == 0))
     return usage("--soak-csv and --soak-svg need --soak N, and --soak needs --headless");
   if (a.headless) {
     if (a.out.empty() && a.soak == 0) return usage("--headless needs --out FILE.png|FILE.exr");
-    ext = lower_extension(a.out);
+    const std::string ext = lower_extension(a.out);
     if (!a.out.empty() && ext != ".png" && ext != ".exr")
       return usage("--out: expected a .png or .exr file name, got '" + a.out + "'");
     if (a.no_specular && ext != ".exr")
@@ -227,7 +230,11 @@ int viewer_main(int argc, char** argv) {
                  a.test_edit + "'");
   if (a.vsync != "on" && a.vsync != "off")
     return usage("--vsync: expected on or off, got '" + a.vsync + "'");
-  renderer::RenderOptions options;
+  return std::nullopt;
+}
+
+// --sss, --mode and what each mode takes, into `options`; an exit status where bad.
+std::optional<int> set_sss_options(const ViewerArgs& a, renderer::RenderOptions& options) {
   const auto sss_mode = renderer::parse_sss_mode(a.sss);
   if (!sss_mode) return usage("--sss: expected off, screen or texture, got '" + a.sss + "'");
   options.sss = *sss_mode;
@@ -252,6 +259,12 @@ int viewer_main(int argc, char** argv) {
     return usage("--taps: expected an odd number in 3..33, got " + std::to_string(a.taps));
   options.separable_taps = a.taps;
   options.shadow_map_size = std::uint32_t(a.shadow_map_size);
+  return std::nullopt;
+}
+
+// The frame: its size and exposure, anti-aliasing, background, debug view and the
+// lighting switches, into `options`; an exit status where bad.
+std::optional<int> set_frame_options(const ViewerArgs& a, renderer::RenderOptions& options) {
   if (!(a.exposure >= 1e-6 && a.exposure <= 1e6))  // also NaN (CLI::Range would let it through)
     return usage("--exposure: must lie in [1e-06, 1e+06], got " + std::to_string(a.exposure));
   if (std::size_t(a.width) * std::size_t(a.height) > image::kMaxImagePixels)
@@ -307,18 +320,53 @@ int viewer_main(int argc, char** argv) {
   if (a.single_scattering != "on" && a.single_scattering != "off")
     return usage("--single-scattering: expected on or off, got '" + a.single_scattering + "'");
   options.single_scattering = a.single_scattering == "on";
+  return std::nullopt;
+}
 
-  auto loaded = scene::load_scene(a.scene);
-  if (auto* e = std::get_if<scene::LoadError>(&loaded)) return input_error("sss-viewer", e->what());
+// Renders --frames headless and writes --out (and --atlas-out), printing the debug
+// view's range and --stats.
+void run_headless(const ViewerArgs& a, const scene::Scene& scene, const renderer::RenderOptions& options,
+                  const std::vector<std::filesystem::path>& inputs) {
+  vk::Context context(headless_context_options(a));
+  renderer::Renderer r(context, scene, options);
+  print_warnings(r);
+  double cpu_total = 0.0;
+  for (int i = 0; i < a.frames; ++i) {
+    r.render_frame();
+    cpu_total += r.stats().cpu_ms;
+    if (a.test_host_oom == "frame") throw std::bad_alloc();
+  }
+  if (a.no_specular)
+    image::write_exr(a.out, frame_less_specular(r));
+  else
+    write_frame(r, a.out);
+  if (!a.atlas_out.empty()) write_atlases(r, a.atlas_out, inputs);
+  if (renderer::debug_view_has_range(options.debug_view)) {  // the PNG's scale
+    const auto [lo, hi] = r.debug_range();
+    std::cout << "debug view " << a.debug_view << ": heat map " << lo << " .. " << hi << ' '
+              << renderer::debug_view_unit(options.debug_view)
+              << (a.debug_range.empty() ? " (automatic; --debug-range sets it)\n" : "\n");
+  }
+  if (a.stats) print_stats(r, a.frames, cpu_total);
+}
+
+int viewer_main(int argc, char** argv) {
+  CLI::App app{"sss-viewer: real-time subsurface scattering (Vulkan), in a window or headless.",
+               "sss-viewer"};
+  ViewerArgs a;
+  add_render_options(app, a);
+  add_run_options(app, a);
+  if (const auto stop = parse_command_line(app, argc, argv, "sss-viewer")) return *stop;
+
+  if (const char* v = std::getenv("SSS_VALIDATION"); v != nullptr && std::string(v) == "1")
+    a.validation = true;
+  if (const auto stop = check_outputs(a)) return *stop;
+  renderer::RenderOptions options;
+  if (const auto stop = set_sss_options(a, options)) return *stop;
+  if (const auto stop = set_frame_options(a, options)) return *stop;
+  auto loaded = load_cli_scene("sss-viewer", a.scene, a.material, a.environment, std::uint32_t(a.height));
+  if (const int* stop = std::get_if<int>(&loaded)) return *stop;
   scene::Scene scene = std::move(std::get<scene::Scene>(loaded));
-  scene::add_camera_if_missing(scene);
-  scene::add_light_if_missing(scene);
-  auto overridden = apply_material_overrides(scene, a.material);
-  if (auto* e = std::get_if<FieldError>(&overridden)) return usage(e->what());
-  if (auto e = apply_environment(scene, a.environment))
-    return e->file ? input_error("sss-viewer", e->message) : usage(e->message);
-  add_material_warnings(scene, std::uint32_t(a.height));
-  print_messages("sss-viewer", "warning", scene.warnings);
   if (a.test_host_oom == "load") throw std::bad_alloc();
   // No output may replace a file the scene was loaded from (checked again where a file
   // is written after another scene was opened).
@@ -332,27 +380,7 @@ int viewer_main(int argc, char** argv) {
   try {
     if (!a.headless) return run_window(a, scene, options);
     if (a.soak > 0) return run_soak(a, scene, options);
-    vk::Context context(headless_context_options(a));
-    renderer::Renderer r(context, scene, options);
-    print_warnings(r);
-    double cpu_total = 0.0;
-    for (int i = 0; i < a.frames; ++i) {
-      r.render_frame();
-      cpu_total += r.stats().cpu_ms;
-      if (a.test_host_oom == "frame") throw std::bad_alloc();
-    }
-    if (a.no_specular)
-      image::write_exr(a.out, frame_less_specular(r));
-    else
-      write_frame(r, a.out);
-    if (!a.atlas_out.empty()) write_atlases(r, a.atlas_out, inputs);
-    if (renderer::debug_view_has_range(options.debug_view)) {  // the PNG's scale
-      const auto [lo, hi] = r.debug_range();
-      std::cout << "debug view " << a.debug_view << ": heat map " << lo << " .. " << hi << ' '
-                << renderer::debug_view_unit(options.debug_view)
-                << (a.debug_range.empty() ? " (automatic; --debug-range sets it)\n" : "\n");
-    }
-    if (a.stats) print_stats(r, a.frames, cpu_total);
+    run_headless(a, scene, options, inputs);
   } catch (const std::bad_alloc&) {
     std::cerr << "sss-viewer: error: out of host memory (std::bad_alloc)\n";
     return kExitRuntime;
