@@ -5,6 +5,8 @@
 #include "FrameOutput.h"
 #include "InputFiles.h"
 #include "OrbitCamera.h"
+#include "Presenter.h"
+#include "ScriptedDriver.h"
 #include "Tools.h"
 #include "Ui.h"
 
@@ -41,17 +43,6 @@ namespace sss::app {
 
 namespace {
 
-using RenderPassHandle = vk::Handle<VkRenderPass, vkDestroyRenderPass>;
-using FramebufferHandle = vk::Handle<VkFramebuffer, vkDestroyFramebuffer>;
-
-// The blit stage: where the frame waits for the acquired image and writes it first.
-constexpr vk::Scope kBlitWrite{VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
-constexpr vk::Scope kBlitRead{VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT};
-constexpr vk::Scope kBlitWait{VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_NONE};
-constexpr vk::Scope kColorAttachment{
-    VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-    VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-
 bool has_display() {
   const char* x = std::getenv("DISPLAY");
   const char* w = std::getenv("WAYLAND_DISPLAY");
@@ -61,10 +52,6 @@ bool has_display() {
 int no_display() {
   std::cerr << "sss-viewer: error: " << kNoDisplayMessage << '\n';
   return kExitRuntime;
-}
-
-void check_imgui_vk(VkResult r) {
-  if (r < 0) throw vk::VulkanError(r, "Dear ImGui's Vulkan backend");
 }
 
 // GLFW: initialised, terminated at scope exit.
@@ -84,81 +71,6 @@ struct WindowHandle {
     if (window != nullptr) glfwDestroyWindow(window);
   }
 };
-
-// The UI pass over the blitted image: LOAD, COLOR_ATTACHMENT_OPTIMAL -> PRESENT_SRC.
-RenderPassHandle create_ui_render_pass(const vk::Context& ctx, VkFormat format) {
-  VkAttachmentDescription color{};
-  color.format = format;
-  color.samples = VK_SAMPLE_COUNT_1_BIT;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  color.initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  color.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-  VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription subpass{};
-  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  subpass.colorAttachmentCount = 1;
-  subpass.pColorAttachments = &ref;
-  VkSubpassDependency deps[2]{};
-  deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
-  deps[0].dstSubpass = 0;
-  deps[0].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-  deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-  deps[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  deps[1].srcSubpass = 0;
-  deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
-  deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-  deps[1].dstStageMask = VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT;
-  deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  deps[1].dstAccessMask = 0;
-  VkRenderPassCreateInfo info{};
-  info.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-  info.attachmentCount = 1;
-  info.pAttachments = &color;
-  info.subpassCount = 1;
-  info.pSubpasses = &subpass;
-  info.dependencyCount = 2;
-  info.pDependencies = deps;
-  VkRenderPass pass = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateRenderPass(ctx.device(), &info, nullptr, &pass));
-  return RenderPassHandle(ctx.device(), pass);
-}
-
-std::vector<FramebufferHandle> create_framebuffers(const vk::Context& ctx, VkRenderPass pass,
-                                                   const vk::Swapchain& sc) {
-  std::vector<FramebufferHandle> out;
-  for (uint32_t i = 0; i < sc.image_count(); ++i) {
-    VkImageView view = sc.view(i);
-    VkFramebufferCreateInfo info{};
-    info.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-    info.renderPass = pass;
-    info.attachmentCount = 1;
-    info.pAttachments = &view;
-    info.width = sc.extent().width;
-    info.height = sc.extent().height;
-    info.layers = 1;
-    VkFramebuffer fb = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateFramebuffer(ctx.device(), &info, nullptr, &fb));
-    out.emplace_back(ctx.device(), fb);
-  }
-  return out;
-}
-
-vk::DescriptorPoolHandle create_imgui_pool(const vk::Context& ctx) {
-  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16};
-  VkDescriptorPoolCreateInfo info{};
-  info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
-  info.maxSets = 16;
-  info.poolSizeCount = 1;
-  info.pPoolSizes = &size;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateDescriptorPool(ctx.device(), &info, nullptr, &pool));
-  return vk::DescriptorPoolHandle(ctx.device(), pool);
-}
 
 // Dear ImGui's context and backends, shut down in reverse order.
 struct ImGuiSession {
@@ -270,19 +182,11 @@ WindowSize fit_window_to_screen(int width, int height, int screen_w, int screen_
 
 namespace {
 
-int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options) {
-  Glfw glfw;
-  if (!glfw.ok) return no_display();
-  if (glfwVulkanSupported() != GLFW_TRUE) {
-    std::cerr << "sss-viewer: error: GLFW finds no Vulkan loader for windows\n";
-    return kExitRuntime;
-  }
+// A window of the size asked for, or smaller where the screen is (--screenshot keeps the
+// size asked for, which is the saved image's); null where none can be made.
+GLFWwindow* open_window(const ViewerArgs& a, const std::string& title) {
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
-  const std::string title = window_title(scene, a.scene);
-  WindowHandle win;
-  // A window larger than the screen opens smaller (its frame follows the framebuffer);
-  // --screenshot keeps the size asked for, which is the saved image's.
   WindowSize open_size{a.width, a.height};
   if (a.screenshot.empty())
     if (GLFWmonitor* monitor = glfwGetPrimaryMonitor()) {
@@ -294,10 +198,12 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
                   << w << "x" << h << " screen: the window opens at " << open_size.width << "x"
                   << open_size.height << '\n';
     }
-  win.window = glfwCreateWindow(open_size.width, open_size.height, title.c_str(), nullptr, nullptr);
-  if (win.window == nullptr) return no_display();
-  GLFWwindow* window = win.window;
+  return glfwCreateWindow(open_size.width, open_size.height, title.c_str(), nullptr, nullptr);
+}
 
+// The Vulkan context for `window`: its surface, the swapchain extension, --device and
+// --validation.
+vk::ContextOptions window_context_options(const ViewerArgs& a, GLFWwindow* window) {
   vk::ContextOptions co;
   co.device_name = a.device;
   co.enable_validation = a.validation;
@@ -313,13 +219,192 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
       return VkSurfaceKHR{VK_NULL_HANDLE};
     return surface;
   };
-  vk::Context ctx(co);
+  return co;
+}
 
-  int fb_w = 0, fb_h = 0;
-  glfwGetFramebufferSize(window, &fb_w, &fb_h);
-  if (fb_w > 0 && fb_h > 0) {
-    options.width = static_cast<uint32_t>(fb_w);
-    options.height = static_cast<uint32_t>(fb_h);
+// The viewer loop's state across frames, and what --stats prints at the end.
+struct LoopState {
+  int fb_w = 0, fb_h = 0;  // the window's framebuffer
+  int frames = 0;
+  double frame_ms = 0.0, timed_ms = 0.0;
+  int timed_frames = 0;
+  bool r_was_down = false;
+  std::optional<std::string> open_request_ui;  // from the Tools window, for the next frame
+  std::uint64_t allocations_at_first_frame = 0;  // device-memory allocations (--stats)
+  std::chrono::steady_clock::time_point last_interaction{};
+  std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
+};
+
+// A file dropped, asked for by the Tools window's Open, or scripted: the session replaced
+// by one of it, or the message why not (the scene shown stays).
+void open_requested(const vk::Context& ctx, GLFWwindow* window, const Presenter& presenter,
+                    std::unique_ptr<Session>& session, ViewerTools& tools, const std::string& path,
+                    const LoopState& loop) {
+  // The frame in flight reads the old renderer's display image: wait for it first.
+  presenter.wait();
+  std::string message;
+  renderer::RenderOptions next_options = session->renderer->options();
+  next_options.width = uint32_t(std::max(loop.fb_w, 1));  // full size, whatever was drawn last
+  next_options.height = uint32_t(std::max(loop.fb_h, 1));
+  auto next = open_scene(ctx, path, next_options, session->scene.environment, message);
+  const bool failed = next == nullptr;
+  if (next) {
+    next->ui->set_interactive_scale(session->ui->interactive_scale());
+    tools.reset();
+    session = std::move(next);  // the old renderer goes here, its frame finished
+    glfwSetWindowTitle(window, window_title(session->scene, session->source).c_str());
+  }
+  std::cerr << "sss-viewer: " << (failed ? "error: " : "") << message << '\n';
+  tools.set_message(message, failed);
+}
+
+// Interactive resolution: while the view moves or a widget is dragged, render at
+// ui.interactive_scale() of the window and let the blit upscale; the full-size frame
+// comes back 0.3 s after the last change. --screenshot frames are always full size
+// (unless --test-interaction, which times the scaled frames).
+void size_for_interaction(renderer::Renderer& r, const ViewerUi& ui, VkExtent2D fb, bool moved,
+                          bool screenshot, bool scripted, LoopState& loop) {
+  const auto now = std::chrono::steady_clock::now();
+  if ((!screenshot && (moved || ImGui::IsAnyItemActive())) || scripted) loop.last_interaction = now;
+  const float scale = ui.interactive_scale();
+  const bool scaled = scale < 1.0f && now - loop.last_interaction < std::chrono::milliseconds(300);
+  const VkExtent2D render_size =
+      scaled ? VkExtent2D{std::max(1u, uint32_t(std::lround(float(fb.width) * scale))),
+                          std::max(1u, uint32_t(std::lround(float(fb.height) * scale)))}
+             : fb;
+  if (render_size.width != r.options().width || render_size.height != r.options().height)
+    r.resize(render_size.width, render_size.height);
+}
+
+// The panels and the camera for one frame; the Tools window's Open is kept for the next.
+void draw_panels(GLFWwindow* window, const Presenter& presenter, Session& session, ViewerTools& tools,
+                 ScriptedDriver& script, VkExtent2D fb, bool screenshot, LoopState& loop) {
+  renderer::Renderer& r = *session.renderer;
+  OrbitCamera& camera = *session.camera;
+  ViewerUi& ui = *session.ui;
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  drive_camera(window, camera, loop.r_was_down, float(fb.width), float(fb.height));
+  // One frame in flight: the previous blit and UI pass finish before the panels may
+  // change (or read back) the renderer's resources.
+  presenter.wait();
+  ui.draw(r, loop.frame_ms);
+  if (!session.framed) {
+    // The first frame of a scene: with the panel open, the subject moves into the part
+    // of the window it leaves free. --screenshot keeps the scene's camera, so that it
+    // stays the headless frame.
+    session.framed = true;
+    if (!screenshot) camera.frame_free_area(ui.panel_right(), float(fb.width), float(fb.height));
+  }
+  LiveState live{&session.scene, session.source, ui.editor().applied(), ui.lights(),
+                 fb.width, fb.height, &session.inputs};
+  script.compare(loop.frames, tools, r, live);
+  if (std::optional<std::string> path = tools.draw(r, live)) loop.open_request_ui = *path;
+  ImGui::Render();
+}
+
+// After a frame was presented: the frame time, for the panel and --stats.
+void count_frame(const vk::Context& ctx, ViewerUi& ui, LoopState& loop) {
+  ++loop.frames;
+  if (loop.frames == 1) loop.allocations_at_first_frame = ctx.successful_allocations();
+  const auto now = std::chrono::steady_clock::now();
+  loop.frame_ms = std::chrono::duration<double, std::milli>(now - loop.last).count();
+  loop.last = now;
+  ui.frame_presented(loop.frame_ms);
+  if (loop.frames > 1) {  // the first frame includes start-up
+    loop.timed_ms += loop.frame_ms;
+    ++loop.timed_frames;
+  }
+}
+
+void print_window_stats(const vk::Context& ctx, const Presenter& presenter, const Session& session,
+                        const ViewerTools& tools, const LoopState& loop) {
+  const renderer::Renderer& r = *session.renderer;
+  const VkPresentModeKHR mode = presenter.present_mode();
+  std::printf("window %dx%d (rendered %ux%u), sss %s, mode %s, present %s, %d frame(s)\n", loop.fb_w,
+              loop.fb_h, r.options().width, r.options().height,
+              std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
+              std::string(renderer::sss_kind_name(r.options().kind)).c_str(),
+              mode == VK_PRESENT_MODE_FIFO_KHR ? "fifo" : mode == VK_PRESENT_MODE_MAILBOX_KHR ? "mailbox" : "immediate",
+              loop.frames);
+  print_pass_times(r.stats());
+  if (loop.timed_frames > 0) {
+    std::printf("%-16s %10.3f\n", "window frame", loop.timed_ms / loop.timed_frames);
+    std::printf("%-16s %10.1f\n", "fps", 1000.0 * loop.timed_frames / loop.timed_ms);
+  }
+  session.ui->print_stats(stdout);
+  std::printf("%-16s %10llu\n", "allocations", static_cast<unsigned long long>(ctx.successful_allocations()));
+  std::printf("%-16s %10llu\n", "allocations @1", static_cast<unsigned long long>(loop.allocations_at_first_frame));
+  if (const auto& m = tools.metrics())
+    std::printf("compare: relative RMSE %.6f, PSNR %.2f dB, SSIM %.4f, max abs %.4f\n", m->relative_rmse,
+                m->psnr_db, m->ssim, m->max_abs_error);
+}
+
+// The viewer loop: until the window closes, or --screenshot's frames are done. Returns
+// an exit status where a scripted comparison failed.
+std::optional<int> viewer_loop(const ViewerArgs& a, const vk::Context& ctx, GLFWwindow* window,
+                               Presenter& presenter, std::unique_ptr<Session>& session,
+                               ViewerTools& tools, ScriptedDriver& script, LoopState& loop) {
+  const bool screenshot = !a.screenshot.empty();
+  while (!glfwWindowShouldClose(window)) {
+    glfwPollEvents();
+    std::optional<std::string> open_request = std::move(loop.open_request_ui);
+    loop.open_request_ui.reset();
+    if (!dropped_files().empty()) {
+      open_request = dropped_files().back();  // several at once: the last one
+      dropped_files().clear();
+    }
+    if (auto scripted = script.open_request(loop.frames)) open_request = scripted;
+    if (open_request) open_requested(ctx, window, presenter, session, tools, *open_request, loop);
+    script.before_size(window, loop.frames);
+    glfwGetFramebufferSize(window, &loop.fb_w, &loop.fb_h);
+    script.simulate_minimized(loop.fb_w, loop.fb_h);
+    if (loop.fb_w <= 0 || loop.fb_h <= 0 || glfwGetWindowAttrib(window, GLFW_ICONIFIED) == GLFW_TRUE) {
+      glfwWaitEventsTimeout(0.05);  // minimized: nothing to draw
+      continue;
+    }
+    const VkExtent2D fb{uint32_t(loop.fb_w), uint32_t(loop.fb_h)};
+    if (!presenter.fit(fb)) continue;
+
+    draw_panels(window, presenter, *session, tools, script, fb, screenshot, loop);
+    renderer::Renderer& r = *session->renderer;
+    OrbitCamera& camera = *session->camera;
+    const bool moved = camera.take_changed();
+    if (moved) r.set_camera(camera.camera());
+    size_for_interaction(r, *session->ui, fb, moved, screenshot, script.interacting(), loop);
+    r.render_frame();
+    script.during_frame(window);
+    if (!presenter.present(r.display_image(), tools.overlay(), fb)) continue;
+    count_frame(ctx, *session->ui, loop);
+    script.presented(loop.frames, fb, presenter.extent());
+    if (const auto stop = script.failed(tools)) {
+      presenter.wait();
+      return stop;
+    }
+    if (screenshot && loop.frames >= a.frames && !script.waiting(loop.frames, *session->ui, tools)) break;
+  }
+  return std::nullopt;
+}
+
+int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions options) {
+  Glfw glfw;
+  if (!glfw.ok) return no_display();
+  if (glfwVulkanSupported() != GLFW_TRUE) {
+    std::cerr << "sss-viewer: error: GLFW finds no Vulkan loader for windows\n";
+    return kExitRuntime;
+  }
+  WindowHandle win;
+  win.window = open_window(a, window_title(scene, a.scene));
+  if (win.window == nullptr) return no_display();
+  GLFWwindow* window = win.window;
+  vk::Context ctx(window_context_options(a, window));
+
+  LoopState loop;
+  glfwGetFramebufferSize(window, &loop.fb_w, &loop.fb_h);
+  if (loop.fb_w > 0 && loop.fb_h > 0) {
+    options.width = static_cast<uint32_t>(loop.fb_w);
+    options.height = static_cast<uint32_t>(loop.fb_h);
   }
   std::unique_ptr<Session> session = make_session(ctx, scene, a.scene, options);
   session->ui->set_interactive_scale(a.interactive_scale);
@@ -328,340 +413,34 @@ int run(const ViewerArgs& a, const scene::Scene& scene, renderer::RenderOptions 
     for (int i = 0; i < count; ++i) dropped_files().emplace_back(paths[i]);
   });
 
-  vk::Swapchain sc(ctx, {uint32_t(std::max(fb_w, 0)), uint32_t(std::max(fb_h, 0))}, a.vsync == "on");
-  VkExtent2D swap_for{uint32_t(std::max(fb_w, 0)), uint32_t(std::max(fb_h, 0))};
-  RenderPassHandle ui_pass = create_ui_render_pass(ctx, sc.format());
-  std::vector<FramebufferHandle> framebuffers = create_framebuffers(ctx, ui_pass.get(), sc);
-  vk::DescriptorPoolHandle imgui_pool = create_imgui_pool(ctx);
-  // One buffer in its own pool, reset as a pool each frame (best practices: cheaper than
-  // per-buffer resets, which need VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT).
-  vk::CommandPoolHandle pool = vk::create_command_pool(ctx, 0);
-  VkCommandBuffer cmd = vk::allocate_command_buffer(ctx, pool.get());
-  vk::FenceHandle fence = vk::create_fence(ctx, true);
-  vk::SemaphoreHandle acquired = vk::create_semaphore(ctx);
-  std::vector<vk::SemaphoreHandle> rendered;  // one per swapchain image
-  auto make_rendered = [&] {
-    while (rendered.size() < sc.image_count()) rendered.push_back(vk::create_semaphore(ctx));
-  };
-  make_rendered();
-
+  Presenter presenter(ctx, {uint32_t(std::max(loop.fb_w, 0)), uint32_t(std::max(loop.fb_h, 0))}, a.vsync == "on");
   ImGuiSession imgui;
   imgui.glfw = ImGui_ImplGlfw_InitForVulkan(window, true);
-  ImGui_ImplVulkan_InitInfo init{};
-  init.Instance = ctx.instance();
-  init.PhysicalDevice = ctx.physical_device();
-  init.Device = ctx.device();
-  init.QueueFamily = ctx.queue_family();
-  init.Queue = ctx.queue();
-  init.DescriptorPool = imgui_pool.get();
-  init.MinImageCount = std::max(sc.min_image_count(), 2u);
-  init.ImageCount = std::max(sc.image_count(), init.MinImageCount);
-  init.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
-  init.CheckVkResultFn = check_imgui_vk;
-  imgui.vulkan = ImGui_ImplVulkan_Init(&init, ui_pass.get());
-  vk::submit_once(ctx, [](VkCommandBuffer c) { ImGui_ImplVulkan_CreateFontsTexture(c); });
-  ImGui_ImplVulkan_DestroyFontUploadObjects();
+  imgui.vulkan = presenter.init_imgui();
 
   ViewerTools tools(ctx);
-  if (!a.test_edit.empty() && !session->ui->script_edit(a.test_edit)) {
-    std::cerr << "sss-viewer: error: --test-edit: expected preset=NAME, model=NAME or layers=FILE.json, got '"
-              << a.test_edit << "'\n";
-    return kExitUsage;
-  }
-  bool r_was_down = false;
-
-  auto recreate_swapchain = [&](VkExtent2D size) {
-    vk::wait_for_fence(ctx, fence.get());  // the last frame's UI pass uses the framebuffers
-    framebuffers.clear();
-    sc.recreate(size);
-    swap_for = size;
-    if (!sc.valid()) return;
-    framebuffers = create_framebuffers(ctx, ui_pass.get(), sc);
-    make_rendered();
-    ImGui_ImplVulkan_SetMinImageCount(std::max(sc.min_image_count(), 2u));
-  };
-
-  const bool screenshot = !a.screenshot.empty();
-  int frames = 0;
-  int simulated_minimized = 0;  // --test-resize: frames reported as 0x0
-  double frame_ms = 0.0, timed_ms = 0.0;
-  int timed_frames = 0;
-  std::optional<std::string> open_request_ui;  // from the Tools window, for the next frame
-  bool test_opened = false;
-  // --test-resize-storm: the sizes, in order; three per loop iteration.
-  static constexpr int kStorm[10][2] = {{1, 1},   {2000, 1200}, {37, 611},  {640, 360}, {2, 3},
-                                        {1280, 720}, {321, 177}, {1, 400}, {900, 1}, {160, 90}};
-  constexpr int kStormChanges = 50;
-  int storm_next = 0;          // changes made so far
-  int frames_after_storm = 0;  // frames presented at the final size after the storm
-  std::uint64_t allocations_at_first_frame = 0;  // device-memory allocations (--stats)
-  const auto storm_resize = [&] {
-    if (storm_next >= kStormChanges) return;
-    const int* size = kStorm[storm_next % 10];
-    glfwSetWindowSize(window, size[0], size[1]);
-    if (++storm_next == kStormChanges) glfwSetWindowSize(window, a.width, a.height);
-  };
-  auto last_interaction = std::chrono::steady_clock::time_point{};
-  auto last = std::chrono::steady_clock::now();
+  ScriptedDriver script(a);
+  if (!script.start(*session->ui)) return kExitUsage;
   // A failure inside a frame (a device allocation, a lost device) unwinds through the
-  // objects below, which the frame in flight may still use: wait for the device first.
+  // objects above, which the frame in flight may still use: wait for the device first.
+  std::optional<int> stopped;
   try {
-  while (!glfwWindowShouldClose(window)) {
-    glfwPollEvents();
-    std::optional<std::string> open_request = std::move(open_request_ui);
-    open_request_ui.reset();
-    if (!dropped_files().empty()) {
-      open_request = dropped_files().back();  // several at once: the last one
-      dropped_files().clear();
-    }
-    if (!a.test_open.empty() && frames == 2 && !test_opened) {  // tests: as if dropped
-      open_request = a.test_open;
-      test_opened = true;
-    }
-    if (open_request) {
-      // The frame in flight reads the old renderer's display image: wait for it first.
-      vk::wait_for_fence(ctx, fence.get());
-      std::string message;
-      renderer::RenderOptions next_options = session->renderer->options();
-      next_options.width = uint32_t(std::max(fb_w, 1));  // full size, whatever was drawn last
-      next_options.height = uint32_t(std::max(fb_h, 1));
-      auto next = open_scene(ctx, *open_request, next_options, session->scene.environment, message);
-      const bool failed = next == nullptr;  // the scene shown stays
-      if (next) {
-        next->ui->set_interactive_scale(session->ui->interactive_scale());
-        tools.reset();
-        session = std::move(next);  // the old renderer goes here, its frame finished
-        glfwSetWindowTitle(window, window_title(session->scene, session->source).c_str());
-      }
-      std::cerr << "sss-viewer: " << (failed ? "error: " : "") << message << '\n';
-      tools.set_message(message, failed);
-    }
-    renderer::Renderer& r = *session->renderer;
-    OrbitCamera& camera = *session->camera;
-    ViewerUi& ui = *session->ui;
-    if (a.test_resize) {
-      // Exercise resize and minimize between frames (Xvfb has no window manager, so
-      // iconify may do nothing there: 0x0 is also simulated for two iterations).
-      if (frames == 1) glfwSetWindowSize(window, a.width + 64, a.height + 36);
-      if (frames == 2 && simulated_minimized == 0) {
-        glfwIconifyWindow(window);
-        simulated_minimized = 3;
-      }
-      if (frames == 3) glfwRestoreWindow(window);
-      if (frames == 4) glfwSetWindowSize(window, a.width, a.height);
-    }
-    if (a.test_resize_storm) {  // two changes before this frame's size is read
-      storm_resize();
-      storm_resize();
-    }
-    glfwGetFramebufferSize(window, &fb_w, &fb_h);
-    if (simulated_minimized > 1) {
-      --simulated_minimized;
-      fb_w = fb_h = 0;
-    }
-    if (fb_w <= 0 || fb_h <= 0 || glfwGetWindowAttrib(window, GLFW_ICONIFIED) == GLFW_TRUE) {
-      glfwWaitEventsTimeout(0.05);  // minimized: nothing to draw
-      continue;
-    }
-    const VkExtent2D fb{uint32_t(fb_w), uint32_t(fb_h)};
-    if (!sc.valid() || fb.width != swap_for.width || fb.height != swap_for.height) {
-      recreate_swapchain(fb);
-      if (!sc.valid()) continue;
-    }
-
-    ImGui_ImplVulkan_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGui::NewFrame();
-    drive_camera(window, camera, r_was_down, float(fb.width), float(fb.height));
-    // One frame in flight: the previous blit and UI pass finish before the panels may
-    // change (or read back) the renderer's resources.
-    vk::wait_for_fence(ctx, fence.get());
-    ui.draw(r, frame_ms);
-    if (!session->framed) {
-      // The first frame of a scene: with the panel open, the subject moves into the part
-      // of the window it leaves free. --screenshot keeps the scene's camera, so that it
-      // stays the headless frame.
-      session->framed = true;
-      if (!screenshot) camera.frame_free_area(ui.panel_right(), float(fb.width), float(fb.height));
-    }
-    LiveState live{&session->scene, session->source, ui.editor().applied(), ui.lights(),
-                   fb.width, fb.height, &session->inputs};
-    if (!a.test_compare.empty() && frames == 2 && !tools.reference_running() && !tools.metrics()) {
-      tools.start_reference(r, live);
-      tools.set_view(a.test_compare == "split" ? 1 : a.test_compare == "reference" ? 2 : 3, 0.5f);
-      if (a.test_compare == "log-ratio") tools.set_error_map(ViewerTools::ErrorMap::LogRatio);
-    }
-    if (std::optional<std::string> path = tools.draw(r, live)) open_request_ui = *path;
-    ImGui::Render();
-    const bool moved = camera.take_changed();
-    if (moved) r.set_camera(camera.camera());
-
-    // Interactive resolution: while the view moves or a widget is dragged, render at
-    // ui.interactive_scale() of the window and let the blit upscale; the full-size frame
-    // comes back 0.3 s after the last change. --screenshot frames are always full size
-    // (unless --test-interaction, which times the scaled frames).
-    const auto now_steady = std::chrono::steady_clock::now();
-    if ((!screenshot && (moved || ImGui::IsAnyItemActive())) || a.test_interaction)
-      last_interaction = now_steady;
-    const float scale = ui.interactive_scale();
-    const bool scaled = scale < 1.0f && now_steady - last_interaction < std::chrono::milliseconds(300);
-    const VkExtent2D render_size =
-        scaled ? VkExtent2D{std::max(1u, uint32_t(std::lround(float(fb.width) * scale))),
-                            std::max(1u, uint32_t(std::lround(float(fb.height) * scale)))}
-               : fb;
-    if (render_size.width != r.options().width || render_size.height != r.options().height)
-      r.resize(render_size.width, render_size.height);
-
-    r.render_frame();
-    if (a.test_resize_storm) storm_resize();  // and one while the frame is under way
-    uint32_t index = 0;
-    if (!sc.acquire(acquired.get(), index)) {
-      recreate_swapchain(fb);
-      continue;
-    }
-    VkFence frame_fence = fence.get();
-    VK_CHECK(vkResetFences(ctx.device(), 1, &frame_fence));
-    VK_CHECK(vkResetCommandPool(ctx.device(), pool.get(), 0));
-    VkCommandBufferBeginInfo begin{};
-    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    ctx.begin_label(cmd, "present");
-    const vk::Image& display = r.display_image();
-    const VkImageSubresourceRange color_range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkImage target = sc.image(index);
-    vk::pipeline_barrier(
-        cmd, {vk::image_barrier(display, renderer::Renderer::display_layout(),
-                                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, vk::kComputeWrite, kBlitRead),
-              vk::image_barrier(target, color_range, VK_IMAGE_LAYOUT_UNDEFINED,
-                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kBlitWait, kBlitWrite)});
-    VkImageBlit blit{};
-    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.srcOffsets[1] = {int32_t(display.width()), int32_t(display.height()), 1};
-    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.dstOffsets[1] = {int32_t(sc.extent().width), int32_t(sc.extent().height), 1};
-    const bool same = display.width() == sc.extent().width && display.height() == sc.extent().height;
-    vkCmdBlitImage(cmd, display.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
-                   same ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
-    if (const auto overlay = tools.overlay()) {
-      // The compare view: the reference or the heat map over the columns left of the
-      // split (both stay in TRANSFER_SRC_OPTIMAL from their upload).
-      const vk::Image& over = *overlay->image;
-      const int32_t src_w = int32_t(std::lround(overlay->split * float(over.width())));
-      const int32_t dst_w = int32_t(std::lround(overlay->split * float(sc.extent().width)));
-      if (src_w > 0 && dst_w > 0) {
-        vk::pipeline_barrier(cmd, {vk::image_barrier(target, color_range,
-                                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                                     kBlitWrite, kBlitWrite)});
-        VkImageBlit part = blit;
-        part.srcOffsets[1] = {src_w, int32_t(over.height()), 1};
-        part.dstOffsets[1] = {dst_w, int32_t(sc.extent().height), 1};
-        vkCmdBlitImage(cmd, over.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
-                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &part,
-                       same ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
-      }
-    }
-    vk::pipeline_barrier(
-        cmd, {vk::image_barrier(display, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                                renderer::Renderer::display_layout(), kBlitRead, vk::kAllCommands),
-              vk::image_barrier(target, color_range, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kBlitWrite,
-                                kColorAttachment)});
-    VkRenderPassBeginInfo rp{};
-    rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
-    rp.renderPass = ui_pass.get();
-    rp.framebuffer = framebuffers[index].get();
-    rp.renderArea = {{0, 0}, sc.extent()};
-    vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
-    ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
-    vkCmdEndRenderPass(cmd);
-    ctx.end_label(cmd);
-    VK_CHECK(vkEndCommandBuffer(cmd));
-
-    VkSemaphoreSubmitInfo wait{};
-    wait.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
-    wait.semaphore = acquired.get();
-    wait.stageMask = VK_PIPELINE_STAGE_2_BLIT_BIT;
-    VkSemaphoreSubmitInfo signal{};
-    signal.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
-    signal.semaphore = rendered[index].get();
-    signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    VkCommandBufferSubmitInfo cb{};
-    cb.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
-    cb.commandBuffer = cmd;
-    VkSubmitInfo2 submit{};
-    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
-    submit.waitSemaphoreInfoCount = 1;
-    submit.pWaitSemaphoreInfos = &wait;
-    submit.commandBufferInfoCount = 1;
-    submit.pCommandBufferInfos = &cb;
-    submit.signalSemaphoreInfoCount = 1;
-    submit.pSignalSemaphoreInfos = &signal;
-    ctx.submit({&submit, 1}, fence.get());
-    if (!sc.present(index, rendered[index].get())) recreate_swapchain(fb);
-
-    ++frames;
-    if (frames == 2 && a.test_host_oom == "frame") throw std::bad_alloc();
-    if (frames == 1) allocations_at_first_frame = ctx.successful_allocations();
-    if (a.test_resize_storm && storm_next >= kStormChanges && fb_w == a.width && fb_h == a.height &&
-        sc.extent().width == fb.width && sc.extent().height == fb.height)
-      ++frames_after_storm;
-    const auto now = std::chrono::steady_clock::now();
-    frame_ms = std::chrono::duration<double, std::milli>(now - last).count();
-    last = now;
-    ui.frame_presented(frame_ms);
-    if (frames > 1) {  // the first frame includes start-up
-      timed_ms += frame_ms;
-      ++timed_frames;
-    }
-    if (!a.test_compare.empty() && !tools.compare_error().empty()) {
-      std::cerr << "sss-viewer: error: compare: " << tools.compare_error() << '\n';
-      vk::wait_for_fence(ctx, fence.get());
-      return kExitRuntime;
-    }
-    const bool waiting = (!a.test_edit.empty() && ui.busy()) ||
-                         (!a.test_compare.empty() && (frames <= 2 || !tools.metrics()));
-    const bool storming = a.test_resize_storm && frames_after_storm < a.frames;
-    if (screenshot && frames >= a.frames && !waiting && !storming) break;
-  }
+    stopped = viewer_loop(a, ctx, window, presenter, session, tools, script, loop);
   } catch (...) {
     ctx.wait_idle();
     throw;
   }
-  vk::wait_for_fence(ctx, fence.get());
+  if (stopped) return *stopped;
+  presenter.wait();
   ctx.wait_idle();
-  const renderer::Renderer& r = *session->renderer;
-  const ViewerUi& ui = *session->ui;
-
-  if (screenshot) {
+  if (!a.screenshot.empty()) {
     if (auto refused = refuse_input_overwrite(a.screenshot, session->inputs)) {
       std::cerr << "sss-viewer: error: --screenshot: " << *refused << '\n';
       return kExitUsage;
     }
-    write_frame(r, a.screenshot);
+    write_frame(*session->renderer, a.screenshot);
   }
-  if (a.stats) {
-    std::printf("window %dx%d (rendered %ux%u), sss %s, mode %s, present %s, %d frame(s)\n",
-                fb_w, fb_h, r.options().width, r.options().height, std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
-                std::string(renderer::sss_kind_name(r.options().kind)).c_str(),
-                sc.present_mode() == VK_PRESENT_MODE_FIFO_KHR        ? "fifo"
-                : sc.present_mode() == VK_PRESENT_MODE_MAILBOX_KHR ? "mailbox"
-                                                                    : "immediate",
-                frames);
-    print_pass_times(r.stats());
-    if (timed_frames > 0) {
-      std::printf("%-16s %10.3f\n", "window frame", timed_ms / timed_frames);
-      std::printf("%-16s %10.1f\n", "fps", 1000.0 * timed_frames / timed_ms);
-    }
-    ui.print_stats(stdout);
-    std::printf("%-16s %10llu\n", "allocations", static_cast<unsigned long long>(ctx.successful_allocations()));
-    std::printf("%-16s %10llu\n", "allocations @1", static_cast<unsigned long long>(allocations_at_first_frame));
-    if (const auto& m = tools.metrics())
-      std::printf("compare: relative RMSE %.6f, PSNR %.2f dB, SSIM %.4f, max abs %.4f\n",
-                  m->relative_rmse, m->psnr_db, m->ssim, m->max_abs_error);
-  }
+  if (a.stats) print_window_stats(ctx, presenter, *session, tools, loop);
   return kExitOk;
 }
 
