@@ -11,6 +11,8 @@
 #include "EnvironmentArgs.h"
 #include "MaterialOverrides.h"
 #include "SceneArgs.h"
+#include "Merge.h"
+#include "Report.h"
 
 #include "renderer/image/AtomicFile.h"
 #include "renderer/image/Image.h"
@@ -60,126 +62,11 @@ extern "C" void on_interrupt(int sig) {
 
 int usage(const std::string& message) { return usage_error("sss-reference", message); }
 
-std::string duration(double seconds) {
-  char buf[32];
-  const long s = long(std::lround(std::max(seconds, 0.0)));
-  if (s >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
-  else if (s >= 60) std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-  else std::snprintf(buf, sizeof buf, "%lds", s);
-  return buf;
-}
-
-// A one-line bar redrawn in place on a terminal, with the time left once a stage has run a
-// second; on a pipe or file, a line per stage done and, for long stages, one every 10%.
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled), tty_(isatty(STDERR_FILENO) == 1) {}
-  void operator()(const char* stage, double fraction) {
-    if (!enabled_) return;
-    const std::string name(stage);
-    const auto now = std::chrono::steady_clock::now();
-    fraction = std::clamp(fraction, 0.0, 1.0);
-    // A stage that starts over (the random walk's next pass towards a target error) is
-    // timed and reported afresh.
-    if (name != stage_ || fraction + 0.01 < fraction_) {
-      stage_start_ = now;
-      last_tenth_ = 0;
-      if (name == stage_done_) stage_done_.clear();
-    }
-    fraction_ = fraction;
-    const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
-    const int percent = int(fraction * 100.0);
-    std::string eta;
-    if (elapsed > 1.0 && fraction > 0.0 && fraction < 1.0) eta = "  ETA " + duration(elapsed * (1.0 - fraction) / fraction);
-    if (tty_) {
-      if (name == stage_ && percent == percent_ && eta == eta_) return;
-      const int width = 30, filled = percent * width / 100;
-      std::fprintf(stderr, "\r%-10s [%s%s] %3d%%%-14s", stage, std::string(std::size_t(filled), '#').c_str(),
-                   std::string(std::size_t(width - filled), '.').c_str(), percent, eta.c_str());
-      if (percent == 100) std::fputc('\n', stderr);
-      std::fflush(stderr);
-    } else if (percent == 100 && name != stage_done_) {
-      std::fprintf(stderr, "sss-reference: %s done (%s)\n", stage, duration(elapsed).c_str());
-      stage_done_ = name;
-    } else if (elapsed > 10.0 && percent / 10 > last_tenth_) {
-      last_tenth_ = percent / 10;
-      std::fprintf(stderr, "sss-reference: %s %d%%%s\n", stage, percent, eta.c_str());
-    }
-    stage_ = name;
-    percent_ = percent;
-    eta_ = eta;
-  }
-
- private:
-  bool enabled_, tty_;
-  std::string stage_, stage_done_, eta_;
-  int percent_ = -1, last_tenth_ = 0;
-  double fraction_ = 0.0;
-  std::chrono::steady_clock::time_point stage_start_;
-};
-
 // The command as typed, for --summary.
 std::string command_line(int argc, char** argv) {
   std::string command = "sss-reference";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
   return command;
-}
-
-void print_stats(const reference::ReferenceStats& s) {
-  if (s.spp > 0 || s.probes > 0) {  // the probe estimator
-    std::fprintf(stderr,
-                 "sss-reference: probe estimator, %llu batches per pixel over %llu subsurface pixels (%d passes), "
-                 "relative standard error %.4g\n",
-                 (unsigned long long)s.spp, (unsigned long long)s.subsurface_pixels, s.passes, s.relative_standard_error);
-    std::fprintf(stderr, "  %llu probe rays, %llu hits, %llu shadow rays; %.4g probes/s\n",
-                 (unsigned long long)s.probes, (unsigned long long)s.hits, (unsigned long long)s.shadow_rays,
-                 double(s.probes) / std::max(s.render_ms * 1e-3, 1e-9));
-    std::fprintf(stderr, "  time: profiles %.0f ms, render %.0f ms, total %.0f ms\n", s.profile_ms, s.render_ms,
-                 s.total_ms);
-    return;
-  }
-  std::fprintf(stderr, "sss-reference: %zu irradiance points\n", s.points);
-  for (const reference::GroupStats& g : s.groups)
-    std::fprintf(stderr, "  %-24s %9zu points, spacing %.3f mm, area %.1f mm^2, %zu octree nodes\n",
-                 g.material.c_str(), g.points, g.spacing_mm, g.area_mm2, g.octree.nodes);
-  std::fprintf(stderr,
-               "  time: profiles %.0f ms, points %.0f ms, irradiance %.0f ms, octree %.0f ms, "
-               "render %.0f ms, total %.0f ms\n",
-               s.profile_ms, s.sampling_ms, s.irradiance_ms, s.octree_ms, s.render_ms, s.total_ms);
-}
-
-void print_stats(const reference::GroundTruthStats& s, int threads) {
-  const reference::WalkStats& w = s.walk;
-  const double walk_s = std::max(s.seconds - s.setup_seconds, 1e-9);
-  std::fprintf(stderr,
-               "sss-reference: random walk, %llu samples per pixel over %llu subsurface pixels (%d passes), "
-               "relative standard error %.4g\n",
-               (unsigned long long)s.spp, (unsigned long long)s.subsurface_pixels, s.passes, s.relative_standard_error);
-  std::fprintf(stderr,
-               "  %llu paths, %llu scattering events (%.1f per path), %llu boundary reflections, %llu direct beams\n",
-               (unsigned long long)w.paths, (unsigned long long)w.scattering_events,
-               w.paths ? double(w.scattering_events) / double(w.paths) : 0.0, (unsigned long long)w.boundary_hits,
-               (unsigned long long)w.beams);
-  std::fprintf(stderr, "  %.4g paths/s, %.4g events/s on %d threads; escaped %llu, truncated %llu; beam BVH %zu chunks\n",
-               double(w.paths) / walk_s, double(w.scattering_events) / walk_s, threads,
-               (unsigned long long)w.escaped, (unsigned long long)w.truncated, s.beam_chunks);
-  std::fprintf(stderr, "  time: setup %.2f s, walk %.2f s, total %.2f s\n", s.setup_seconds, walk_s, s.seconds);
-}
-
-// An output folder that is not there fails now rather than after a long render (the
-// write itself still reports every other failure).
-bool folders_exist(const std::vector<const std::string*>& files) {
-  for (const std::string* file : files) {
-    if (file->empty()) continue;
-    const std::filesystem::path parent = std::filesystem::path(*file).parent_path();
-    std::error_code ec;
-    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
-      std::cerr << "sss-reference: error: " << *file << ": the folder " << parent.string()
-                << " does not exist or is not a folder\n";
-      return false;
-    }
-  }
-  return true;
 }
 
 // The command line without what does not change the pixels: the tile's settings
@@ -221,50 +108,6 @@ nlohmann::json summary_common(int argc, char** argv, const std::string& settings
           {"relative_standard_error", stats.relative_standard_error},
           {"subsurface_pixels", stats.subsurface_pixels},
           {"threads", threads}};
-}
-
-int merge_usage(const std::string& message) { return usage_error("sss-reference merge", message); }
-
-int merge_main(int argc, char** argv) {
-  CLI::App app{"sss-reference merge: put the tiles of one random-walk or probe render (--tile K/N) back together into the "
-               "frame and its variance, bit for bit what one process renders",
-               "sss-reference merge"};
-  std::vector<std::string> tiles;
-  std::string out, variance, png;
-  float exposure = 1.0f;
-  app.add_option("tiles", tiles, "The mean and variance EXRs of every tile, in any order")->required();
-  app.add_option("--out", out, "The frame: FILE.exr")->required();
-  app.add_option("--variance", variance, "Its variance of the mean: FILE.exr");
-  app.add_option("--png", png, "Also the tonemapped frame as a PNG");
-  app.add_option("--exposure", exposure, "Exposure of the PNG (default 1)");
-  if (const auto stop = parse_command_line(app, argc, argv, "sss-reference merge")) return *stop;
-  if (lower_extension(out) != ".exr") return merge_usage("--out: expected a .exr file name, got '" + out + "'");
-  if (!variance.empty() && lower_extension(variance) != ".exr")
-    return merge_usage("--variance: expected a .exr file name, got '" + variance + "'");
-  if (!png.empty() && lower_extension(png) != ".png") return merge_usage("--png: expected a .png file name, got '" + png + "'");
-  if (!(std::isfinite(exposure) && exposure > 0.0f))
-    return merge_usage("--exposure: expected a finite number > 0, got " + message_number(exposure));
-  for (const std::string& t : tiles)
-    for (const std::string* o : {&out, &variance, &png})
-      if (!o->empty() && std::filesystem::weakly_canonical(t) == std::filesystem::weakly_canonical(*o))
-        return merge_usage(*o + " is one of the tiles; write the frame elsewhere");
-  if (!variance.empty() && std::filesystem::weakly_canonical(variance) == std::filesystem::weakly_canonical(out))
-    return merge_usage("--variance: the same file as --out");
-  if (!png.empty() && std::filesystem::weakly_canonical(png) == std::filesystem::weakly_canonical(out))
-    return merge_usage("--png: the same file as --out");
-  if (!folders_exist({&out, &variance, &png})) return kExitRuntime;
-  auto merged = reference::merge_tiles(tiles);
-  if (auto* e = std::get_if<std::string>(&merged)) return merge_usage(*e);
-  const reference::MergedFrame& f = std::get<reference::MergedFrame>(merged);
-  try {
-    image::write_exr(out, f.mean);
-    if (!variance.empty()) image::write_exr(variance, f.variance);
-    if (!png.empty()) image::write_png(png, image::tonemap(f.mean, exposure));
-  } catch (const std::exception& e) {
-    std::cerr << "sss-reference: error: " << e.what() << '\n';
-    return kExitRuntime;
-  }
-  return kExitOk;
 }
 
 // Everything the command line says, and what check_modes and check_files derive from it.
