@@ -1,178 +1,40 @@
 #include "Tools.h"
 
-#include "profiles/EngineProfiles.h"
 
 #include "CliSupport.h"
 #include "InputFiles.h"
 #include "PanelWindow.h"
+#include "ToolsText.h"
 
 #include "renderer/FrameTargets.h"
 #include "renderer/Renderer.h"
-#include "renderer/image/AtomicFile.h"
-#include "renderer/image/HeatMap.h"
 #include "renderer/image/Tonemap.h"
 #include "renderer/scene/GltfExport.h"
 #include "renderer/scene/SssExtras.h"
 #include "renderer/vk/Transfer.h"
-#include "profiles/KernelExport.h"
 
 #include <imgui.h>
-#include <imgui_internal.h>  // the title bar's rect (a click on it opens the window)
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cctype>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <system_error>
 #include <variant>
 
 namespace sss::app {
+
+using namespace tools_text;
 
 namespace {
 
 const ImVec4 kRed(1.0f, 0.4f, 0.4f, 1.0f);
 const ImVec4 kYellow(1.0f, 0.85f, 0.3f, 1.0f);
 
-void copy_to(char* dst, std::size_t size, const std::string& s) {
-  std::snprintf(dst, size, "%s", s.c_str());
-}
-
-bool exists(const std::string& path) {
-  std::error_code ec;
-  return std::filesystem::exists(path, ec);
-}
-
-bool is_builtin(const std::string& source) { return source.rfind("builtin:", 0) == 0; }
-
-std::string file_stem(const std::string& source) {
-  if (is_builtin(source)) return source.substr(8);
-  return std::filesystem::path(source).stem().string();
-}
-
-// A C identifier for the header's prefix.
-std::string c_identifier(std::string name) {
-  for (char& c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) c = '_';
-  if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))) name.insert(0, "k_");
-  return name;
-}
-
-std::string sanitized(std::string name) {
-  for (char& c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')) c = '_';
-  return name.empty() ? std::string("material") : name;
-}
-
-// "skin (preset skin1, mc-table, scale 1)": what the kernel files record.
-std::string describe(const scene::Material& m) {
-  std::ostringstream out;
-  out << "material '" << m.name << "': ";
-  if (const auto* p = std::get_if<scene::PresetSource>(&m.sss.source))
-    out << "preset " << p->name;
-  else if (std::holds_alternative<scene::CoefficientSource>(m.sss.source))
-    out << "coefficients";
-  else if (const auto* o = std::get_if<scene::OpenPbrSource>(&m.sss.source))
-    out << (o->standard_surface ? "Standard Surface" : "OpenPBR") << " subsurface ("
-        << profiles::albedo_inversion_name(o->inversion) << " inversion)";
-  else
-    out << "artist colour + mfp";
-  const profiles::Medium e = m.sss.effective_medium();
-  out << ", scale " << m.sss.scale << "; effective sigma_a [" << e.sigma_a[0] << ", "
-      << e.sigma_a[1] << ", " << e.sigma_a[2] << "] sigma_s [" << e.sigma_s[0] << ", "
-      << e.sigma_s[1] << ", " << e.sigma_s[2] << "] /mm";
-  return out.str();
-}
-
 }  // namespace
-
-// ---- ReferenceJob ----------------------------------------------------------------
-
-void ReferenceJob::start(scene::Scene scene, const reference::ReferenceOptions& options, bool choose) {
-  cancel();
-  {
-    std::lock_guard lock(mutex_);
-    stage_ = choose ? "choosing" : "starting";
-    fraction_ = 0.0;
-    result_.reset();
-    error_.clear();
-    chosen_.clear();
-  }
-  cancel_ = false;
-  running_ = true;
-  worker_ = std::thread([this, s = std::move(scene), options, choose] {
-    try {
-      reference::ReferenceOptions o = options;
-      if (choose) {
-        const reference::EstimatorChoice choice = reference::choose_estimator(s, o);
-        o = reference::with_choice(o, choice);
-        std::lock_guard lock(mutex_);
-        chosen_ = reference::describe(choice, options.spacing_mfp);
-      }
-      if (cancel_) throw reference::Cancelled();
-      reference::ReferenceImage img = reference::render_reference(
-          s, o,
-          [this](const char* stage, double f) {
-            std::lock_guard lock(mutex_);
-            stage_ = stage;
-            fraction_ = f;
-          },
-          &cancel_);
-      std::lock_guard lock(mutex_);
-      result_ = std::move(img);
-    } catch (const reference::Cancelled&) {
-    } catch (const std::exception& e) {
-      std::lock_guard lock(mutex_);
-      error_ = e.what();
-    }
-    running_ = false;
-  });
-}
-
-void ReferenceJob::cancel() {
-  cancel_ = true;
-  if (worker_.joinable()) worker_.join();
-  running_ = false;
-}
-
-std::string ReferenceJob::progress() const {
-  std::lock_guard lock(mutex_);
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "%s %.0f%%", stage_.c_str(), 100.0 * fraction_);
-  return buf;
-}
-
-double ReferenceJob::fraction() const {
-  std::lock_guard lock(mutex_);
-  return fraction_;
-}
-
-std::optional<reference::ReferenceImage> ReferenceJob::take() {
-  std::lock_guard lock(mutex_);
-  if (!result_) return std::nullopt;
-  std::optional<reference::ReferenceImage> out = std::move(result_);
-  result_.reset();
-  return out;
-}
-
-std::string ReferenceJob::chosen() const {
-  std::lock_guard lock(mutex_);
-  return chosen_;
-}
-
-std::string ReferenceJob::take_error() {
-  std::lock_guard lock(mutex_);
-  std::string e = std::move(error_);
-  error_.clear();
-  return e;
-}
-
-// ---- ViewerTools -----------------------------------------------------------------
 
 std::string live_key(const renderer::Renderer& r, const LiveState& live) {
   nlohmann::json k;
@@ -212,25 +74,6 @@ void ViewerTools::reset() {
 }
 
 // The two images of each pair, test first: both names below follow from them.
-static std::pair<const char*, const char*> pair_operands(ViewerTools::Pair p) {
-  switch (p) {
-    case ViewerTools::Pair::FrameVsReference: return {"frame", "reference"};
-    case ViewerTools::Pair::FrameVsTruth: return {"frame", "truth"};
-    case ViewerTools::Pair::ReferenceVsTruth: return {"reference", "truth"};
-  }
-  return {"?", "?"};
-}
-
-std::string ViewerTools::pair_name(Pair p) {
-  const auto [a, b] = pair_operands(p);
-  return std::string(a) + " vs " + b;
-}
-
-std::string ViewerTools::ratio_name(Pair p) {
-  const auto [a, b] = pair_operands(p);
-  return "log2(" + std::string(a) + "/" + b + ")";
-}
-
 std::optional<ViewerTools::Overlay> ViewerTools::overlay() const {
   switch (view_) {
     case 1:
@@ -424,41 +267,6 @@ void ViewerTools::compare_now(renderer::Renderer& r, const LiveState& live) {
         break;
       }
   render_map();
-}
-
-void ViewerTools::render_map() {
-  map_image_ = {};
-  heat_image_ = {};
-  const std::optional<PairResult>& res = results_[int(pair_)];
-  if (!res) return;
-  try {
-    const int w = res->width, h = res->height;
-    const image::Image canvas =
-        map_ == ErrorMap::Absolute
-            ? image::render_heatmap(res->errors, res->mask, w, h, res->heat_max)
-            : image::render_log_ratio_map(res->log2_ratio, res->mask, w, h, log_range_);
-    image::Image map(w, h);  // the map, without the colour bar (the panel draws that)
-    for (int y = 0; y < h; ++y) std::copy_n(canvas.pixel(0, y), 4 * std::size_t(w), map.pixel(0, y));
-    for (std::size_t i = 3; i < map.rgba.size(); i += 4) map.rgba[i] = 1.0f;
-    heat_image_ = upload(map, "compare error map");
-    map_image_ = std::move(map);
-  } catch (const std::exception& e) {
-    compare_error_ = e.what();
-  }
-}
-
-void ViewerTools::set_error_map(ErrorMap map, Pair pair) {
-  map_ = map;
-  pair_ = pair;
-  view_ = 3;
-  expand_ = true;
-  render_map();
-}
-
-void ViewerTools::set_log_range(double stops) {
-  if (!(std::isfinite(stops) && stops > 0.0)) return;
-  log_range_ = stops;
-  if (map_ == ErrorMap::LogRatio) render_map();
 }
 
 void ViewerTools::show_truth(float exposure) {
@@ -671,288 +479,6 @@ void ViewerTools::draw_truth(const renderer::Renderer& r, const LiveState& live)
     if (truth_error_) ImGui::PopStyleColor();
   }
   if (!truth_warning_.empty()) ImGui::TextColored(kYellow, "%s", truth_warning_.c_str());
-}
-
-void ViewerTools::draw_metrics() {
-  int columns = 0;
-  for (const auto& res : results_) columns += res.has_value();
-  if (columns == 0) return;
-  if (!ImGui::BeginTable("metrics", 1 + columns, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg))
-    return;
-  static const char* kShort[kPairs] = {"frame/ref", "frame/truth", "ref/truth"};
-  ImGui::TableNextRow();
-  ImGui::TableNextColumn();
-  for (int p = 0; p < kPairs; ++p)
-    if (results_[p]) {
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(kShort[p]);
-    }
-  const auto row = [&](const char* label, const char* tooltip, auto value) {
-    ImGui::TableNextRow();
-    ImGui::TableNextColumn();
-    ImGui::TextUnformatted(label);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tooltip);
-    for (const auto& res : results_)
-      if (res) {
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(value(*res).c_str());
-      }
-  };
-  const auto fmt = [](const char* f, double v) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, f, v);
-    return std::string(buf);
-  };
-  row("rel. RMSE", "sqrt(sum (a-b)^2 / sum b^2) of the display codes",
-      [&](const PairResult& x) { return fmt("%.2f%%", 100.0 * x.metrics.relative_rmse); });
-  row("PSNR", "dB, peak 1", [&](const PairResult& x) { return fmt("%.1f", x.metrics.psnr_db); });
-  row("SSIM", "mean SSIM of the luma", [&](const PairResult& x) { return fmt("%.4f", x.metrics.ssim); });
-  row("max |err|", "the largest max_c |a-b|",
-      [&](const PairResult& x) { return fmt("%.3f", x.metrics.max_abs_error); });
-  row("> 5% peak", "pixels whose error exceeds 5% of the peak",
-      [&](const PairResult& x) { return fmt("%.2f%%", 100.0 * x.metrics.fraction_over_threshold); });
-  row("mean log2", "mean log2(A/B) of the linear luminance: the bias in stops",
-      [&](const PairResult& x) { return fmt("%+.3f", x.log_stats.mean_log2); });
-  row("> +5%", "pixels more than 5% brighter than B (A > 1.05 B)",
-      [&](const PairResult& x) { return fmt("%.2f%%", 100.0 * x.log_stats.fraction_brighter); });
-  row("< -5%", "pixels more than 5% darker than B (A < B / 1.05)",
-      [&](const PairResult& x) { return fmt("%.2f%%", 100.0 * x.log_stats.fraction_darker); });
-  ImGui::EndTable();
-  if (const auto& m = results_[0])
-    ImGui::TextWrapped("frame/ref: max |err| at (%d, %d); %zu pixels compared", m->metrics.max_abs_x,
-                       m->metrics.max_abs_y, m->metrics.compared_pixels);
-}
-
-void ViewerTools::draw_map_controls() {
-  if (ImGui::BeginCombo("pair", pair_name(pair_).c_str())) {
-    for (int p = 0; p < kPairs; ++p) {
-      if (!results_[p]) continue;
-      if (ImGui::Selectable(pair_name(Pair(p)).c_str(), pair_ == Pair(p)) && pair_ != Pair(p)) {
-        pair_ = Pair(p);
-        render_map();
-      }
-    }
-    ImGui::EndCombo();
-  }
-  int map = int(map_);
-  bool changed = ImGui::RadioButton("absolute error", &map, int(ErrorMap::Absolute));
-  const std::string ratio = std::string("signed log ratio ") + ratio_name(pair_);
-  changed |= ImGui::RadioButton(ratio.c_str(), &map, int(ErrorMap::LogRatio));
-  if (changed && map != int(map_)) {
-    map_ = ErrorMap(map);
-    render_map();
-  }
-  std::optional<PairResult>& res = results_[int(pair_)];
-  if (!res) return;
-  // The colour bar (the uploaded map has none).
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  const ImVec2 p = ImGui::GetCursorScreenPos();
-  const float w = ImGui::GetContentRegionAvail().x, h = 12.0f;
-  constexpr int kSteps = 32;
-  for (int i = 0; i < kSteps; ++i) {
-    const double t = (i + 0.5) / kSteps;
-    const image::Rgb c = map_ == ErrorMap::Absolute ? image::viridis(t) : image::diverging(2.0 * t - 1.0);
-    dl->AddRectFilled(ImVec2(p.x + w * i / kSteps, p.y), ImVec2(p.x + w * (i + 1) / kSteps, p.y + h),
-                      ImGui::GetColorU32(ImVec4(c[0], c[1], c[2], 1.0f)));
-  }
-  ImGui::Dummy(ImVec2(w, h));
-  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-  if (map_ == ErrorMap::Absolute) {
-    ImGui::PopStyleColor();
-    float top = float(res->heat_max);
-    if (ImGui::SliderFloat("top", &top, 1e-3f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic)) {
-      res->heat_max = top;
-      render_map();
-    }
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("|error| of the display codes, 0 to top (default: 99th percentile); "
-                       "grey: no geometry in one image");
-  } else {
-    ImGui::Text("-%.2g stops %*s0%*s+%.2g stops", log_range_, 10, "", 10, "", log_range_);
-    ImGui::PopStyleColor();
-    float range = float(log_range_);
-    if (ImGui::SliderFloat("range (stops)", &range, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
-      set_log_range(range);
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("%s of the linear luminance: blue A darker, white equal, red A brighter, "
-                       "saturated beyond +-range (1 stop = 2x); grey: no geometry in one image; "
-                       "green: a non-finite value",
-                       ratio_name(pair_).c_str());
-  }
-  ImGui::PopStyleColor();
-}
-
-std::string write_new_file(const std::string& path, const std::string& bytes, bool replace,
-                           const std::vector<std::filesystem::path>* inputs) {
-  if (path.empty()) return "no file name given";
-  if (inputs != nullptr)
-    if (auto refused = refuse_input_overwrite(path, *inputs)) return *refused;
-  if (!replace && exists(path))
-    return path + " exists: tick 'replace existing files' or change the name";
-  try {
-    image::write_file_atomically(path, bytes);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "saved " + path;
-}
-
-std::string export_materials(const LiveState& live, const std::string& path, bool replace) {
-  if (path.empty()) return "no file name given";
-  if (is_builtin(live.source)) {
-    nlohmann::ordered_json doc;
-    doc["scene"] = live.source;
-    doc["materials"] = nlohmann::ordered_json::array();
-    for (const scene::Material& m : live.materials) {
-      nlohmann::ordered_json entry = {{"name", m.name}};
-      if (m.sss.enabled)
-        entry["extras"]["sss"] = nlohmann::ordered_json::parse(scene::sss_extras_json(m.sss).dump());
-      doc["materials"].push_back(entry);
-    }
-    return write_new_file(path, doc.dump(2) + "\n", replace, live.inputs);
-  }
-  if (live.inputs != nullptr)
-    if (auto refused = refuse_input_overwrite(path, *live.inputs)) return *refused;
-  auto bytes = scene::gltf_with_sss_materials(live.source, live.materials, path);
-  if (auto* e = std::get_if<scene::LoadError>(&bytes)) return e->what();
-  return write_new_file(path, std::get<std::string>(bytes), replace, live.inputs);
-}
-
-std::string export_kernel(const renderer::Renderer& r, const LiveState& live, std::size_t material,
-                          const std::string& path, bool replace) {
-  if (material >= live.materials.size() || material >= r.materials().profiles.size() ||
-      !r.materials().profiles[material])
-    return "material " + std::to_string(material) + " has no fitted SSS profile";
-  const renderer::MaterialProfile& profile = *r.materials().profiles[material];
-  const scene::Material& m = live.materials[material];
-  const profiles::KernelInfo info{std::string(profiles::model_name(m.sss.model)), describe(m)};
-  std::string bytes;
-  try {
-    if (lower_extension(path) == ".h")
-      bytes = profiles::kernel_to_c_header(
-          profile.fit, info, &profile.kernel,
-          c_identifier(std::filesystem::path(path).stem().string()));
-    else
-      bytes = profiles::kernel_to_json(profile.fit, info, &profile.kernel);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return write_new_file(path, bytes, replace, live.inputs);
-}
-
-std::string export_engine_profile(const LiveState& live, std::size_t material, const std::string& base,
-                                  bool hdrp, bool replace) {
-  if (material >= live.materials.size() || !live.materials[material].sss.enabled)
-    return "material " + std::to_string(material) + " has no subsurface scattering";
-  const scene::Material& m = live.materials[material];
-  if (!m.sss.layers.empty())
-    return "material '" + m.name + "' is a stack of layers: the engines' profiles hold one medium "
-           "(save its kernel instead)";
-  profiles::EngineProfileSource es;
-  es.name = m.name.empty() ? "material_" + std::to_string(material) : m.name;
-  es.medium = m.sss.effective_medium();
-  es.pre_post_albedo = m.sss.albedo_mode == scene::AlbedoMode::PrePost;
-  es.world_scale = hdrp ? std::max(0.001, (live.scene ? live.scene->mm_per_unit : 1000.0) / 1000.0) : 0.1;
-  std::string first, first_bytes, second, second_bytes;
-  profiles::BurleyShapeFit fit;
-  try {
-    const profiles::RgbProfile profile = m.sss.profile();
-    if (hdrp) {
-      const auto p = profiles::hdrp_diffusion_profile(es, profile);
-      first = base + ".asset";
-      first_bytes = p.asset;
-      second = first + ".meta";
-      second_bytes = p.meta;
-      fit = p.fit;
-    } else {
-      const auto p = profiles::unreal_subsurface_profile(es, profile);
-      first = base + "-unreal.json";
-      first_bytes = p.json;
-      second = base + "-unreal.py";
-      second_bytes = p.python;
-      fit = p.fit;
-    }
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  if (!replace)
-    for (const std::string& f : {first, second})
-      if (std::filesystem::exists(f)) return f + " exists (tick 'replace existing files')";
-  std::string msg = write_new_file(first, first_bytes, replace, live.inputs);
-  if (msg.rfind("saved ", 0) != 0) return msg;
-  const std::string msg2 = write_new_file(second, second_bytes, replace, live.inputs);
-  if (msg2.rfind("saved ", 0) != 0) {
-    std::error_code ec;
-    std::filesystem::remove(first, ec);
-    return msg2;
-  }
-  char err[96];
-  std::snprintf(err, sizeof err, "; Burley fit error %.1f/%.1f/%.1f%%", 100 * fit.relative_error[0],
-                100 * fit.relative_error[1], 100 * fit.relative_error[2]);
-  return "saved " + first + " and " + second + err;
-}
-
-void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live) {
-  if (!ImGui::CollapsingHeader("Export")) return;
-  const bool builtin = is_builtin(live.source);
-  ImGui::TextWrapped(builtin ? "SSS blocks of every material (a built-in scene has no glTF)"
-                             : "A copy of the glTF with every material's extras.sss");
-  ImGui::InputText("##gltf", gltf_path_, sizeof gltf_path_);
-  ImGui::SameLine();
-  const bool save_gltf = ImGui::Button(builtin ? "Save JSON" : "Save glTF");
-
-  std::vector<int> sss;
-  for (std::size_t i = 0; i < live.materials.size(); ++i)
-    if (live.materials[i].sss.enabled) sss.push_back(int(i));
-  bool save_json = false, save_header = false, save_hdrp = false, save_unreal = false;
-  if (!sss.empty()) {
-    kernel_material_ = std::clamp(kernel_material_, 0, int(sss.size()) - 1);
-    const scene::Material& km = live.materials[std::size_t(sss[std::size_t(kernel_material_)])];
-    if (ImGui::BeginCombo("kernel of", km.name.c_str())) {
-      for (int k = 0; k < int(sss.size()); ++k)
-        if (ImGui::Selectable(live.materials[std::size_t(sss[std::size_t(k)])].name.c_str(),
-                              k == kernel_material_)) {
-          kernel_material_ = k;
-          kernel_path_[0] = '\0';
-        }
-      ImGui::EndCombo();
-    }
-    if (kernel_path_[0] == '\0')
-      copy_to(kernel_path_, sizeof kernel_path_,
-              scene::unused_path(sanitized(file_stem(live.source) + "-" + km.name) + "-kernel"));
-    ImGui::InputText("##kernel", kernel_path_, sizeof kernel_path_);
-    ImGui::TextDisabled("(.json and .h are added)");
-    save_json = ImGui::Button("Save kernel JSON");
-    ImGui::SameLine();
-    save_header = ImGui::Button("Save C header");
-    save_hdrp = ImGui::Button("Save HDRP profile");
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Unity HDRP Diffusion Profile (.asset + .meta): Burley's d fitted to this "
-                        "material's profile, its ior, and for a slab its thickness and tint");
-    ImGui::SameLine();
-    save_unreal = ImGui::Button("Save Unreal profile");
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Unreal Subsurface Profile settings (-unreal.json) and an editor Python "
-                        "script that creates the asset (-unreal.py)");
-  }
-  ImGui::Checkbox("replace existing files", &replace_);
-
-  if (save_gltf) {
-    const std::string out = gltf_path_;
-    export_message_ = export_materials(live, out, replace_);
-    if (export_message_.rfind("saved ", 0) == 0)  // the next save gets a new name
-      copy_to(gltf_path_, sizeof gltf_path_,
-              builtin ? scene::unused_path(out) : scene::default_export_path(live.source));
-  }
-  if (save_json || save_header) {
-    const std::size_t index = std::size_t(sss[std::size_t(kernel_material_)]);
-    export_message_ = export_kernel(r, live, index,
-                                    std::string(kernel_path_) + (save_json ? ".json" : ".h"), replace_);
-  }
-  if (save_hdrp || save_unreal)
-    export_message_ = export_engine_profile(live, std::size_t(sss[std::size_t(kernel_material_)]),
-                                            kernel_path_, save_hdrp, replace_);
-  if (!export_message_.empty()) ImGui::TextWrapped("%s", export_message_.c_str());
 }
 
 }  // namespace sss::app
