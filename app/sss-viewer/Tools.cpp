@@ -5,6 +5,7 @@
 #include "InputFiles.h"
 #include "PanelWindow.h"
 #include "ToolsText.h"
+#include "UiColors.h"
 
 #include "renderer/FrameTargets.h"
 #include "renderer/Renderer.h"
@@ -28,13 +29,6 @@
 namespace sss::app {
 
 using namespace tools_text;
-
-namespace {
-
-const ImVec4 kRed(1.0f, 0.4f, 0.4f, 1.0f);
-const ImVec4 kYellow(1.0f, 0.85f, 0.3f, 1.0f);
-
-}  // namespace
 
 std::string live_key(const renderer::Renderer& r, const LiveState& live) {
   nlohmann::json k;
@@ -149,7 +143,7 @@ void ViewerTools::draw_open() {
   // button's click (the button never fired; Enter did). ViewerTools.OpenButton... clicks it.
   if ((ImGui::Button("Open##file") || enter) && open_path_[0] != '\0') open_request_ = open_path_;
   if (message_.empty()) return;
-  if (message_error_) ImGui::PushStyleColor(ImGuiCol_Text, kRed);
+  if (message_error_) ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
   ImGui::TextWrapped("%s", message_.c_str());
   if (message_error_) ImGui::PopStyleColor();
 }
@@ -415,7 +409,7 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
   } else if (ImGui::Button("Render reference of this view")) {
     start_reference(r, live);
   }
-  if (!compare_error_.empty()) ImGui::TextColored(kRed, "%s", compare_error_.c_str());
+  if (!compare_error_.empty()) ImGui::TextColored(kErrorColor, "%s", compare_error_.c_str());
   if (const std::string chose = job_.chosen(); !chose.empty()) ImGui::TextWrapped("auto chose %s", chose.c_str());
   bool stale = false;
   if (reference_) {
@@ -426,7 +420,7 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
     else
       ImGui::Text("reference: %zu points, %.1f s", st.points, st.total_ms / 1000.0);
     stale = live_key(r, live) != reference_key_;
-    if (stale) ImGui::TextColored(kYellow, "The view or a material changed since: render again.");
+    if (stale) ImGui::TextColored(kWarningColor, "The view or a material changed since: render again.");
   }
   draw_truth(r, live);
   if (!reference_ && !truth_) return;
@@ -474,11 +468,11 @@ void ViewerTools::draw_truth(const renderer::Renderer& r, const LiveState& live)
     if (ImGui::Button("Clear")) clear_truth();
   }
   if (!truth_message_.empty()) {
-    if (truth_error_) ImGui::PushStyleColor(ImGuiCol_Text, kRed);
+    if (truth_error_) ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
     ImGui::TextWrapped("%s", truth_message_.c_str());
     if (truth_error_) ImGui::PopStyleColor();
   }
-  if (!truth_warning_.empty()) ImGui::TextColored(kYellow, "%s", truth_warning_.c_str());
+  if (!truth_warning_.empty()) ImGui::TextColored(kWarningColor, "%s", truth_warning_.c_str());
 }
 
 }  // namespace sss::app
