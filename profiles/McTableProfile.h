@@ -16,8 +16,8 @@
 //     integral over every reliable annulus reproduces that annulus' interpolated flux
 //     ("histopolation"), with a power law inside the first edge (R ~ 1/r from single
 //     scattering at the source) and an exponential tail at the asymptotic transport decay
-//     rate past the last reliable annulus. McTableProfile.cpp says how, and why each
-//     choice.
+//     rate past the last reliable annulus. McTableProfile.cpp (lookup, enforced annuli,
+//     normalisation) and McTableSpline.cpp (the spline) say how, and why each choice.
 //
 // Single scattering apart (ModelOptions::single_scattering_apart; issue 18 part 2): the
 // profile of the light that scattered twice or more, the renderer adding S(1) in closed
@@ -45,9 +45,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sss::profiles {
+
+struct McTableSpline;
 
 // The root κ0 in (0, 1) of (α/κ) artanh(κ) = 1: the decay rate (per mean free path) of the
 // slowest discrete mode of one-speed transport with isotropic scattering at single-
@@ -142,11 +145,17 @@ class McTableProfile final : public RadialProfile {
   double residual() const { return residual_; }
 
   static constexpr double kMinRadiusMfp = 1e-9;
+  // The start of the constructor's error for a table whose walks are too few at a medium
+  // (make_mc_table_profile falls back to another node on it).
+  static constexpr std::string_view kTooFewAnnuli = "mc-table: fewer than two annuli";
   // An annulus whose relative standard error exceeds this at any contributing node is
   // not enforced (its flux is too noisy to shape R): see McTableProfile.cpp.
   static constexpr double kMaxRelativeError = 0.3;
 
  private:
+  // The evaluation constants (mm) from the fitted spline.
+  void set_evaluation(const McTableSpline& spline);
+
   double sigma_tp_ = 1.0;
   double total_ = 0.0, total_se_ = 0.0;
   double support_mfp_ = 0.0;
