@@ -36,7 +36,7 @@
 //   each internal face are what overstate R.
 // - Layers must be thicker than one reduced mean free path (both couplings place a source
 //   that deep; Multipole.h).
-// - The transforms are sampled on one fixed log-spaced grid (Layered.cpp has the numerics
+// - The transforms are sampled on one fixed log-spaced grid (LayeredGrid.h has the numerics
 //   and their accuracy). The top medium's own profile is never transformed; only what
 //   the stack adds to it, which is smooth, goes through the inverse transform.
 #pragma once
@@ -51,7 +51,7 @@
 
 namespace sss::profiles {
 
-// How the layers are coupled (Layered.cpp has the derivations and the measured errors):
+// How the layers are coupled (LayeredAdding.cpp and LayeredDiffusion.cpp have the derivations and the measured errors):
 // - Diffusion (default): the diffusion equation solved through the whole stack in the
 //   frequency domain, with the fluence and its flux continuous across each index-matched
 //   interface and an extrapolated boundary at each face to the outside (the layered form
@@ -111,7 +111,7 @@ class LayeredProfile final : public RadialProfile {
 };
 
 namespace detail {
-// The sampled Hankel transform pair of Layered.cpp, for its tests: the grid x_j (r = L x_j
+// The sampled Hankel transform pair of LayeredGrid.h, for its tests: the grid x_j (r = L x_j
 // and k = x_j / L), and the forward (samples f(L x_j) -> F(x_i / L)) and inverse maps.
 const std::vector<double>& hankel_grid();
 std::vector<double> hankel_forward(const std::vector<double>& f, double L);

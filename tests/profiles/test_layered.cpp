@@ -27,12 +27,12 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The relative error of an integral through the sampled transforms (Layered.cpp): the
+// The relative error of an integral through the sampled transforms (LayeredGrid.h): the
 // samples are interpolated linearly in u = r² between nodes 10^(1/128) apart, Δu/u = 3.6%,
 // which misses a function's integral over a step by (Δu/u)²/8 = 1.6e-4 per unit of its
 // relative curvature u² f''/f in u. The profiles here bend by at most a few units
 // (the near-axis 1/r of mc-table is u^(-1/2): 3/4; e^(-σr) at σr = 4: 3.5), so 1e-3.
-// The lowest frequency adds at most 2.5e-5 (Layered.cpp).
+// The lowest frequency adds at most 2.5e-5 (LayeredGrid.h).
 constexpr double kSampledIntegral = 1e-3;
 
 // Two skin-like layers (σ in mm^-1; the test needs media, not a measured skin).
@@ -86,7 +86,7 @@ TEST(LayeredTransform, ReproducesTheDipolePolePair) {
 }
 
 TEST(LayeredAdding, OneFiniteLayerWithTheDipoleBaseIsTheMultipole) {
-  // base = dipole: the layer's reflectance is the multipole's own (Layered.cpp, pure).
+  // base = dipole: the layer's reflectance is the multipole's own (LayeredGrid.h, FiniteLayer::pure).
   for (double d : {0.6, 3.0}) {
     const LayeredProfile one({{kDerm, d}}, {}, Model::Dipole, LayerCoupling::Adding);
     const Multipole mp(kDerm, d, Multipole::kAutoPairs);
@@ -218,7 +218,7 @@ TEST(LayeredDiffusion, OneFiniteLayerIsTheMultipole) {
 
 // The diffusion totals are the integrals of the profiles (checked against this file's own
 // quadrature to kQuadrature), and they agree with the diffusion solution's exact totals at
-// k = 0 up to what the sampled inverse transform loses (Layered.cpp: a weak oscillating
+// k = 0 up to what the sampled inverse transform loses (LayeredGrid.h: a weak oscillating
 // tail beyond the support). 1% of the total is not derived: it guards that loss, measured
 // at 0.2% of R and 0.5% of T here, an order below the model's own error against Monte
 // Carlo (test_layered_accuracy.cpp).
