@@ -51,7 +51,8 @@
 
 namespace sss::profiles {
 
-// How the layers are coupled (LayeredAdding.cpp and LayeredDiffusion.cpp have the derivations and the measured errors):
+// How the layers are coupled (LayeredAdding.cpp and LayeredDiffusion.cpp have the
+// derivations and the measured errors):
 // - Diffusion (default): the diffusion equation solved through the whole stack in the
 //   frequency domain, with the fluence and its flux continuous across each index-matched
 //   interface and an extrapolated boundary at each face to the outside (the layered form
