@@ -167,13 +167,6 @@ bool Presenter::present(const vk::Image& display, const std::optional<ViewerTool
   VkFence frame_fence = fence_.get();
   VK_CHECK(vkResetFences(ctx_.device(), 1, &frame_fence));
   VK_CHECK(vkResetCommandPool(ctx_.device(), pool_.get(), 0));
-  VkCommandBufferBeginInfo begin{};
-  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(cmd_, &begin));
-  record(cmd_, display, overlay, index);
-  VK_CHECK(vkEndCommandBuffer(cmd_));
-
   VkSemaphoreSubmitInfo wait{};
   wait.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
   wait.semaphore = acquired_.get();
@@ -182,18 +175,9 @@ bool Presenter::present(const vk::Image& display, const std::optional<ViewerTool
   signal.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
   signal.semaphore = rendered_[index].get();
   signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  VkCommandBufferSubmitInfo cb{};
-  cb.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
-  cb.commandBuffer = cmd_;
-  VkSubmitInfo2 submit{};
-  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
-  submit.waitSemaphoreInfoCount = 1;
-  submit.pWaitSemaphoreInfos = &wait;
-  submit.commandBufferInfoCount = 1;
-  submit.pCommandBufferInfos = &cb;
-  submit.signalSemaphoreInfoCount = 1;
-  submit.pSignalSemaphoreInfos = &signal;
-  ctx_.submit({&submit, 1}, fence_.get());
+  vk::record_and_submit(
+      ctx_, cmd_, fence_.get(), [&](VkCommandBuffer cmd) { record(cmd, display, overlay, index); }, &wait,
+      &signal);
   if (!sc_.present(index, rendered_[index].get())) recreate(size);
   return true;
 }

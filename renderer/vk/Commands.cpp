@@ -53,7 +53,8 @@ void wait_for_fence(const Context& context, VkFence fence, std::chrono::nanoseco
 }
 
 void record_and_submit(const Context& context, VkCommandBuffer cmd, VkFence fence,
-                       const std::function<void(VkCommandBuffer)>& record) {
+                       const std::function<void(VkCommandBuffer)>& record,
+                       const VkSemaphoreSubmitInfo* wait, const VkSemaphoreSubmitInfo* signal) {
   VkCommandBufferBeginInfo begin{};
   begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -68,6 +69,10 @@ void record_and_submit(const Context& context, VkCommandBuffer cmd, VkFence fenc
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cmd_info;
+  submit.waitSemaphoreInfoCount = wait != nullptr ? 1 : 0;
+  submit.pWaitSemaphoreInfos = wait;
+  submit.signalSemaphoreInfoCount = signal != nullptr ? 1 : 0;
+  submit.pSignalSemaphoreInfos = signal;
   context.submit({&submit, 1}, fence);
 }
 

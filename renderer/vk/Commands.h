@@ -35,8 +35,12 @@ void submit_once(const Context& context, const std::function<void(VkCommandBuffe
 
 // Begins `cmd` for one-time submission, records it through `record`, ends it and submits
 // it to the context's queue signalling `fence` (which must be unsignalled). Does not wait.
-// submit_once and the renderer's frame both go through this.
+// The submission waits for `wait` and signals `signal` where given (the window's
+// acquired and rendered semaphores). submit_once, the renderer's frame and the window's
+// present all go through this.
 void record_and_submit(const Context& context, VkCommandBuffer cmd, VkFence fence,
-                       const std::function<void(VkCommandBuffer)>& record);
+                       const std::function<void(VkCommandBuffer)>& record,
+                       const VkSemaphoreSubmitInfo* wait = nullptr,
+                       const VkSemaphoreSubmitInfo* signal = nullptr);
 
 }  // namespace sss::vk
