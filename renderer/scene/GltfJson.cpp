@@ -146,6 +146,9 @@ std::optional<std::string> check_json_depth(std::string_view text, int max_depth
   int depth = 0;
   bool in_string = false, escaped = false;
   for (char c : text) {
+    // The parser (nlohmann) reads a NUL as the end of its input: nothing after one is
+    // parsed, so nothing after one nests (the fuzzer's text with garbage past a NUL).
+    if (c == '\0') break;
     if (in_string) {
       if (escaped) escaped = false;
       else if (c == '\\') escaped = true;

@@ -167,6 +167,10 @@ TEST(JsonDepth, CountsOutsideStrings) {
   EXPECT_EQ(check_json_depth(R"({"a": [[["]]]]]]]]"]]]})", 4), std::nullopt);
   EXPECT_NE(check_json_depth("[[[[[", 4), std::nullopt);
   EXPECT_EQ(check_json_depth(R"({"a\"[[[[[": 1})", 1), std::nullopt);
+  // Past a NUL the parser reads nothing (fuzz/regressions/sss_extras/nul_then_deep_garbage):
+  // the depth there does not count, so the text and JSON entry points agree.
+  EXPECT_EQ(check_json_depth(std::string_view("[1]\0[[[[[[[[", 12), 4), std::nullopt);
+  EXPECT_NE(check_json_depth(std::string_view("[[[[[\0", 6), 4), std::nullopt);
 }
 
 TEST(LoadOptions, CapsAreEnforced) {
