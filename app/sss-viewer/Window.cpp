@@ -13,12 +13,9 @@
 #include "renderer/Renderer.h"
 #include "renderer/image/Image.h"
 #include "renderer/scene/BuiltinScenes.h"
-#include "renderer/vk/Barrier.h"
 #include "renderer/vk/Check.h"
 #include "renderer/vk/Commands.h"
 #include "renderer/vk/Context.h"
-#include "renderer/vk/Image.h"
-#include "renderer/vk/Swapchain.h"
 
 #define GLFW_INCLUDE_NONE
 #define GLFW_INCLUDE_VULKAN
