@@ -34,7 +34,7 @@ shader::mat4 to_shader(const glm::mat4& m) {
 shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32_t width,
                                           std::uint32_t height, double mm_per_unit,
                                           float exposure, std::uint32_t light_count,
-                                          int sss_mode) {
+                                          SssTechnique technique) {
   shader::FrameUniforms u;
   const glm::mat4 view_proj = camera.proj * camera.view;
   u.view_proj = to_shader(view_proj);
@@ -46,7 +46,7 @@ shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32
   u.forward = {camera.forward.x, camera.forward.y, camera.forward.z, 0.0f};
   u.viewport = {float(width), float(height), 1.0f / float(width), 1.0f / float(height)};
   u.scale = {float(mm_per_unit), camera.proj[0][0], std::abs(camera.proj[1][1]), exposure};
-  u.options = {float(light_count), float(sss_mode), 0.0f, 0.0f};
+  u.options = {float(light_count), float(static_cast<int>(technique)), 0.0f, 0.0f};
   return u;
 }
 

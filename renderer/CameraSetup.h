@@ -2,6 +2,7 @@
 // image y down), view, and the frame uniforms built from them.
 #pragma once
 
+#include "renderer/RenderOptions.h"
 #include "renderer/scene/Bounds.h"
 #include "renderer/scene/Camera.h"
 #include "shaders/shared/frame.h"
@@ -29,7 +30,7 @@ shader::mat4 to_shader(const glm::mat4& m);
 shader::FrameUniforms make_frame_uniforms(const CameraSetup& camera, std::uint32_t width,
                                           std::uint32_t height, double mm_per_unit,
                                           float exposure, std::uint32_t light_count,
-                                          int sss_mode);
+                                          SssTechnique technique);
 
 // The screen rectangle of `bounds`' eight corners under `view_proj` (Vulkan clip space) in
 // an image of width x height, in pixels (x right, y down; pixel = (ndc + 1) / 2 x size, as

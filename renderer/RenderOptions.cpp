@@ -9,19 +9,41 @@
 
 namespace sss::renderer {
 
-std::string_view sss_mode_name(SssMode mode) {
-  switch (mode) {
-    case SssMode::Off: return "off";
-    case SssMode::Screen: return "screen";
-    case SssMode::Texture: return "texture";
+namespace {
+constexpr SssTechnique kTechniques[] = {SssTechnique::Off, SssTechnique::Separable,
+                                       SssTechnique::Gaussians, SssTechnique::Texture};
+}  // namespace
+
+std::span<const SssTechnique> all_techniques() { return kTechniques; }
+
+std::string_view technique_name(SssTechnique technique) {
+  switch (technique) {
+    case SssTechnique::Off: return "off";
+    case SssTechnique::Separable: return "separable";
+    case SssTechnique::Gaussians: return "gaussians";
+    case SssTechnique::Texture: return "texture";
   }
-  return "screen";
+  return "separable";
 }
 
-std::optional<SssMode> parse_sss_mode(std::string_view name) {
-  for (SssMode m : {SssMode::Off, SssMode::Screen, SssMode::Texture})
-    if (sss_mode_name(m) == name) return m;
+std::optional<SssTechnique> parse_technique(std::string_view name) {
+  for (SssTechnique t : kTechniques)
+    if (technique_name(t) == name) return t;
   return std::nullopt;
+}
+
+std::variant<SssTechnique, std::string> technique_from_cli(std::string_view sss, std::string_view mode) {
+  if (sss != "off" && sss != "screen" && sss != "texture")
+    return "--sss: expected off, screen or texture, got '" + std::string(sss) + "'";
+  if (mode != "separable" && mode != "gaussians")
+    return "--mode: expected separable or gaussians, got '" + std::string(mode) + "'";
+  if (sss == "off") return SssTechnique::Off;
+  if (sss == "texture") return SssTechnique::Texture;
+  return mode == "separable" ? SssTechnique::Separable : SssTechnique::Gaussians;
+}
+
+bool is_screen_space(SssTechnique technique) {
+  return technique == SssTechnique::Separable || technique == SssTechnique::Gaussians;
 }
 
 std::string_view texture_update_name(TextureUpdate update) {
@@ -72,16 +94,6 @@ TextureObjectOptions texture_options_for(const RenderOptions& options, std::stri
   for (const TextureObjectOptions& o : options.texture_objects)
     if (o.name == name) return o;
   return {std::string(name), options.texture_size, options.texture_update};
-}
-
-std::string_view sss_kind_name(SssKind kind) {
-  return kind == SssKind::Separable ? "separable" : "gaussians";
-}
-
-std::optional<SssKind> parse_sss_kind(std::string_view name) {
-  if (name == "separable") return SssKind::Separable;
-  if (name == "gaussians") return SssKind::Gaussians;
-  return std::nullopt;
 }
 
 namespace {

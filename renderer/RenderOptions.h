@@ -2,6 +2,8 @@
 // style). The CLI (app/sss-viewer) and the tests fill it.
 #pragma once
 
+#include "shaders/shared/frame.h"
+
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -13,17 +15,30 @@
 
 namespace sss::renderer {
 
-// --sss: off (no spatial spread: the total reflectance applied locally), screen space, or
-// texture space (irradiance in each subsurface object's UV atlas, blurred there:
-// renderer/README.md "Texture space").
-enum class SssMode { Off, Screen, Texture };
-// --mode: Jimenez's separable kernel, or each Gaussian of the fit as its own blur.
-enum class SssKind { Separable, Gaussians };
-
-std::string_view sss_mode_name(SssMode mode);  // "off" | "screen" | "texture"
-std::optional<SssMode> parse_sss_mode(std::string_view name);
-std::string_view sss_kind_name(SssKind kind);  // "separable" | "gaussians"
-std::optional<SssKind> parse_sss_kind(std::string_view name);
+// The real-time SSS technique, one value for what the CLI spells with two options (--sss
+// off|screen|texture and --mode separable|gaussians, which only screen reads):
+//   off        no spatial spread: the total reflectance applied locally;
+//   separable  screen space, Jimenez's separable kernel (the default);
+//   gaussians  screen space, each Gaussian of the fit as its own blur;
+//   texture    texture space: irradiance in each subsurface object's UV atlas, blurred
+//              there (renderer/README.md "Texture space").
+// The values are the shaders' SSS_TECHNIQUE_* (shaders/shared/frame.h), which they read in
+// FrameUniforms::options.y.
+enum class SssTechnique : int {
+  Off = SSS_TECHNIQUE_OFF,
+  Separable = SSS_TECHNIQUE_SEPARABLE,
+  Gaussians = SSS_TECHNIQUE_GAUSSIANS,
+  Texture = SSS_TECHNIQUE_TEXTURE,
+};
+std::span<const SssTechnique> all_techniques();  // in enum order
+std::string_view technique_name(SssTechnique technique);  // "off" | "separable" | ...
+std::optional<SssTechnique> parse_technique(std::string_view name);
+// The CLI's spellings: --sss SSS and --mode MODE as one technique, or what is wrong with
+// them ("--sss: expected off, screen or texture, got 'x'"). MODE is only checked, not used,
+// when SSS is off or texture.
+std::variant<SssTechnique, std::string> technique_from_cli(std::string_view sss, std::string_view mode);
+// Whether the technique blurs in screen space (separable, gaussians).
+bool is_screen_space(SssTechnique technique);
 
 // --aa: anti-aliasing of the display image (the PNG and the window): none, or FXAA, a
 // post-process over the tonemapped frame (renderer/README.md "Anti-aliasing"). The HDR
@@ -83,8 +98,7 @@ std::string texture_size_error(long long size);
 struct RenderOptions {
   std::uint32_t width = 640;
   std::uint32_t height = 360;
-  SssMode sss = SssMode::Screen;
-  SssKind kind = SssKind::Separable;
+  SssTechnique technique = SssTechnique::Separable;
   int separable_taps = 17;  // odd, 3 .. SSS_MAX_TAPS
   float exposure = 1.0f;    // display image only (the EXR is linear, unexposed)
   std::uint32_t shadow_map_size = 1024;

@@ -96,12 +96,6 @@ Samplers make_samplers(const vk::Context& context) {
   return s;
 }
 
-int sss_mode_index(const RenderOptions& o) {
-  if (o.sss == SssMode::Off) return 0;
-  if (o.sss == SssMode::Texture) return 3;
-  return o.kind == SssKind::Separable ? 1 : 2;
-}
-
 }  // namespace
 
 Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
@@ -145,7 +139,7 @@ void Renderer::write_frame_uniforms() {
   const CameraSetup camera = make_camera_setup(camera_, options_.width, options_.height);
   shader::FrameUniforms uniforms =
       make_frame_uniforms(camera, options_.width, options_.height, mm_per_unit_,
-                          options_.exposure, lights_.count, sss_mode_index(options_));
+                          options_.exposure, lights_.count, options_.technique);
   uniforms.options.z = surface_key_stride(camera, bounds_, mm_per_unit_);
   uniforms.options.w = options_.transmission ? 1.0f : 0.0f;
   uniforms.flags.x = options_.fresnel ? 1.0f : 0.0f;
@@ -194,12 +188,11 @@ void Renderer::recreate_targets(std::uint32_t width, std::uint32_t height,
 
 void Renderer::update_sss_pass() {
   const int gaussians = materials_.data().max_gaussians;
-  const bool screen = options_.sss == SssMode::Screen;
-  if (!(screen && options_.kind == SssKind::Separable))
+  if (options_.technique != SssTechnique::Separable)
     separable_.reset();
   else if (!separable_)
     separable_ = std::make_unique<SssSeparablePass>(resources_);
-  if (!(screen && options_.kind == SssKind::Gaussians && gaussians > 0))
+  if (!(options_.technique == SssTechnique::Gaussians && gaussians > 0))
     gaussians_.reset();
   else if (!gaussians_)
     gaussians_ = std::make_unique<SssGaussiansPass>(resources_, gaussians);
@@ -207,8 +200,8 @@ void Renderer::update_sss_pass() {
     gaussians_->set_gaussians(gaussians);
   // Texture space reads the SSS UVs: a scattering mesh without usable ones gets its atlas
   // now, the first time this mode (or its material's subsurface) is on.
-  if (options_.sss == SssMode::Texture) scene_.ensure_sss_uvs(context_, scene_.materials());
-  if (options_.sss != SssMode::Texture) {
+  if (options_.technique == SssTechnique::Texture) scene_.ensure_sss_uvs(context_, scene_.materials());
+  if (options_.technique != SssTechnique::Texture) {
     gather_.reset();
     texture_.reset();
   } else if (!texture_) {

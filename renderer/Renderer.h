@@ -186,7 +186,7 @@ class Renderer {
   std::unique_ptr<CompositePass> composite_;
   std::unique_ptr<DebugViewPass> debug_;  // only while options_.debug_view != None
   std::unique_ptr<AntialiasPass> antialias_;  // only with Antialias::Fxaa and no debug view
-  std::unique_ptr<SssTexturePass> texture_;     // only in SssMode::Texture
+  std::unique_ptr<SssTexturePass> texture_;     // only in SssTechnique::Texture
   std::unique_ptr<TextureGatherPass> gather_;   // with texture_
   vk::CommandPoolHandle pool_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;

@@ -48,8 +48,8 @@ void main() {
     return;
   }
   vec4 reflectance = materials[id].reflectance;  // not the whole GpuMaterial
-  int mode = int(frame.options.y);
-  if (reflectance.w > 0.5 && mode == 1) return;  // sss_separable.comp wrote it
+  int technique = int(frame.options.y);
+  if (reflectance.w > 0.5 && technique == SSS_TECHNIQUE_SEPARABLE) return;  // sss_separable.comp wrote it
   vec3 E = texelFetch(irradiance_tex, p, 0).rgb;
   vec3 diffuse;
   if (reflectance.w > 0.5) {

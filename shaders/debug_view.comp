@@ -68,10 +68,10 @@ void main() {
   } else if (view == 2) {  // specular
     c = display_encode(texelFetch(specular_tex, p, 0).rgb);
   } else if (view == 3) {  // scattered diffuse, before albedo
-    int mode = int(frame.options.y);
+    int technique = int(frame.options.y);
     vec3 diffuse = E;  // Lambert
     if (scatters) {
-      if (mode == 1) diffuse = texelFetch(scattered_tex, p, 0).rgb;
+      if (technique == SSS_TECHNIQUE_SEPARABLE) diffuse = texelFetch(scattered_tex, p, 0).rgb;
       else diffuse = scattered_diffuse(materials[id].reflectance.rgb * E,
                                        texelFetch(accumulated_tex, p, 0));
     }

@@ -153,20 +153,19 @@ void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
 void ViewerUi::draw_sss(renderer::Renderer& r) {
   if (!ImGui::CollapsingHeader("SSS", ImGuiTreeNodeFlags_DefaultOpen)) return;
   renderer::RenderOptions o = r.options();
-  int mode = o.sss == renderer::SssMode::Off       ? 0
-             : o.sss == renderer::SssMode::Texture ? 3
-             : (o.kind == renderer::SssKind::Separable ? 1 : 2);
-  const char* modes[] = {"off", "screen: separable", "screen: gaussians", "texture space"};
+  // One label per technique, in SssTechnique's order.
+  constexpr const char* kLabels[] = {"off", "screen: separable", "screen: gaussians", "texture space"};
+  const auto label = [&](renderer::SssTechnique t) { return kLabels[static_cast<int>(t)]; };
   bool changed = false;
-  if (ImGui::BeginCombo("mode", modes[mode])) {
-    for (int k = 0; k < 4; ++k)
-      if (ImGui::Selectable(modes[k], k == mode)) {
-        changed |= k != mode;
-        mode = k;
+  if (ImGui::BeginCombo("mode", label(o.technique))) {
+    for (const renderer::SssTechnique t : renderer::all_techniques())
+      if (ImGui::Selectable(label(t), t == o.technique)) {
+        changed |= t != o.technique;
+        o.technique = t;
       }
     ImGui::EndCombo();
   }
-  if (mode == 3) changed |= draw_texture_objects(r, o);
+  if (o.technique == renderer::SssTechnique::Texture) changed |= draw_texture_objects(r, o);
   changed |= ImGui::SliderFloat("exposure", &o.exposure, 0.05f, 8.0f, "%.2f",
                                 ImGuiSliderFlags_Logarithmic);
   changed |= ImGui::Checkbox("directional Fresnel", &o.fresnel);
@@ -246,11 +245,6 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
     ImGui::PopStyleColor();
   }
   if (!changed) return;
-  o.sss = mode == 0 ? renderer::SssMode::Off
-          : mode == 3 ? renderer::SssMode::Texture
-                      : renderer::SssMode::Screen;
-  if (mode == 1 || mode == 2)
-    o.kind = mode == 1 ? renderer::SssKind::Separable : renderer::SssKind::Gaussians;
   try {
     r.set_options(o);
     error_.clear();

@@ -319,10 +319,9 @@ void print_window_stats(const vk::Context& ctx, const Presenter& presenter, cons
                         const ViewerTools& tools, const LoopState& loop) {
   const renderer::Renderer& r = *session.renderer;
   const VkPresentModeKHR mode = presenter.present_mode();
-  std::printf("window %dx%d (rendered %ux%u), sss %s, mode %s, present %s, %d frame(s)\n", loop.fb_w,
+  std::printf("window %dx%d (rendered %ux%u), sss %s, present %s, %d frame(s)\n", loop.fb_w,
               loop.fb_h, r.options().width, r.options().height,
-              std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
-              std::string(renderer::sss_kind_name(r.options().kind)).c_str(),
+              std::string(renderer::technique_name(r.options().technique)).c_str(),
               mode == VK_PRESENT_MODE_FIFO_KHR ? "fifo" : mode == VK_PRESENT_MODE_MAILBOX_KHR ? "mailbox" : "immediate",
               loop.frames);
   print_pass_times(r.stats());

@@ -82,9 +82,8 @@ void write_atlases(const renderer::Renderer& r, const std::string& prefix,
 
 void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
   const renderer::FrameStats& s = r.stats();
-  std::printf("frame %ux%u, sss %s, mode %s, %d frame(s)\n", r.options().width,
-              r.options().height, std::string(renderer::sss_mode_name(r.options().sss)).c_str(),
-              std::string(renderer::sss_kind_name(r.options().kind)).c_str(), frames);
+  std::printf("frame %ux%u, sss %s, %d frame(s)\n", r.options().width,
+              r.options().height, std::string(renderer::technique_name(r.options().technique)).c_str(), frames);
   print_pass_times(s);
   std::printf("%-16s %10.3f\n", "cpu mean", cpu_total_ms / frames);
 }
@@ -235,9 +234,9 @@ std::optional<int> check_outputs(const ViewerArgs& a) {
 
 // --sss, --mode and what each mode takes, into `options`; an exit status where bad.
 std::optional<int> set_sss_options(const ViewerArgs& a, renderer::RenderOptions& options) {
-  const auto sss_mode = renderer::parse_sss_mode(a.sss);
-  if (!sss_mode) return usage("--sss: expected off, screen or texture, got '" + a.sss + "'");
-  options.sss = *sss_mode;
+  auto technique = renderer::technique_from_cli(a.sss, a.mode);
+  if (auto* error = std::get_if<std::string>(&technique)) return usage(*error);
+  options.technique = std::get<renderer::SssTechnique>(technique);
   if (const std::string e = renderer::texture_size_error(a.texture_size); !e.empty())
     return usage("--texture-size: " + e);
   options.texture_size = static_cast<std::uint32_t>(a.texture_size);
@@ -245,16 +244,13 @@ std::optional<int> set_sss_options(const ViewerArgs& a, renderer::RenderOptions&
   if (!update)
     return usage("--texture-update: expected every-frame or on-change, got '" + a.texture_update + "'");
   options.texture_update = *update;
-  if (!a.atlas_out.empty() && (!a.headless || options.sss != renderer::SssMode::Texture))
+  if (!a.atlas_out.empty() && (!a.headless || options.technique != renderer::SssTechnique::Texture))
     return usage("--atlas-out needs --sss texture and --headless");
   for (const std::string& t : a.texture_objects) {
     auto object = renderer::parse_texture_object(t, options.texture_update);
     if (auto* error = std::get_if<std::string>(&object)) return usage("--texture-object: " + *error);
     options.texture_objects.push_back(std::get<renderer::TextureObjectOptions>(std::move(object)));
   }
-  const auto kind = renderer::parse_sss_kind(a.mode);
-  if (!kind) return usage("--mode: expected separable or gaussians, got '" + a.mode + "'");
-  options.kind = *kind;
   if (a.taps < 3 || a.taps > 33 || a.taps % 2 == 0)
     return usage("--taps: expected an odd number in 3..33, got " + std::to_string(a.taps));
   options.separable_taps = a.taps;

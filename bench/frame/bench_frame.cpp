@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   renderer::RenderOptions options;
   options.width = 960;
   options.height = 540;
+  std::string sss = "screen", mode = "separable";  // --sss, --mode
   int frames = 20;
   int warmup = 3;
   bool look_away = false;  // turn the camera around: an all-background frame (masking cost)
@@ -92,9 +93,7 @@ int main(int argc, char** argv) {
     } else if (arg == "--taps") {
       options.separable_taps = std::atoi(value().c_str());
     } else if (arg == "--sss") {
-      const auto mode = renderer::parse_sss_mode(value());
-      if (!mode) return usage("--sss: expected off, screen or texture");
-      options.sss = *mode;
+      sss = value();
     } else if (arg == "--texture-size") {
       const std::string v = value();
       const long long size = std::atoll(v.c_str());
@@ -125,13 +124,14 @@ int main(int argc, char** argv) {
     } else if (arg == "--environment") {
       environment = value();
     } else if (arg == "--mode") {
-      const auto kind = renderer::parse_sss_kind(value());
-      if (!kind) return usage("--mode: expected separable or gaussians");
-      options.kind = *kind;
+      mode = value();
     } else {
       return usage(("unknown option " + arg).c_str());
     }
   }
+  auto technique = renderer::technique_from_cli(sss, mode);
+  if (auto* error = std::get_if<std::string>(&technique)) return usage(error->c_str());
+  options.technique = std::get<renderer::SssTechnique>(technique);
 
   auto loaded = scene::load_scene(scene_name);
   if (auto* e = std::get_if<scene::LoadError>(&loaded)) return usage(e->what().c_str());
@@ -191,12 +191,11 @@ int main(int argc, char** argv) {
     order.push_back("gpu total");
     order.push_back("cpu frame");
     order.push_back("process cpu");
-    std::printf("%s x%d %ux%u, sss %s (texture %u, %s), mode %s, %d taps, %d frames after %d "
+    std::printf("%s x%d %ux%u, sss %s (texture %u, %s), %d taps, %d frames after %d "
                 "warm-up, %s\n",
                 scene_name.c_str(), objects, options.width, options.height,
-                std::string(renderer::sss_mode_name(options.sss)).c_str(), options.texture_size,
+                std::string(renderer::technique_name(options.technique)).c_str(), options.texture_size,
                 std::string(renderer::texture_update_name(options.texture_update)).c_str(),
-                std::string(renderer::sss_kind_name(options.kind)).c_str(),
                 options.separable_taps, frames, warmup,
                 std::getenv("LP_NUM_THREADS") ? "LP_NUM_THREADS set" : "default threads");
     std::printf("%-16s %10s %10s\n", "pass", "min ms", "median ms");

@@ -17,13 +17,15 @@ vec3 srgb_encode(vec3 c) {
 // The display image's value for linear radiance L: exposure, filmic, sRGB encoding.
 vec3 display_encode(vec3 L) { return srgb_encode(filmic(L * frame.scale.w)); }
 
-// The diffuse light R * E of a subsurface pixel (before albedo) in the modes whose result
-// is in the accum target: gaussians (2) always, texture (3) where its lookup wrote
+// The diffuse light R * E of a subsurface pixel (before albedo) in the techniques whose
+// result is in the accum target: gaussians always, texture where its lookup wrote
 // (alpha 1; an object left out of texture space has no spread); `local` (R * E at the
 // pixel, no spread) otherwise.
 vec3 scattered_diffuse(vec3 local, vec4 accumulated) {
-  int mode = int(frame.options.y);
-  if (mode == 2 || (mode == 3 && accumulated.a > 0.5)) return accumulated.rgb;
+  int technique = int(frame.options.y);
+  if (technique == SSS_TECHNIQUE_GAUSSIANS ||
+      (technique == SSS_TECHNIQUE_TEXTURE && accumulated.a > 0.5))
+    return accumulated.rgb;
   return local;
 }
 

@@ -17,6 +17,11 @@
 // Gaussian blur half-taps at most per 1D pass (gaussians mode); wider Gaussians are
 // sampled with an integer stride.
 #define SSS_GAUSSIAN_HALF_TAPS 12
+// The SSS technique (renderer::SssTechnique; FrameUniforms::options.y).
+#define SSS_TECHNIQUE_OFF 0
+#define SSS_TECHNIQUE_SEPARABLE 1
+#define SSS_TECHNIQUE_GAUSSIANS 2
+#define SSS_TECHNIQUE_TEXTURE 3
 // Light types (Light::type).
 #define SSS_LIGHT_DIRECTIONAL 0
 #define SSS_LIGHT_POINT 1
@@ -50,7 +55,7 @@ struct FrameUniforms {
   vec4 forward;        // xyz camera view direction (world, unit)
   vec4 viewport;       // width, height, 1/width, 1/height
   vec4 scale;          // x mm per scene unit, y P[0][0], z |P[1][1]|, w exposure
-  vec4 options;        // x light count, y sss mode (0 off, 1 separable, 2 gaussians, 3 texture),
+  vec4 options;        // x light count, y SSS technique (SSS_TECHNIQUE_*),
                        // z surface key stride in mm (sss.glsl), w 1 = transmission
                        // through thin parts (lighting.comp; RenderOptions::transmission)
   vec4 rect;           // x0, y0, x1, y1 (pixels, x1 y1 exclusive): the screen passes

@@ -57,11 +57,11 @@ image::Image coverage(const image::Image& fine, int w, int h) {
 TEST_F(RenderTest, FxaaReducesTheSilhouettesStaircaseAndLeavesTheRestAlone) {
   const scene::Scene scene = std::get<scene::Scene>(scene::bunny_scene());
   const int w = 480, h = 270;
-  RenderOptions o = small_options(w, h, SssMode::Screen);
+  RenderOptions o = small_options(w, h, SssTechnique::Separable);
   const Frame off = render(scene, o);
   o.antialias = Antialias::Fxaa;
   const Frame aa = render(scene, o);
-  RenderOptions fine_options = small_options(4 * w, 4 * h, SssMode::Screen);
+  RenderOptions fine_options = small_options(4 * w, 4 * h, SssTechnique::Separable);
   const image::Image truth = coverage(render(scene, fine_options).display, w, h);
 
   // The HDR image (the EXR, the compare suite) is never filtered.
@@ -117,7 +117,7 @@ TEST_F(RenderTest, FxaaReducesTheSilhouettesStaircaseAndLeavesTheRestAlone) {
 // makes a value that is not there. The anti-aliasing switch leaves it as it is.
 TEST_F(RenderTest, AntialiasingLeavesDebugViewsAlone) {
   const scene::Scene scene = scene::materials_scene();
-  RenderOptions o = small_options(320, 180, SssMode::Screen);
+  RenderOptions o = small_options(320, 180, SssTechnique::Separable);
   o.debug_view = DebugView::ProfileId;
   const Frame off = render(scene, o);
   o.antialias = Antialias::Fxaa;
@@ -132,7 +132,7 @@ TEST_F(RenderTest, AntialiasingLeavesDebugViewsAlone) {
 // the HDR image (EXR) is unchanged, background included.
 TEST_F(RenderTest, BackgroundColourFillsOnlyWhereThereIsNoGeometry) {
   const scene::Scene scene = scene::sphere_scene();
-  RenderOptions o = small_options(160, 90, SssMode::Screen);
+  RenderOptions o = small_options(160, 90, SssTechnique::Separable);
   const Frame plain = render(scene, o);
   const std::array<float, 3> colour{0.25f, 0.5f, 0.75f};
   o.background = colour;

@@ -74,8 +74,8 @@ float decode_viridis(const float* p) {
 }
 
 RenderOptions view_options(std::uint32_t w, std::uint32_t h, DebugView view,
-                           SssMode sss = SssMode::Screen) {
-  RenderOptions o = small_options(w, h, sss, SssKind::Separable);
+                           SssTechnique technique = SssTechnique::Separable) {
+  RenderOptions o = small_options(w, h, technique);
   o.debug_view = view;
   // The views show the lighting input E and the scattered R * E; their closed forms below
   // (E = 1, the frame equal to the scattered view) hold without the directional Fresnel
@@ -196,12 +196,12 @@ TEST_F(DebugViewTest, SingleScatteringViewIsS1Alone) {
 // SSS modes, and it is blurred across the light's edge where the irradiance view is a step.
 TEST_F(DebugViewTest, ScatteredIsTheDiffuseBeforeAlbedo) {
   const int n = 64;
-  for (SssMode mode : {SssMode::Off, SssMode::Screen}) {
+  for (SssTechnique mode : {SssTechnique::Off, SssTechnique::Separable}) {
     const Frame shaded = render(scene::edge_scene(), view_options(n, n, DebugView::None, mode));
     const Frame view = render(scene::edge_scene(), view_options(n, n, DebugView::Scattered, mode));
     for (std::size_t i = 0; i < view.display.rgba.size(); ++i)
       ASSERT_NEAR(view.display.rgba[i], shaded.display.rgba[i], 1.5f * kCode)
-          << sss_mode_name(mode) << " " << i;
+          << technique_name(mode) << " " << i;
   }
   const Frame e = render(scene::edge_scene(), view_options(n, n, DebugView::Irradiance));
   const Frame s = render(scene::edge_scene(), view_options(n, n, DebugView::Scattered));

@@ -67,8 +67,7 @@ std::pair<glm::vec3, glm::vec3> turned(const glm::vec3& d, float turn) {
 class EnvironmentLightTest : public RenderTest {};
 
 struct Mode {
-  SssMode sss;
-  SssKind kind;
+  SssTechnique technique;
   const char* name;
   // Relative error of one frame's pixel (derived): float32 chains (off, separable) round
   // each of ~20 sums at 2^-24, and the separable cell means divide running sums over runs
@@ -76,19 +75,24 @@ struct Mode {
   // passes): 5e-5; the gaussians and texture chains hold rgba16f intermediates, 3N
   // roundings of 2^-11 for N = 6 Gaussians (EdgeTest): 8.8e-3.
   double relative;
+  // Whether the frame's total reflectance is the separable kernel's (off applies it
+  // locally) rather than the Gaussian fit's (gaussians, texture).
+  bool kernel_total() const {
+    return technique == SssTechnique::Off || technique == SssTechnique::Separable;
+  }
 };
 
 TEST_F(EnvironmentLightTest, AUniformSkyAddsAlbedoTimesTotalReflectanceTimesItsRadiance) {
   const glm::vec3 sky(0.5f, 0.4f, 0.3f);
-  const Mode modes[] = {{SssMode::Off, SssKind::Separable, "off", 5e-5},
-                        {SssMode::Screen, SssKind::Separable, "separable", 5e-5},
-                        {SssMode::Screen, SssKind::Gaussians, "gaussians", 8.8e-3},
-                        {SssMode::Texture, SssKind::Gaussians, "texture", 8.8e-3}};
+  const Mode modes[] = {{SssTechnique::Off, "off", 5e-5},
+                        {SssTechnique::Separable, "separable", 5e-5},
+                        {SssTechnique::Gaussians, "gaussians", 8.8e-3},
+                        {SssTechnique::Texture, "texture", 8.8e-3}};
   for (const Mode& mode : modes) {
     scene::Scene plain = scene::sphere_scene();
     scene::Scene lit = plain;
     lit.environment = scene::uniform_environment(sky);
-    const RenderOptions options = small_options(160, 90, mode.sss, mode.kind);
+    const RenderOptions options = small_options(160, 90, mode.technique);
     const Frame without = render(plain, options);
     const Frame with = render(lit, options);
     const glm::vec4 albedo = plain.materials[0].base_color;
@@ -96,7 +100,7 @@ TEST_F(EnvironmentLightTest, AUniformSkyAddsAlbedoTimesTotalReflectanceTimesItsR
     double T[3];
     const MaterialProfile& p = *with.materials.profiles[0];
     for (int c = 0; c < 3; ++c)
-      T[c] = mode.kind == SssKind::Separable ? p.kernel.total_reflectance[c] : p.fit.total_reflectance[c];
+      T[c] = mode.kernel_total() ? p.kernel.total_reflectance[c] : p.fit.total_reflectance[c];
     int pixels = 0;
     double worst = 0.0;
     for (int y = 0; y < 90; ++y)
@@ -137,13 +141,13 @@ TEST_F(EnvironmentLightTest, AUniformSkyAddsAlbedoTimesTotalReflectanceTimesItsR
 // float from the same stored n.v (1e-6 more).
 TEST_F(EnvironmentLightTest, WithDirectionalFresnelTheSkyEntersAndLeavesThroughTheBoundary) {
   const glm::vec3 sky(0.5f, 0.4f, 0.3f);
-  const Mode modes[] = {{SssMode::Off, SssKind::Separable, "off", 5e-5},
-                        {SssMode::Screen, SssKind::Separable, "separable", 5e-5}};
+  const Mode modes[] = {{SssTechnique::Off, "off", 5e-5},
+                        {SssTechnique::Separable, "separable", 5e-5}};
   for (const Mode& mode : modes) {
     scene::Scene plain = scene::sphere_scene();
     scene::Scene lit = plain;
     lit.environment = scene::uniform_environment(sky);
-    RenderOptions options = small_options(160, 90, mode.sss, mode.kind);
+    RenderOptions options = small_options(160, 90, mode.technique);
     options.fresnel = true;
     const Frame without = render(plain, options);
     const Frame with = render(lit, options);
@@ -160,7 +164,7 @@ TEST_F(EnvironmentLightTest, WithDirectionalFresnelTheSkyEntersAndLeavesThroughT
         for (int c = 0; c < 3; ++c) {
           const double a = without.hdr.pixel(x, y)[c] - without.specular.pixel(x, y)[c];
           const double b = with.hdr.pixel(x, y)[c] - with.specular.pixel(x, y)[c];
-          const double T = mode.kind == SssKind::Separable ? p.kernel.total_reflectance[c] : p.fit.total_reflectance[c];
+          const double T = mode.kernel_total() ? p.kernel.total_reflectance[c] : p.fit.total_reflectance[c];
           const double expected = double(albedo[c]) * T * sky[c] * profiles::fresnel_transmittance(nv, eta[c]);
           const double tol = mode.relative * (std::fabs(a) + std::fabs(b)) + 1e-6;
           EXPECT_NEAR(b - a, expected, tol) << mode.name << " pixel " << x << "," << y << " channel " << c;
@@ -203,7 +207,7 @@ TEST_F(EnvironmentLightTest, AUniformSkysSpecularIsTheSplitSumOfItsRadiance) {
     const scene::Camera& cam = plain.cameras[0];
     scene::Scene lit = plain;
     lit.environment = scene::uniform_environment(sky);
-    const RenderOptions options = small_options(kW, kH, SssMode::Off);
+    const RenderOptions options = small_options(kW, kH, SssTechnique::Off);
     const Frame without = render(plain, options);
     const Frame with = render(lit, options);
     const double f0 = 0.04;
@@ -244,7 +248,7 @@ TEST_F(EnvironmentLightTest, AnImageSkysSpecularIsThePrefilteredLookup) {
     const scene::Camera& cam = plain.cameras[0];
     scene::Scene lit = plain;
     lit.environment = sky;
-    const RenderOptions options = small_options(kW, kH, SssMode::Off);
+    const RenderOptions options = small_options(kW, kH, SssTechnique::Off);
     const Frame without = render(plain, options);
     const Frame with = render(lit, options);
     const double f0 = 0.04;
@@ -293,9 +297,9 @@ TEST_F(EnvironmentLightTest, AnImageSkysSpecularIsThePrefilteredLookup) {
 // L T: 14-48% of it here.
 TEST_F(EnvironmentLightTest, AThinSlabTransmitsTheSkyBehindIt) {
   const glm::vec3 sky(0.5f, 0.4f, 0.3f);
-  const Mode modes[] = {{SssMode::Screen, SssKind::Separable, "separable", 5e-5},
-                        {SssMode::Screen, SssKind::Gaussians, "gaussians", 8.8e-3},
-                        {SssMode::Texture, SssKind::Gaussians, "texture", 8.8e-3}};
+  const Mode modes[] = {{SssTechnique::Separable, "separable", 5e-5},
+                        {SssTechnique::Gaussians, "gaussians", 8.8e-3},
+                        {SssTechnique::Texture, "texture", 8.8e-3}};
   for (const bool semi_infinite : {false, true}) {
     scene::Scene s = scene::slab_scene();
     s.lights.clear();
@@ -309,7 +313,7 @@ TEST_F(EnvironmentLightTest, AThinSlabTransmitsTheSkyBehindIt) {
     }
     const profiles::RgbProfile rgb(s.materials[0].sss.model, s.materials[0].sss.effective_medium());
     for (const Mode& mode : modes) {
-      RenderOptions options = small_options(160, 90, mode.sss, mode.kind);
+      RenderOptions options = small_options(160, 90, mode.technique);
       options.fresnel = false;
       options.texture_size = 512;
       const Frame f = render(s, options);
@@ -325,7 +329,7 @@ TEST_F(EnvironmentLightTest, AThinSlabTransmitsTheSkyBehindIt) {
             dT += term * d / v;
           }
         }
-        const double R = mode.kind == SssKind::Separable ? p.kernel.total_reflectance[c] : p.fit.total_reflectance[c];
+        const double R = mode.kernel_total() ? p.kernel.total_reflectance[c] : p.fit.total_reflectance[c];
         double L = 0.0;
         for (int y = 41; y < 49; ++y)
           for (int x = 76; x < 84; ++x) L += (f.hdr.pixel(x, y)[c] - f.specular.pixel(x, y)[c]) / 64.0;
@@ -356,7 +360,7 @@ TEST_F(EnvironmentLightTest, TheEnvironmentBehindTheGeometryIsTheSkyAlongEachPix
   s.cameras[0].aspect = 0.0f;  // the image's, as pixel_ray assumes
   s.environment = gradient_sky({0.1f, 0.1f, 0.05f}, {1.5f, 1.2f, 2.0f});
   const scene::Environment& sky = *s.environment;
-  RenderOptions options = small_options(kW, kH, SssMode::Screen);
+  RenderOptions options = small_options(kW, kH, SssTechnique::Separable);
   options.exposure = 1.5f;
   const Frame plain = render(s, options);
   options.background_environment = true;

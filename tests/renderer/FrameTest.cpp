@@ -41,7 +41,7 @@ TEST_F(RenderTest, SphereRendersLitGeometryOnABlackBackground) {
 }
 
 TEST_F(RenderTest, StatsNamePassesInFrameOrder) {
-  const Frame f = render(scene::sphere_scene(), small_options(64, 36, SssMode::Screen));
+  const Frame f = render(scene::sphere_scene(), small_options(64, 36, SssTechnique::Separable));
   std::vector<std::string> names;
   for (const vk::PassTime& p : f.stats.passes) names.push_back(p.name);
   EXPECT_EQ(names, (std::vector<std::string>{"shadow", "gbuffer", "lighting", "sss separable",
@@ -51,14 +51,14 @@ TEST_F(RenderTest, StatsNamePassesInFrameOrder) {
 
 TEST_F(RenderTest, RenderingIsDeterministic) {
   const scene::Scene scene = scene::sphere_scene();
-  for (SssKind kind : {SssKind::Separable, SssKind::Gaussians}) {
-    const RenderOptions o = small_options(160, 90, SssMode::Screen, kind);
+  for (SssTechnique kind : {SssTechnique::Separable, SssTechnique::Gaussians}) {
+    const RenderOptions o = small_options(160, 90, kind);
     const Frame a = render(scene, o);
     const Frame b = render(scene, o, 2);
     ASSERT_EQ(a.hdr.rgba.size(), b.hdr.rgba.size());
     EXPECT_EQ(std::memcmp(a.hdr.rgba.data(), b.hdr.rgba.data(), a.hdr.rgba.size() * sizeof(float)),
               0)
-        << sss_kind_name(kind);
+        << technique_name(kind);
     EXPECT_EQ(a.display.rgba, b.display.rgba);
   }
 }
@@ -73,8 +73,8 @@ TEST_F(RenderTest, PrePostAlbedoEqualsPostScatterWithoutScattering) {
   post.materials[0].base_color = glm::vec4(0.9f, 0.4f, 0.3f, 1.0f);
   scene::Scene pre_post = post;
   pre_post.materials[0].sss.albedo_mode = scene::AlbedoMode::PrePost;
-  const Frame a = render(post, small_options(96, 54, SssMode::Off));
-  const Frame b = render(pre_post, small_options(96, 54, SssMode::Off));
+  const Frame a = render(post, small_options(96, 54, SssTechnique::Off));
+  const Frame b = render(pre_post, small_options(96, 54, SssTechnique::Off));
   for (std::size_t i = 0; i < a.hdr.rgba.size(); ++i)
     ASSERT_NEAR(a.hdr.rgba[i], b.hdr.rgba[i], 1e-3f * std::fabs(a.hdr.rgba[i]) + 1e-7f) << i;
 
@@ -93,8 +93,8 @@ TEST_F(RenderTest, PrePostAlbedoEqualsPostScatterWithoutScattering) {
   edge_post.materials[0].base_color_texture = 0;
   scene::Scene edge_pre_post = edge_post;
   edge_pre_post.materials[0].sss.albedo_mode = scene::AlbedoMode::PrePost;
-  const Frame c = render(edge_post, small_options(96, 54, SssMode::Screen));
-  const Frame d = render(edge_pre_post, small_options(96, 54, SssMode::Screen));
+  const Frame c = render(edge_post, small_options(96, 54, SssTechnique::Separable));
+  const Frame d = render(edge_pre_post, small_options(96, 54, SssTechnique::Separable));
   double diff = 0.0;
   for (std::size_t i = 0; i < c.hdr.rgba.size(); ++i) diff += std::fabs(c.hdr.rgba[i] - d.hdr.rgba[i]);
   EXPECT_GT(diff, 1e-3);

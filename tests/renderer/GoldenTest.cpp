@@ -28,21 +28,20 @@ const fs::path kGoldenDir = fs::path(SSS_SOURCE_DIR) / "tests" / "golden" / "reg
 struct GoldenCase {
   const char* name;
   const char* scene;
-  SssMode sss;
-  SssKind kind;
+  SssTechnique technique;
   std::uint32_t width, height;
 };
 
 const GoldenCase kCases[] = {
-    {"sphere_off", "builtin:sphere", SssMode::Off, SssKind::Separable, 160, 90},
-    {"sphere_separable", "builtin:sphere", SssMode::Screen, SssKind::Separable, 160, 90},
-    {"sphere_gaussians", "builtin:sphere", SssMode::Screen, SssKind::Gaussians, 160, 90},
-    {"materials_separable", "builtin:materials", SssMode::Screen, SssKind::Separable, 240, 135},
-    {"bunny_separable", "builtin:bunny", SssMode::Screen, SssKind::Separable, 160, 90},
-    {"edge_gaussians", "builtin:edge", SssMode::Screen, SssKind::Gaussians, 128, 16},
+    {"sphere_off", "builtin:sphere", SssTechnique::Off, 160, 90},
+    {"sphere_separable", "builtin:sphere", SssTechnique::Separable, 160, 90},
+    {"sphere_gaussians", "builtin:sphere", SssTechnique::Gaussians, 160, 90},
+    {"materials_separable", "builtin:materials", SssTechnique::Separable, 240, 135},
+    {"bunny_separable", "builtin:bunny", SssTechnique::Separable, 160, 90},
+    {"edge_gaussians", "builtin:edge", SssTechnique::Gaussians, 128, 16},
     // Texture space at 512^2 (the sphere's own UVs with their seam; the bunny's generated atlas).
-    {"sphere_texture", "builtin:sphere", SssMode::Texture, SssKind::Gaussians, 160, 90},
-    {"bunny_texture", "builtin:bunny", SssMode::Texture, SssKind::Gaussians, 160, 90},
+    {"sphere_texture", "builtin:sphere", SssTechnique::Texture, 160, 90},
+    {"bunny_texture", "builtin:bunny", SssTechnique::Texture, 160, 90},
 };
 
 void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
@@ -55,7 +54,7 @@ TEST_P(GoldenTest, DisplayImageMatchesTheGolden) {
   const GoldenCase& c = GetParam();
   auto loaded = scene::load_scene(c.scene);
   ASSERT_TRUE(std::holds_alternative<scene::Scene>(loaded)) << c.scene;
-  RenderOptions options = small_options(c.width, c.height, c.sss, c.kind);
+  RenderOptions options = small_options(c.width, c.height, c.technique);
   options.texture_size = 512;
   const Frame f = render(std::get<scene::Scene>(loaded), options);
   const fs::path golden = kGoldenDir / (std::string(c.name) + ".png");

@@ -78,7 +78,7 @@ scene::Light spot_light() {
 
 TEST_F(LiveUpdateTest, SetCameraEqualsAFreshRenderer) {
   scene::Scene scene = scene::sphere_scene();
-  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  const RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer live(ctx(), scene, o);
   live.render_frame();
   for (const float angle : {0.5f, -1.2f}) {
@@ -108,7 +108,7 @@ scene::Scene sphere_with_blocker() {
 
 TEST_F(LiveUpdateTest, SetLightsEqualsAFreshRenderer) {
   scene::Scene scene = sphere_with_blocker();
-  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  const RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer live(ctx(), scene, o);
   live.render_frame();
 
@@ -139,22 +139,22 @@ TEST_F(LiveUpdateTest, SetMaterialsEqualsAFreshRenderer) {
   const scene::Scene skin = scene::sphere_scene();
   scene::Scene marble = skin;
   marble.materials[0] = marble_pbd(marble.materials[0]);
-  for (SssKind kind : {SssKind::Separable, SssKind::Gaussians}) {
-    const RenderOptions o = small_options(kW, kH, SssMode::Screen, kind);
+  for (SssTechnique kind : {SssTechnique::Separable, SssTechnique::Gaussians}) {
+    const RenderOptions o = small_options(kW, kH, kind);
     Renderer live(ctx(), skin, o);
     live.render_frame();
     live.set_materials(marble.materials);
     live.render_frame();
-    expect_fresh(live, marble, o, std::string("marble pbd, ") + std::string(sss_kind_name(kind)));
+    expect_fresh(live, marble, o, std::string("marble pbd, ") + std::string(technique_name(kind)));
     live.set_materials(skin.materials);
     live.render_frame();
-    expect_fresh(live, skin, o, std::string("skin1 again, ") + std::string(sss_kind_name(kind)));
+    expect_fresh(live, skin, o, std::string("skin1 again, ") + std::string(technique_name(kind)));
   }
 }
 
 TEST_F(LiveUpdateTest, SetMaterialsRejectsAnotherCountOrOtherTextures) {
   const scene::Scene scene = scene::sphere_scene();
-  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  const RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer live(ctx(), scene, o);
   std::vector<scene::Material> two = {scene.materials[0], scene.materials[0]};
   EXPECT_THROW(live.set_materials(two), std::invalid_argument);
@@ -171,8 +171,8 @@ TEST_F(LiveUpdateTest, SetMaterialsRejectsAnotherCountOrOtherTextures) {
 // they must be made again even with the on-change policy).
 TEST_F(LiveUpdateTest, SingleScatteringSwitchRefitsAndRebuildsTheAtlases) {
   const scene::Scene scene = scene::sphere_scene();
-  for (const SssMode mode : {SssMode::Screen, SssMode::Texture}) {
-    RenderOptions o = small_options(kW, kH, mode, SssKind::Gaussians);
+  for (const SssTechnique mode : {SssTechnique::Gaussians, SssTechnique::Texture}) {
+    RenderOptions o = small_options(kW, kH, mode);
     Renderer live(ctx(), scene, o);
     live.render_frame();
     for (const bool single : {!o.single_scattering, o.single_scattering}) {
@@ -180,29 +180,26 @@ TEST_F(LiveUpdateTest, SingleScatteringSwitchRefitsAndRebuildsTheAtlases) {
       live.set_options(o);
       live.render_frame();
       EXPECT_EQ(live.materials().single_scattering, single);
-      expect_fresh(live, scene, o, std::string(sss_mode_name(mode)) + (single ? " S(1) on" : " S(1) off"));
+      expect_fresh(live, scene, o, std::string(technique_name(mode)) + (single ? " S(1) on" : " S(1) off"));
     }
   }
 }
 
-TEST_F(LiveUpdateTest, SetOptionsSwitchesSssModesAndKinds) {
+TEST_F(LiveUpdateTest, SetOptionsSwitchesSssTechniques) {
   const scene::Scene scene = scene::sphere_scene();
-  RenderOptions o = small_options(kW, kH, SssMode::Screen, SssKind::Separable);
+  RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer live(ctx(), scene, o);
   live.render_frame();
-  const struct {
-    SssMode sss;
-    SssKind kind;
-  } steps[] = {{SssMode::Screen, SssKind::Gaussians}, {SssMode::Off, SssKind::Gaussians},
-               {SssMode::Screen, SssKind::Separable}, {SssMode::Off, SssKind::Separable},
-               {SssMode::Screen, SssKind::Gaussians}, {SssMode::Screen, SssKind::Separable}};
-  for (const auto& step : steps) {
-    o.sss = step.sss;
-    o.kind = step.kind;
+  // Every technique from every other (the viewer's combo): each pair appears as a step.
+  const SssTechnique steps[] = {SssTechnique::Gaussians, SssTechnique::Off,       SssTechnique::Separable,
+                                SssTechnique::Texture,   SssTechnique::Gaussians, SssTechnique::Texture,
+                                SssTechnique::Off,       SssTechnique::Texture,   SssTechnique::Separable,
+                                SssTechnique::Off,       SssTechnique::Gaussians, SssTechnique::Separable};
+  for (const SssTechnique step : steps) {
+    o.technique = step;
     live.set_options(o);
     live.render_frame();
-    expect_fresh(live, scene, o,
-                 std::string(sss_mode_name(step.sss)) + " " + std::string(sss_kind_name(step.kind)));
+    expect_fresh(live, scene, o, std::string(technique_name(step)));
   }
   o.separable_taps = 9;
   o.exposure = 2.5f;
@@ -228,8 +225,8 @@ TEST_F(LiveUpdateTest, SetOptionsSwitchesSssModesAndKinds) {
 
 TEST_F(LiveUpdateTest, ResizeAndBack) {
   const scene::Scene scene = scene::sphere_scene();
-  for (SssKind kind : {SssKind::Separable, SssKind::Gaussians}) {
-    RenderOptions o = small_options(kW, kH, SssMode::Screen, kind);
+  for (SssTechnique kind : {SssTechnique::Separable, SssTechnique::Gaussians}) {
+    RenderOptions o = small_options(kW, kH, kind);
     Renderer live(ctx(), scene, o);
     live.render_frame();
     live.resize(97, 61);
@@ -239,12 +236,12 @@ TEST_F(LiveUpdateTest, ResizeAndBack) {
     EXPECT_EQ(live.options().width, 97u);
     o.width = 97;
     o.height = 61;
-    expect_fresh(live, scene, o, "97x61 " + std::string(sss_kind_name(kind)));
+    expect_fresh(live, scene, o, "97x61 " + std::string(technique_name(kind)));
     live.resize(kW, kH);
     live.render_frame();
     o.width = kW;
     o.height = kH;
-    expect_fresh(live, scene, o, "back to 96x54 " + std::string(sss_kind_name(kind)));
+    expect_fresh(live, scene, o, "back to 96x54 " + std::string(technique_name(kind)));
     EXPECT_EQ(live.display_image().width(), kW);
     EXPECT_EQ(Renderer::display_layout(), VK_IMAGE_LAYOUT_GENERAL);
   }
@@ -252,7 +249,7 @@ TEST_F(LiveUpdateTest, ResizeAndBack) {
 
 TEST_F(LiveUpdateTest, SeveralChangesThenOneFrame) {
   scene::Scene scene = scene::sphere_scene();
-  RenderOptions o = small_options(kW, kH, SssMode::Screen, SssKind::Separable);
+  RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer live(ctx(), scene, o);
   live.render_frame();
 
@@ -262,7 +259,7 @@ TEST_F(LiveUpdateTest, SeveralChangesThenOneFrame) {
   live.set_lights(scene.lights);
   scene.materials[0] = marble_pbd(scene.materials[0]);
   live.set_materials(scene.materials);
-  o.kind = SssKind::Gaussians;
+  o.technique = SssTechnique::Gaussians;
   o.exposure = 1.5f;
   live.set_options(o);
   live.resize(97, 61);
@@ -275,7 +272,7 @@ TEST_F(LiveUpdateTest, SeveralChangesThenOneFrame) {
 
 TEST_F(LiveUpdateTest, ZeroSizeResizeThrowsAndLeavesTheRendererUsable) {
   const scene::Scene scene = scene::sphere_scene();
-  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  const RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer live(ctx(), scene, o);
   live.render_frame();
   EXPECT_THROW(live.resize(0, kH), std::invalid_argument);

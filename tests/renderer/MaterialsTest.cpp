@@ -19,9 +19,9 @@ TEST_F(RenderTest, SeveralMaterialsInOneFrameEachWithItsOwnProfile) {
   const scene::Scene s = scene::materials_scene();
   ASSERT_GE(s.materials.size(), 8u);
   const std::uint32_t w = 320, h = 180;
-  const Frame off = render(s, small_options(w, h, SssMode::Off));
-  const Frame sep = render(s, small_options(w, h, SssMode::Screen, SssKind::Separable));
-  const Frame gau = render(s, small_options(w, h, SssMode::Screen, SssKind::Gaussians));
+  const Frame off = render(s, small_options(w, h, SssTechnique::Off));
+  const Frame sep = render(s, small_options(w, h, SssTechnique::Separable));
+  const Frame gau = render(s, small_options(w, h, SssTechnique::Gaussians));
   ASSERT_EQ(sep.materials.profiles.size(), s.materials.size());
 
   const CameraSetup cam = make_camera_setup(s.cameras.front(), w, h);

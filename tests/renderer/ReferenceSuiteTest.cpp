@@ -62,20 +62,19 @@ constexpr double kReferenceSpacingMfp = 1.0;
 
 struct SuiteCase {
   const char* scene;
-  SssKind kind;
+  SssTechnique technique;
   const char* model;  // nullptr: the scene's own
   std::uint32_t width, height;
-  std::uint32_t texture_size = 0;  // > 0: texture space (SssMode::Texture) at this size
+  std::uint32_t texture_size = 0;  // texture space's atlas size
 };
 
 SuiteCase texture_case(const char* scene, std::uint32_t w, std::uint32_t h, std::uint32_t size,
                        const char* model = nullptr) {
-  return {scene, SssKind::Gaussians, model, w, h, size};
+  return {scene, SssTechnique::Texture, model, w, h, size};
 }
 
-const char* kind_name(const SuiteCase& c) {
-  if (c.texture_size > 0) return "texture";
-  return c.kind == SssKind::Separable ? "separable" : "gaussians";
+std::string kind_name(const SuiteCase& c) {
+  return std::string(technique_name(c.technique));
 }
 
 std::string short_scene(const std::string& scene) {
@@ -374,25 +373,25 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
   // the slab (multipole). better-dipole, the default until issue 8, keeps explicit rows on
   // the edge and the sphere in every mode so that it stays covered.
   const std::vector<SuiteCase> cases = {
-      {"builtin:edge", SssKind::Separable, nullptr, 128, 16},
-      {"builtin:edge", SssKind::Gaussians, nullptr, 128, 16},
-      {"builtin:edge", SssKind::Separable, "better-dipole", 128, 16},
-      {"builtin:edge", SssKind::Gaussians, "better-dipole", 128, 16},
-      {"builtin:sphere", SssKind::Separable, nullptr, 160, 90},
-      {"builtin:sphere", SssKind::Gaussians, nullptr, 160, 90},
-      {"builtin:sphere", SssKind::Separable, "better-dipole", 160, 90},
-      {"builtin:sphere", SssKind::Gaussians, "better-dipole", 160, 90},
-      {"builtin:sphere", SssKind::Separable, "pbd", 160, 90},
-      {"builtin:sphere", SssKind::Gaussians, "pbd", 160, 90},
-      {"builtin:sphere", SssKind::Gaussians, "dipole", 160, 90},
-      {"builtin:bunny", SssKind::Separable, nullptr, 160, 90},
-      {"builtin:bunny", SssKind::Gaussians, nullptr, 160, 90},
-      {"builtin:slab", SssKind::Separable, nullptr, 160, 90},
-      {"builtin:slab", SssKind::Gaussians, nullptr, 160, 90},
-      {"builtin:materials", SssKind::Separable, nullptr, 240, 135},
-      {"builtin:materials", SssKind::Gaussians, nullptr, 240, 135},
-      {textured.c_str(), SssKind::Separable, nullptr, 160, 90},
-      {textured.c_str(), SssKind::Gaussians, nullptr, 160, 90},
+      {"builtin:edge", SssTechnique::Separable, nullptr, 128, 16},
+      {"builtin:edge", SssTechnique::Gaussians, nullptr, 128, 16},
+      {"builtin:edge", SssTechnique::Separable, "better-dipole", 128, 16},
+      {"builtin:edge", SssTechnique::Gaussians, "better-dipole", 128, 16},
+      {"builtin:sphere", SssTechnique::Separable, nullptr, 160, 90},
+      {"builtin:sphere", SssTechnique::Gaussians, nullptr, 160, 90},
+      {"builtin:sphere", SssTechnique::Separable, "better-dipole", 160, 90},
+      {"builtin:sphere", SssTechnique::Gaussians, "better-dipole", 160, 90},
+      {"builtin:sphere", SssTechnique::Separable, "pbd", 160, 90},
+      {"builtin:sphere", SssTechnique::Gaussians, "pbd", 160, 90},
+      {"builtin:sphere", SssTechnique::Gaussians, "dipole", 160, 90},
+      {"builtin:bunny", SssTechnique::Separable, nullptr, 160, 90},
+      {"builtin:bunny", SssTechnique::Gaussians, nullptr, 160, 90},
+      {"builtin:slab", SssTechnique::Separable, nullptr, 160, 90},
+      {"builtin:slab", SssTechnique::Gaussians, nullptr, 160, 90},
+      {"builtin:materials", SssTechnique::Separable, nullptr, 240, 135},
+      {"builtin:materials", SssTechnique::Gaussians, nullptr, 240, 135},
+      {textured.c_str(), SssTechnique::Separable, nullptr, 160, 90},
+      {textured.c_str(), SssTechnique::Gaussians, nullptr, 160, 90},
       // Texture space (issue 6): 512^2 atlases (the materials' 15 spheres at 256^2).
       texture_case("builtin:edge", 128, 16, 512),
       texture_case("builtin:edge", 128, 16, 512, "better-dipole"),
@@ -508,13 +507,10 @@ TEST_F(ReferenceSuiteTest, EveryRealTimeModeAgainstTheCpuReference) {
     row.reference_ms = ref.stats.total_ms;
     row.points = ref.stats.points;
 
-    RenderOptions options = small_options(c.width, c.height, SssMode::Screen, c.kind);
+    RenderOptions options = small_options(c.width, c.height, c.technique);
     options.fresnel = fresnel;
     options.single_scattering = single;
-    if (c.texture_size > 0) {
-      options.sss = SssMode::Texture;
-      options.texture_size = c.texture_size;
-    }
+    if (c.technique == SssTechnique::Texture) options.texture_size = c.texture_size;
     const Frame f = render(s, options, 3);
     row.gpu_ms = f.stats.gpu_ms;
     image::CompareOptions co;
@@ -676,7 +672,7 @@ TEST_F(ReferenceSuiteTest, SingleScatteringBringsEdgeAndSphereCloserToTheGroundT
       ro.spacing_mfp = kReferenceSpacingMfp;
       ro.single_scattering = single;
       (single ? on : off)[0] = reference::render_reference(s, ro).hdr;
-      RenderOptions options = small_options(c.width, c.height, SssMode::Screen, SssKind::Separable);
+      RenderOptions options = small_options(c.width, c.height, SssTechnique::Separable);
       options.single_scattering = single;
       (single ? on : off)[1] = render(s, options).hdr;
     }

@@ -37,13 +37,12 @@ class RenderTest : public vk::testing::VulkanTest {
   }
 };
 
-inline RenderOptions small_options(std::uint32_t w, std::uint32_t h, SssMode sss = SssMode::Off,
-                                   SssKind kind = SssKind::Separable) {
+inline RenderOptions small_options(std::uint32_t w, std::uint32_t h,
+                                   SssTechnique technique = SssTechnique::Off) {
   RenderOptions o;
   o.width = w;
   o.height = h;
-  o.sss = sss;
-  o.kind = kind;
+  o.technique = technique;
   o.shadow_map_size = 512;
   return o;
 }

@@ -45,7 +45,7 @@ double texture_eps(const profiles::GaussianFit& fit) {
 }
 
 RenderOptions texture_options(std::uint32_t w, std::uint32_t h, std::uint32_t size) {
-  RenderOptions o = small_options(w, h, SssMode::Texture);
+  RenderOptions o = small_options(w, h, SssTechnique::Texture);
   o.texture_size = size;
   // The edge checks compare pi L with the exitance M(x); the directional Fresnel factors
   // on top of the texture path are EdgeTest.DirectionalFresnelScalesEveryPathByItsClosedForm's,
@@ -360,7 +360,7 @@ TEST_F(TextureSpaceTest, TheRendererBuildsTheAtlasWhenTextureSpaceNeedsIt) {
   const image::Image a = loaded.read_hdr();
 
   RenderOptions screen = o;
-  screen.sss = SssMode::Screen;
+  screen.technique = SssTechnique::Separable;
   Renderer switched(ctx(), s, screen);
   EXPECT_TRUE(switched.atlas_notes().empty());
   switched.render_frame();

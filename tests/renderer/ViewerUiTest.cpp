@@ -135,7 +135,7 @@ class ViewerUiTest : public RenderTest {};
 // same edit again instead of dropping it: after the refits the edit is on screen.
 TEST_F(ViewerUiTest, AnEditFittedForTheOtherSingleScatteringSettingIsFittedAgainNotLost) {
   const scene::Scene scene = default_scene();
-  RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   o.single_scattering = !RenderOptions{}.single_scattering;
   Renderer r(ctx(), scene, o);
   MaterialEditor ed(scene, o.separable_taps);  // believes the default setting
@@ -149,7 +149,7 @@ TEST_F(ViewerUiTest, AnEditFittedForTheOtherSingleScatteringSettingIsFittedAgain
 
 TEST_F(ViewerUiTest, PresetChangeRefitsAsyncAndInvalidInputLeavesTheFrame) {
   const scene::Scene scene = default_scene();
-  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  const RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer r(ctx(), scene, o);
   MaterialEditor ed(scene, o.separable_taps);
   ASSERT_FALSE(ed.edits().empty());
@@ -246,7 +246,7 @@ TEST_F(ViewerUiTest, RefitLatencyOldSyncPathAgainstTheWorker) {
   // What one edit costs on the render thread: before, set_materials fitted there (with the
   // exact separable kernel); now the worker fits and the render thread uploads.
   scene::Scene scene = default_scene();
-  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  const RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer r(ctx(), scene, o);
   for (profiles::Model m : {profiles::Model::BetterDipole, profiles::Model::Pbd}) {
     std::vector<scene::Material> next = scene.materials;
@@ -679,7 +679,7 @@ TEST(LayerEditor, AStackFromTheSceneBecomesOneMediumUnderTheDefaultModel) {
 // layers=FILE.json reaches the renderer).
 TEST_F(ViewerUiTest, LayeredPanelDrawsItsRowsAndTheScriptedStackIsUploaded) {
   const scene::Scene scene = default_scene();
-  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  const RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer r(ctx(), scene, o);
   renderer::testing::HeadlessImGui imgui;
   ImGuiIO& io = imgui.io();
@@ -755,7 +755,7 @@ TEST(ProfilePlot, SamplesTheModelAndTheFit) {
 
 TEST_F(ViewerUiTest, PanelDrawsNarrowAndUploadsTheRefit) {
   const scene::Scene scene = default_scene();
-  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  const RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer r(ctx(), scene, o);
   renderer::testing::HeadlessImGui imgui;
   ImGuiIO& io = imgui.io();
@@ -810,7 +810,7 @@ TEST_F(ViewerUiTest, TheEnableSubsurfaceSwitchGivesAPlainGltfMaterialSssAndTakes
   scene::Scene scene = std::get<scene::Scene>(std::move(loaded));
   scene::add_camera_if_missing(scene);
   scene::add_light_if_missing(scene);
-  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  const RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   Renderer r(ctx(), scene, o);
   r.render_frame();
   const image::Image opaque = r.read_hdr();
@@ -927,7 +927,7 @@ TEST_F(ViewerUiTest, TheEnvironmentSwitchTakesTheSkyAwayAndBringsItBack) {
   scene::Scene plain = scene::sphere_scene();
   scene::Scene lit = plain;
   lit.environment = scene::uniform_environment({0.4f, 0.4f, 0.5f});
-  const RenderOptions o = small_options(kW, kH, SssMode::Screen);
+  const RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
   image::Image without, with;
   {
     Renderer a(ctx(), plain, o);
