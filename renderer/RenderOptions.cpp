@@ -42,10 +42,6 @@ std::variant<SssTechnique, std::string> technique_from_cli(std::string_view sss,
   return mode == "separable" ? SssTechnique::Separable : SssTechnique::Gaussians;
 }
 
-bool is_screen_space(SssTechnique technique) {
-  return technique == SssTechnique::Separable || technique == SssTechnique::Gaussians;
-}
-
 std::string_view texture_update_name(TextureUpdate update) {
   return update == TextureUpdate::EveryFrame ? "every-frame" : "on-change";
 }

@@ -37,8 +37,6 @@ std::optional<SssTechnique> parse_technique(std::string_view name);
 // them ("--sss: expected off, screen or texture, got 'x'"). MODE is only checked, not used,
 // when SSS is off or texture.
 std::variant<SssTechnique, std::string> technique_from_cli(std::string_view sss, std::string_view mode);
-// Whether the technique blurs in screen space (separable, gaussians).
-bool is_screen_space(SssTechnique technique);
 
 // --aa: anti-aliasing of the display image (the PNG and the window): none, or FXAA, a
 // post-process over the tonemapped frame (renderer/README.md "Anti-aliasing"). The HDR
