@@ -20,40 +20,46 @@ MaterialData build_material_data(const scene::Scene& scene, int separable_taps,
 }
 
 shader::GpuMaterial encode(const scene::Material& m, const MaterialProfile* profile) {
-  shader::GpuMaterial g;
-  g.surface = {0.04f * m.specular, m.metallic, m.roughness, 0.0f};
-  g.reflectance = {1.0f, 1.0f, 1.0f, 0.0f};
+  shader::GpuMaterial g{};  // {}: the scalars too are 0
+  g.f0 = 0.04f * m.specular;
+  g.metallic = m.metallic;
+  g.roughness = m.roughness;
+  g.total_reflectance = {1.0f, 1.0f, 1.0f};
   if (!m.sss.enabled || profile == nullptr) return g;
   const MaterialProfile& p = *profile;
+  const auto rgb = [](const Rgb& v) { return shader::vec3{float(v[0]), float(v[1]), float(v[2])}; };
   if (p.transmittance) {
-    const Rgb t = p.transmittance->total;
-    g.transmit = {float(t[0]), float(t[1]), float(t[2]), float(m.sss.effective_thickness_mm())};
+    g.slab_transmittance = rgb(p.transmittance->total);
+    g.slab_thickness_mm = float(m.sss.effective_thickness_mm());
   }
   const Rgb eta = m.sss.medium.eta;  // the scale leaves η alone
-  g.fresnel = {float(eta[0]), float(eta[1]), float(eta[2]), 0.0f};
-  g.exit_norm = {float(1.0 / profiles::fresnel_exit_normalization(eta[0])),
-                 float(1.0 / profiles::fresnel_exit_normalization(eta[1])),
-                 float(1.0 / profiles::fresnel_exit_normalization(eta[2])), 0.0f};
+  g.eta = rgb(eta);
+  g.exit_norm = rgb({1.0 / profiles::fresnel_exit_normalization(eta[0]),
+                     1.0 / profiles::fresnel_exit_normalization(eta[1]),
+                     1.0 / profiles::fresnel_exit_normalization(eta[2])});
   // S(1)'s coefficients: the real (not reduced) albedo and g; the scale changes neither.
   const profiles::Medium& medium = m.sss.medium;
+  Rgb single{}, phase{};
   for (int c = 0; c < 3; ++c) {
     const double st = medium.sigma_a[c] + medium.sigma_s[c];
-    (&g.single.x)[c] = float(st > 0.0 ? medium.sigma_s[c] / st : 0.0);
-    (&g.phase.x)[c] = float(medium.g[c]);
+    single[c] = st > 0.0 ? medium.sigma_s[c] / st : 0.0;
+    phase[c] = medium.g[c];
   }
-  const Rgb total = p.kernel.total_reflectance;  // the profile's total_reflectance()
-  g.reflectance = {float(total[0]), float(total[1]), float(total[2]), 1.0f};
+  g.single_albedo = rgb(single);
+  g.phase_g = rgb(phase);
+  g.total_reflectance = rgb(p.kernel.total_reflectance);  // the profile's total_reflectance()
+  g.scatters = 1;
   const auto count = p.fit.variances_mm2.size();
-  g.surface.w = float(count);  // read by the shaders only; the CPU asks MaterialData
+  g.gaussian_count = int(count);  // read by the shaders only; the CPU asks MaterialData
   for (std::size_t i = 0; i < count; ++i) {
     float* v = &g.variances[i / 4].x;
     v[i % 4] = float(p.fit.variances_mm2[i]);
     g.gauss_weights[i] = {float(p.fit.weights[i][0]), float(p.fit.weights[i][1]),
                           float(p.fit.weights[i][2]), 0.0f};
   }
-  const bool pre_post = m.sss.albedo_mode == scene::AlbedoMode::PrePost;
-  g.kernel = {float(p.kernel.offsets_mm.size()), float(p.kernel.range_mm), pre_post ? 1.0f : 0.0f,
-              0.0f};
+  g.pre_post = m.sss.albedo_mode == scene::AlbedoMode::PrePost ? 1 : 0;
+  g.separable_taps = int(p.kernel.offsets_mm.size());
+  g.range_mm = float(p.kernel.range_mm);
   for (std::size_t i = 0; i < p.kernel.offsets_mm.size(); ++i)
     g.taps[i] = {float(p.kernel.weights[i][0]), float(p.kernel.weights[i][1]),
                  float(p.kernel.weights[i][2]), float(p.kernel.offsets_mm[i])};

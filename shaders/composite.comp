@@ -47,13 +47,13 @@ void main() {
     if (environment_behind) imageStore(display_img, p, vec4(display_encode(background_radiance(p)), 1.0));
     return;
   }
-  vec4 reflectance = materials[id].reflectance;  // not the whole GpuMaterial
+  bool scatters = materials[id].scatters != 0;  // not the whole GpuMaterial
   int technique = int(frame.options.y);
-  if (reflectance.w > 0.5 && technique == SSS_TECHNIQUE_SEPARABLE) return;  // sss_separable.comp wrote it
+  if (scatters && technique == SSS_TECHNIQUE_SEPARABLE) return;  // sss_separable.comp wrote it
   vec3 E = texelFetch(irradiance_tex, p, 0).rgb;
   vec3 diffuse;
-  if (reflectance.w > 0.5) {
-    diffuse = scattered_diffuse(reflectance.rgb * E, texelFetch(accumulated_tex, p, 0));
+  if (scatters) {
+    diffuse = scattered_diffuse(materials[id].total_reflectance * E, texelFetch(accumulated_tex, p, 0));
   } else {
     diffuse = E;  // Lambert
   }

@@ -59,7 +59,7 @@ void main() {
   int id = material_id(texelFetch(albedo_tex, p, 0));
   if (id < 0) return;  // background: display was cleared to 0 (Renderer::record)
   int view = int(debug.view.x);
-  bool scatters = materials[id].reflectance.w > 0.5;
+  bool scatters = materials[id].scatters != 0;
   vec4 irradiance = texelFetch(irradiance_tex, p, 0);
   vec3 E = irradiance.rgb;
   vec3 c = kNoValue;
@@ -72,7 +72,7 @@ void main() {
     vec3 diffuse = E;  // Lambert
     if (scatters) {
       if (technique == SSS_TECHNIQUE_SEPARABLE) diffuse = texelFetch(scattered_tex, p, 0).rgb;
-      else diffuse = scattered_diffuse(materials[id].reflectance.rgb * E,
+      else diffuse = scattered_diffuse(materials[id].total_reflectance * E,
                                        texelFetch(accumulated_tex, p, 0));
     }
     c = display_encode(diffuse / kPi);
@@ -89,7 +89,7 @@ void main() {
         float ppm = pixels_per_mm(dir, z);
         float slope = key_depth_slope(texelFetch(irradiance_tex, clamp(p - step, ivec2(0), hi), 0).a,
                                       texelFetch(irradiance_tex, clamp(p + step, ivec2(0), hi), 0).a, id, z, ppm);
-        radius_px = min(radius_px, materials[id].kernel.y * ppm / foreshortening(slope));
+        radius_px = min(radius_px, materials[id].range_mm * ppm / foreshortening(slope));
       }
       float log_lo = log2(debug.view.y), log_hi = log2(debug.view.z);
       c = radius_px < 1.0 ? kUndersampled : viridis((log2(radius_px) - log_lo) / (log_hi - log_lo));

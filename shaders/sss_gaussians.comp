@@ -35,15 +35,15 @@ void main() {
   bool vertical = dir.y > 0.5;
   vec2 here = surface_at(p);
   int id = int(here.y);
-  bool scatters = id >= 0 && materials[id].reflectance.w > 0.5 &&
-                  g < int(materials[id].surface.w);
+  bool scatters = id >= 0 && materials[id].scatters != 0 &&
+                  g < materials[id].gaussian_count;
   // Pixels that do not scatter (at this step) are left unwritten: taps are fetched at
   // whole pixels, a tap on another material or the background falls back to the centre
   // value without using its own, a pixel of the same material is in the same state, and
   // composite reads accum only where a material scatters.
   if (!scatters) return;
   vec3 center = texelFetch(input_tex, p, 0).rgb;
-  float width_mm = materials[id].kernel.y;
+  float width_mm = materials[id].range_mm;
   float z = here.x;
   // The surface's depth slope along dir from the centre's two neighbours, and the pixels
   // per mm of surface: the camera plane's over the foreshortening (sss.glsl).

@@ -10,7 +10,7 @@
 // the material changes (another material, the background; lighting.comp's surface
 // image) and at an occluding edge, where the depth step between two neighbours departs
 // from the step before by more than a quarter of the material's follow-surface width
-// (kernel.y). The separable blur (sss_separable.comp) averages the input over a tap's
+// (GpuMaterial::range_mm). The separable blur (sss_separable.comp) averages the input over a tap's
 // whole cell from two of these sums when the cell lies in one run, and falls back to a
 // point sample otherwise (shared/cell_mean.glsl), so the average never mixes two
 // surfaces that follow surface keeps apart. Sums restart with every run, so their
@@ -63,7 +63,7 @@ struct Walk {
 bool starts_run(inout Walk w, vec2 surface) {
   int id = int(surface.y);
   float z = surface.x;
-  float tolerance = id >= 0 ? 0.25 * materials[id].kernel.y : 0.0;
+  float tolerance = id >= 0 ? 0.25 * materials[id].range_mm : 0.0;
   float before = w.prev2_id == id ? w.prev_z - w.prev2_z : 0.0;
   bool same = id >= 0 && id == w.prev_id && abs((z - w.prev_z) - before) <= tolerance;
   w.prev2_id = w.prev_id;

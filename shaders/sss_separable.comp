@@ -50,7 +50,7 @@ void main() {
   int id = key_material(center.a);
   // Pixels that do not scatter: the horizontal pass copies them (value and key: the
   // vertical pass's taps read every pixel), the vertical pass leaves them to composite.
-  if (id < 0 || materials[id].reflectance.w < 0.5) {
+  if (id < 0 || materials[id].scatters == 0) {
     if (!vertical) imageStore(line_img, p, center);
     return;
   }
@@ -65,8 +65,8 @@ void main() {
                                 texelFetch(input_tex, clamp(p + step, lo, hi), 0).a, id, z, ppm_plane);
   float ppm = ppm_plane / foreshortening(slope);
   float key_per_px = slope / ppm_plane;  // the tangent plane's depth (key) change per pixel
-  float inv_width = 1.0 / materials[id].kernel.y;
-  int taps = int(materials[id].kernel.x);
+  float inv_width = 1.0 / materials[id].range_mm;
+  int taps = materials[id].separable_taps;
   vec3 sum = vec3(0.0);
   // The cell boundaries: midpoints between neighbouring taps (profiles::SeparableKernel:
   // tap i's weight is the marginal integrated over its cell); the outermost cells, which
@@ -120,7 +120,7 @@ void main() {
     imageStore(line_img, p, vec4(sum, center.a));
     return;
   }
-  vec3 diffuse = materials[id].reflectance.rgb * sum;
+  vec3 diffuse = materials[id].total_reflectance * sum;
   if (blur.direction.z > 0.5) imageStore(scattered_img, p, vec4(diffuse, 1.0));
   vec4 albedo_id = texelFetch(albedo_tex, p, 0);
   vec3 L = composite_radiance(id, albedo_id.rgb, diffuse,

@@ -531,9 +531,9 @@ bool MaterialEditor::update(renderer::Renderer& r) {
   for (MaterialEdit& e : edits_) {
     if (e.index < result->plots.size() && result->plots[e.index])
       e.plot = std::move(result->plots[e.index]);
-    if (e.index < applied_data_->gpu.size()) {
-      const auto& reflectance = applied_data_->gpu[e.index].reflectance;
-      e.total_reflectance = {reflectance.x, reflectance.y, reflectance.z};
+    if (e.index < applied_data_->profiles.size()) {  // the CPU's value, not the GPU packing
+      const auto& profile = applied_data_->profiles[e.index];
+      e.total_reflectance = profile ? profile->kernel.total_reflectance : Rgb{1.0, 1.0, 1.0};
     }
     if (e.index < applied_.size()) fill_notes(e);
   }

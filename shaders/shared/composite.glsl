@@ -34,16 +34,16 @@ vec3 scattered_diffuse(vec3 local, vec4 accumulated) {
 // leaving in the normalised Fresnel lobe instead of Lambert's (∫ F_t cos / (c π) dω = 1,
 // so no energy is made or lost; profiles::fresnel_exit_normalization); 1 otherwise.
 vec3 exit_fresnel(int id, float NdotV) {
-  if (frame.flags.x < 0.5 || materials[id].reflectance.w < 0.5) return vec3(1.0);
-  return fresnel_transmittance(NdotV, materials[id].fresnel.rgb) * materials[id].exit_norm.rgb;
+  if (frame.flags.x < 0.5 || materials[id].scatters == 0) return vec3(1.0);
+  return fresnel_transmittance(NdotV, materials[id].eta) * materials[id].exit_norm;
 }
 
 // L = albedo (1 - metallic) diffuse x exit / pi + specular.rgb, where diffuse is R * E
 // (scattered or local) or E (Lambert) and exit the Fresnel exit factor at cosine
 // specular.a (exit_fresnel); pre/post albedo takes the second sqrt(albedo) here.
 vec3 composite_radiance(int id, vec3 albedo, vec3 diffuse, vec4 specular) {
-  float metallic = materials[id].surface.y;  // not the whole GpuMaterial
-  vec3 a = materials[id].kernel.z > 0.5 ? sqrt(albedo) : albedo;
+  float metallic = materials[id].metallic;  // not the whole GpuMaterial
+  vec3 a = materials[id].pre_post != 0 ? sqrt(albedo) : albedo;
   return a * (1.0 - metallic) * diffuse * exit_fresnel(id, specular.a) / kPi + specular.rgb;
 }
 

@@ -37,7 +37,11 @@
 #define SSS_MAX_MATERIALS 254
 
 #ifdef __cplusplus
+#include <cstddef>  // offsetof, in the layout checks at the end
 namespace sss::shader {
+struct vec3 {  // std430: 16-byte aligned, a scalar may follow in its last 4 bytes
+  float x = 0, y = 0, z = 0;
+};
 struct vec4 {
   float x = 0, y = 0, z = 0, w = 0;
 };
@@ -88,19 +92,29 @@ struct LightBlock {
 
 // One material: surface parameters and, when it scatters, its profile as a fit and as a
 // separable kernel (both in object mm; the material's scale is already in them).
+// One material as the shaders read it; renderer::encode() (MaterialTable.cpp) is the only
+// code that writes one. Each vec3 starts a 16-byte row and the scalar after it fills the
+// row (std430), so the rows below are the layout. A material without SSS keeps the
+// defaults below its surface row (total_reflectance 1: Lambert).
 struct GpuMaterial {
-  vec4 reflectance;  // rgb total diffuse reflectance T, w 1 when SSS is enabled
-  vec4 surface;      // x F0 (0.04 x specular), y metallic, z roughness, w Gaussian count
-  vec4 kernel;       // x separable taps, y range_mm (follow-surface width), z 1 = pre/post
-                     // sqrt(albedo) (d'Eon & Luebke 2007), 0 = post-scatter albedo; w
-  vec4 transmit;     // rgb a slab's total transmittance (the multipole's T(r) fitted with
-                     // the reflectance fit's variances, MaterialTable.cpp), w its thickness
-                     // in mm; w 0: not a slab (lighting.comp uses the profile through the
-                     // shadow-map thickness)
-  vec4 fresnel;      // rgb the medium's index of refraction η (per channel), w 0
-  vec4 exit_norm;    // rgb 1/c, c = 1 - 2 m1(1/η) (profiles::fresnel_exit_normalization), w 0
-  vec4 single;       // rgb the single-scattering albedo σs/σt of the real coefficients, w 0
-  vec4 phase;        // rgb the Henyey–Greenstein g (S(1), shading.glsl), w 0
+  float f0;                 // 0.04 x specular (a dielectric's normal-incidence Fresnel)
+  float metallic;
+  float roughness;          // GGX alpha = roughness^2 (shading.glsl)
+  int gaussian_count;       // Gaussians in the fit (0 without SSS), <= SSS_MAX_GAUSSIANS
+  vec3 total_reflectance;   // T per channel (the separable kernel's, the profile's total)
+  int scatters;             // 1 when SSS is enabled
+  vec3 slab_transmittance;  // a slab's total transmittance (the multipole's T(r) fitted with
+                            // the reflectance fit's variances, MaterialTable.cpp)
+  float slab_thickness_mm;  // 0: not a slab (lighting.comp uses the profile through the
+                            // shadow-map thickness)
+  vec3 eta;                 // the medium's index of refraction η per channel
+  int separable_taps;       // taps of the separable kernel
+  vec3 exit_norm;           // 1/c, c = 1 - 2 m1(1/η) (profiles::fresnel_exit_normalization)
+  float range_mm;           // the separable kernel's follow-surface width
+  vec3 single_albedo;       // σs/σt of the real (not reduced) coefficients (S(1))
+  int pre_post;             // 1: pre/post sqrt(albedo) (d'Eon & Luebke 2007); 0: post-scatter
+  vec3 phase_g;             // the Henyey–Greenstein g (S(1), shading.glsl)
+  float unused;
   vec4 variances[SSS_MAX_GAUSSIANS / 4];  // v_i in mm^2, ascending
   vec4 gauss_weights[SSS_MAX_GAUSSIANS];  // rgb w_i (sum = T)
   vec4 taps[SSS_MAX_TAPS];                // rgb weight (sum 1), w offset in mm
@@ -134,7 +148,14 @@ struct DebugPush {  // debug view pass (debug_view.comp)
 static_assert(sizeof(mat4) == 64);
 static_assert(sizeof(FrameUniforms) == 3 * 64 + 7 * 16);
 static_assert(sizeof(GpuLight) == 2 * 64 + 5 * 16);
-static_assert(sizeof(GpuMaterial) == 16 * (8 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
+static_assert(sizeof(vec3) == 12);
+static_assert(sizeof(GpuMaterial) == 16 * (7 + SSS_MAX_GAUSSIANS / 4 + SSS_MAX_GAUSSIANS + SSS_MAX_TAPS));
+// The rows of std430: a vec3 at a multiple of 16, its scalar 12 bytes on.
+static_assert(offsetof(GpuMaterial, total_reflectance) == 16 && offsetof(GpuMaterial, scatters) == 28);
+static_assert(offsetof(GpuMaterial, slab_transmittance) == 32 && offsetof(GpuMaterial, eta) == 48);
+static_assert(offsetof(GpuMaterial, exit_norm) == 64 && offsetof(GpuMaterial, range_mm) == 76);
+static_assert(offsetof(GpuMaterial, single_albedo) == 80 && offsetof(GpuMaterial, phase_g) == 96);
+static_assert(offsetof(GpuMaterial, variances) == 112);
 static_assert(sizeof(DrawPush) == 112);
 inline constexpr uint kMaxTextures = SSS_MAX_TEXTURES;
 inline constexpr uint kMaxLights = SSS_MAX_LIGHTS;

@@ -15,7 +15,7 @@
 // A point source at depth d below the surface gives R(sqrt(r² + d²)) at lateral distance
 // r on it; for the fit R(r) = Σ w_i G(v_i, r) that is Σ w_i exp(-d²/2v_i) G(v_i, r), the
 // same Gaussians with weights scaled per channel, whose total is
-// T(d) = Σ w_i exp(-d²/2v_i). Slabs (transmit.w > 0: the slab thickness) use the
+// T(d) = Σ w_i exp(-d²/2v_i). Slabs (slab_thickness_mm > 0) use the
 // multipole's own total transmittance instead (transmit.rgb, the fit of its T(r) with the
 // same variances). The far side's irradiance is E_back = E_light max(-N·L, 0) (the far
 // side faces the light where P faces away from it; Jimenez 2010 uses a wrapped
@@ -26,10 +26,9 @@
 // spread by the reflectance profile's shape rather than the transmitted one (for a
 // thickness comparable to the widest Gaussian the transmitted profile is wider).
 vec3 transmittance_total(int id, float d_mm) {
-  vec4 t = materials[id].transmit;
-  if (t.w > 0.0) return t.rgb;
+  if (materials[id].slab_thickness_mm > 0.0) return materials[id].slab_transmittance;
   vec3 sum = vec3(0.0);
-  int count = int(materials[id].surface.w);
+  int count = materials[id].gaussian_count;
   for (int g = 0; g < count; ++g) {
     float v = materials[id].variances[g / 4][g % 4];
     sum += materials[id].gauss_weights[g].rgb * exp(-d_mm * d_mm / (2.0 * v));
@@ -41,7 +40,7 @@ vec3 transmittance_total(int id, float d_mm) {
 // directional Fresnel on, 1 (all of it) otherwise.
 vec3 entry_fresnel(int id, float NdotL) {
   if (frame.flags.x < 0.5) return vec3(1.0);
-  return fresnel_transmittance(NdotL, materials[id].fresnel.rgb);
+  return fresnel_transmittance(NdotL, materials[id].eta);
 }
 
 // Henyey–Greenstein phase function, normalised over the sphere (profiles::henyey_greenstein).
@@ -60,9 +59,9 @@ float henyey_greenstein(float g, float cos_theta) {
 // SingleScattering.h, which says exactly what is integrated; the same equations, checked
 // against the analog walk). The F_t factors belong to S(1) itself, whatever --fresnel says.
 vec3 single_scattering_brdf(int id, vec3 N, vec3 L, vec3 V) {
-  vec3 eta = materials[id].fresnel.rgb;
-  vec3 alpha = materials[id].single.rgb;
-  vec3 g = materials[id].phase.rgb;
+  vec3 eta = materials[id].eta;
+  vec3 alpha = materials[id].single_albedo;
+  vec3 g = materials[id].phase_g;
   float mu_i = clamp(dot(N, L), 1e-4, 1.0);
   float mu_o = clamp(dot(N, V), 1e-4, 1.0);
   vec3 f = vec3(0.0);
@@ -185,19 +184,21 @@ struct SurfacePoint {
 // shadow x f1 x albedo (1 - metallic), not blurred (the profiles leave it out then,
 // profiles::ModelOptions::single_scattering_apart).
 void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
-  vec4 surface = materials[s.id].surface;  // not the whole GpuMaterial: lavapipe loads it all
+  // The fields, not the whole GpuMaterial: lavapipe would load it all.
+  float roughness = materials[s.id].roughness;
+  float metallic = materials[s.id].metallic;
   float NdotV = max(dot(s.N, s.V), 1e-4);
-  float alpha = max(surface.z * surface.z, 1e-3);
+  float alpha = max(roughness * roughness, 1e-3);
   float a2 = alpha * alpha;
-  vec3 F0 = mix(vec3(surface.x), s.albedo, surface.y);
+  vec3 F0 = mix(vec3(materials[s.id].f0), s.albedo, metallic);
   bool has_specular = specular && max(F0.r, max(F0.g, F0.b)) > 0.0;
   E = vec3(0.0);
   S = vec3(0.0);
   vec3 E_back = vec3(0.0);  // x the total transmittance of the thickness, per light
-  bool subsurface = materials[s.id].reflectance.w > 0.5;
+  bool subsurface = materials[s.id].scatters != 0;
   bool transmits = frame.options.w > 0.5 && subsurface;
   bool single = specular && subsurface && frame.flags.y > 0.5;
-  vec3 single_tint = s.albedo * (1.0 - surface.y);
+  vec3 single_tint = s.albedo * (1.0 - metallic);
   int count = int(frame.options.x);
   for (int i = 0; i < count; ++i) {
     GpuLight light = light_block.lights[i];
@@ -245,20 +246,20 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
   if (frame.flags.z > 0.5) {
     vec3 sky = environment_irradiance(s.N);
     bool entering = subsurface && frame.flags.x > 0.5;
-    if (entering) sky /= materials[s.id].exit_norm.rgb;
+    if (entering) sky /= materials[s.id].exit_norm;
     E += sky;
     if (transmits && s.thickness_mm >= 0.0 && s.thickness_mm < 1e30) {
       vec3 behind = environment_irradiance(-s.N);
-      if (entering) behind /= materials[s.id].exit_norm.rgb;
+      if (entering) behind /= materials[s.id].exit_norm;
       E_back += behind * transmittance_total(s.id, s.thickness_mm);
     }
 #ifdef SSS_ENVIRONMENT_SPECULAR
-    if (has_specular) S += environment_specular(s.N, s.V, surface.z, F0);
+    if (has_specular) S += environment_specular(s.N, s.V, roughness, F0);
 #endif
   }
-  if (transmits) E += E_back / max(materials[s.id].reflectance.rgb, vec3(1e-6));
+  if (transmits) E += E_back / max(materials[s.id].total_reflectance, vec3(1e-6));
   // Pre/post albedo: sqrt(albedo) enters before scattering, the other half after it.
-  if (materials[s.id].kernel.z > 0.5) E *= sqrt(s.albedo);
+  if (materials[s.id].pre_post != 0) E *= sqrt(s.albedo);
 }
 
 // S(1) alone at a subsurface point, as shade() adds it to S with single scattering on (the
@@ -275,7 +276,7 @@ vec3 single_scattering_radiance(SurfacePoint s) {
     float visibility = light.shadow.y > 0.5 ? shadow_visibility(i, light, s.P, s.N) : 1.0;
     sum += radiance * NdotL * visibility * single_scattering_brdf(s.id, s.N, L, s.V);
   }
-  return sum * s.albedo * (1.0 - materials[s.id].surface.y);
+  return sum * s.albedo * (1.0 - materials[s.id].metallic);
 }
 
 #endif

@@ -158,7 +158,7 @@ TEST_F(DebugViewTest, SpecularIsTheTonemappedSpecularTerm) {
   RenderOptions o = view_options(16, 16, DebugView::Specular);
   o.exposure = 100.0f;
   const Frame f = render(s, o);
-  const float f0 = f.materials.gpu[0].surface.x;
+  const float f0 = f.materials.gpu[0].f0;
   ASSERT_GT(f0, 0.0f);
   const float expected = encode(100.0f * f0 / (4.0f * kPi));
   ASSERT_GT(expected, 0.3f);
@@ -222,7 +222,7 @@ TEST_F(DebugViewTest, KernelRadiusIsTheKernelExtentInPixels) {
     o.debug_range = {1.0f, 64.0f};
     const Frame f = render(lit_slab(half_width_mm), o);
     EXPECT_EQ(f.debug_range, o.debug_range);
-    *range_mm = f.materials.gpu[0].kernel.y;
+    *range_mm = f.materials.gpu[0].range_mm;
     const float t = decode_viridis(f.display.pixel(n / 2, n / 2));
     return std::exp2(t * 6.0f);
   };

@@ -89,17 +89,17 @@ TEST(TransmittanceFit, SlabFitKeepsTheMultipoleTotalWithTheReflectanceVariances)
       sum += w[c];
     }
     EXPECT_NEAR(sum, total[c], 1e-12 * total[c]);
-    EXPECT_FLOAT_EQ((&data.gpu[0].transmit.x)[c], float(total[c]));
+    EXPECT_FLOAT_EQ((&data.gpu[0].slab_transmittance.x)[c], float(total[c]));
     std::printf("channel %d: total transmittance %.4f, fit relative error %.4f\n", c, total[c],
                 t.relative_error[c]);
     // The shape's error (not used by the GPU's totals): a loose bound that a broken fit
     // (all weight on one Gaussian) exceeds.
     EXPECT_LT(t.relative_error[c], 0.25);
   }
-  EXPECT_FLOAT_EQ(data.gpu[0].transmit.w, 2.0f);
-  // Non-slab materials have no transmittance fit and transmit.w = 0.
+  EXPECT_FLOAT_EQ(data.gpu[0].slab_thickness_mm, 2.0f);
+  // Non-slab materials have no transmittance fit and slab_thickness_mm = 0.
   const MaterialData bunny = build_material_data(std::get<scene::Scene>(scene::load_scene("builtin:bunny")), 17);
-  for (std::size_t i = 0; i < bunny.gpu.size(); ++i) EXPECT_EQ(bunny.gpu[i].transmit.w, 0.0f);
+  for (std::size_t i = 0; i < bunny.gpu.size(); ++i) EXPECT_EQ(bunny.gpu[i].slab_thickness_mm, 0.0f);
 }
 
 class SlabTransmission : public RenderTest, public ::testing::WithParamInterface<SssTechnique> {};
@@ -513,10 +513,10 @@ TEST(TransmittanceFit, LayeredMaterialFitsTheStack) {
   const Rgb r = rgb.total_reflectance(), t = rgb.total_transmittance();
   for (int c = 0; c < 3; ++c) {
     // Stored as float: within half an ulp, 6e-8 relative.
-    EXPECT_NEAR((&data.gpu[0].reflectance.x)[c], r[c], 6e-8 * r[c]) << c;
+    EXPECT_NEAR((&data.gpu[0].total_reflectance.x)[c], r[c], 6e-8 * r[c]) << c;
     EXPECT_NEAR(data.profiles[0]->transmittance->total[c], t[c], 1e-9) << c;
   }
-  EXPECT_FLOAT_EQ(data.gpu[0].transmit.w, 2.0f);
+  EXPECT_FLOAT_EQ(data.gpu[0].slab_thickness_mm, 2.0f);
 }
 
 }  // namespace
