@@ -24,8 +24,7 @@ SssGaussiansPass::SssGaussiansPass(const FrameResources& resources, int gaussian
       gaussians_(gaussians),
       program_(r_.context, bindings(), sss_spv_sss_gaussians_comp, sizeof(shader::BlurPush), 5,
                kName) {
-  for (VkDescriptorSet* set : {&h_irradiance_, &h_a_, &h_b_, &v_a_, &v_b_})
-    *set = program_.allocate();
+  blur_.allocate(program_);
   write_descriptors();
 }
 
@@ -42,29 +41,12 @@ void SssGaussiansPass::write_descriptors() {
         .storage_image(6, t.accum)
         .update(r_.context);
   };
-  write(h_irradiance_, t.irradiance, t.blur_temp);
-  write(h_a_, t.blur_a, t.blur_temp);
-  write(h_b_, t.blur_b, t.blur_temp);
-  write(v_a_, t.blur_temp, t.blur_a);
-  write(v_b_, t.blur_temp, t.blur_b);
+  blur_.write(t.irradiance, t.blur_a, t.blur_b, t.blur_temp, write);
 }
 
 void SssGaussiansPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
   auto scope = timer.scope(cmd, kName);
-  for (int g = 0; g < gaussians_; ++g) {
-    const bool into_a = g % 2 == 0;
-    VkDescriptorSet horizontal = g == 0 ? h_irradiance_ : (into_a ? h_b_ : h_a_);
-    VkDescriptorSet vertical = into_a ? v_a_ : v_b_;
-    for (int pass = 0; pass < 2; ++pass) {
-      shader::BlurPush push;
-      push.direction = pass == 0 ? shader::vec4{1, 0, float(g), 0} : shader::vec4{0, 1, float(g), 0};
-      program_.bind(cmd, pass == 0 ? horizontal : vertical);
-      vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                         sizeof(push), &push);
-      ComputeProgram::dispatch(cmd, r_.rect);
-      compute_barrier(cmd);
-    }
-  }
+  blur_.record(cmd, program_, gaussians_, 0.0f, r_.rect.width(), r_.rect.height());
 }
 
 }  // namespace sss::renderer

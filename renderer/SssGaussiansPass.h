@@ -1,12 +1,13 @@
 // SssGaussiansPass ("sss gaussians"): each Gaussian of the material's fit as its own
-// separable blur, incrementally: pass g blurs the previous result by v_g - v_{g-1}
-// (horizontal -> blur_temp, vertical -> blur_a / blur_b alternately) and accumulates
+// separable blur, incrementally (GaussianPingPong): pass g blurs the previous result by
+// v_g - v_{g-1} (horizontal -> blur_temp, vertical -> blur_a / blur_b alternately) and accumulates
 // w_g x (E * G(v_g)) into accum, which is R * E for a flat surface (the weights already
 // sum to the total reflectance).
 #pragma once
 
 #include "renderer/ComputeProgram.h"
 #include "renderer/FrameResources.h"
+#include "renderer/GaussianPingPong.h"
 #include "renderer/vk/GpuTimer.h"
 
 namespace sss::renderer {
@@ -28,10 +29,7 @@ class SssGaussiansPass {
   const FrameResources& r_;
   int gaussians_;
   ComputeProgram program_;
-  // Horizontal from irradiance / blur_a / blur_b into blur_temp; vertical from blur_temp
-  // into blur_a / blur_b.
-  VkDescriptorSet h_irradiance_ = VK_NULL_HANDLE, h_a_ = VK_NULL_HANDLE, h_b_ = VK_NULL_HANDLE;
-  VkDescriptorSet v_a_ = VK_NULL_HANDLE, v_b_ = VK_NULL_HANDLE;
+  GaussianPingPong blur_;  // irradiance, then blur_a / blur_b via blur_temp
 };
 
 }  // namespace sss::renderer

@@ -1,6 +1,7 @@
 #include "renderer/SssTexturePass.h"
 
 #include "renderer/GBufferPass.h"
+#include "renderer/GaussianPingPong.h"
 #include "renderer/MaterialTable.h"
 #include "renderer/vk/Barrier.h"
 #include "renderer/vk/GraphicsPipeline.h"
@@ -88,8 +89,7 @@ struct SssTexturePass::Textures {
   bool initialized = false;  // moved out of UNDEFINED
   bool dirty = true;
   VkDescriptorSet lighting = VK_NULL_HANDLE, dilate = VK_NULL_HANDLE;
-  VkDescriptorSet h_irradiance = VK_NULL_HANDLE, h_a = VK_NULL_HANDLE, h_b = VK_NULL_HANDLE;
-  VkDescriptorSet v_a = VK_NULL_HANDLE, v_b = VK_NULL_HANDLE;
+  GaussianPingPong blur;  // irradiance, then a / b via temp
 
   Textures(const vk::Context& context, std::uint32_t n, const std::string& name) : size(n) {
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
@@ -232,8 +232,8 @@ void SssTexturePass::configure(const RenderOptions& options) {
         .storage_image(2, t.irradiance)
         .storage_image(3, t.stretch)
         .update(r_.context);
-    const auto write = [&](VkDescriptorSet& set, const vk::Image& in, const vk::Image& out) {
-      set = blur_.allocate();
+    t.blur.allocate(blur_);
+    const auto write = [&](VkDescriptorSet set, const vk::Image& in, const vk::Image& out) {
       vk::DescriptorWriter(set)
           .storage_buffer(0, r_.materials)
           .combined_image(1, t.stretch, nearest, general)
@@ -242,11 +242,7 @@ void SssTexturePass::configure(const RenderOptions& options) {
           .storage_image(4, t.scattered)
           .update(r_.context);
     };
-    write(t.h_irradiance, t.irradiance, t.temp);
-    write(t.h_a, t.a, t.temp);
-    write(t.h_b, t.b, t.temp);
-    write(t.v_a, t.temp, t.a);
-    write(t.v_b, t.temp, t.b);
+    t.blur.write(t.irradiance, t.a, t.b, t.temp, write);
   }
 }
 
@@ -320,21 +316,7 @@ void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& obje
   compute_barrier(cmd);
 
   // 4. The Gaussians, incrementally: u into temp, v into a / b alternately (+ scattered).
-  for (int g = 0; g < count; ++g) {
-    const bool into_a = g % 2 == 0;
-    const VkDescriptorSet horizontal = g == 0 ? t.h_irradiance : (into_a ? t.h_b : t.h_a);
-    const VkDescriptorSet vertical = into_a ? t.v_a : t.v_b;
-    for (int pass = 0; pass < 2; ++pass) {
-      shader::TexturePush push;
-      push.direction = {pass == 0 ? 1.0f : 0.0f, pass == 0 ? 0.0f : 1.0f, float(g),
-                        float(object.material)};
-      blur_.bind(cmd, pass == 0 ? horizontal : vertical);
-      vkCmdPushConstants(cmd, blur_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
-                         &push);
-      ComputeProgram::dispatch(cmd, t.size, t.size);
-      compute_barrier(cmd);
-    }
-  }
+  t.blur.record(cmd, blur_, count, float(object.material), t.size, t.size);
 }
 
 void SssTexturePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer,

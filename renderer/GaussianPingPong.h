@@ -1,0 +1,40 @@
+// GaussianPingPong: the incremental Gaussian blur (shaders/shared/gaussian_blur.glsl) that
+// the screen path (SssGaussiansPass) and the texture path (SssTexturePass) share. Gaussian g
+// blurs the previous one's result by the difference of their variances: horizontally into
+// `temp`, then vertically into `a` (g even) or `b` (g odd), and its shader adds w_g x the
+// result to the accumulation. Five descriptor sets serve every g: the horizontal pass reads
+// the source (g = 0) or the previous vertical result, the vertical pass reads temp.
+#pragma once
+
+#include "renderer/ComputeProgram.h"
+#include "renderer/vk/Image.h"
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+
+namespace sss::renderer {
+
+struct GaussianPingPong {
+  VkDescriptorSet h_source = VK_NULL_HANDLE, h_a = VK_NULL_HANDLE, h_b = VK_NULL_HANDLE;
+  VkDescriptorSet v_a = VK_NULL_HANDLE, v_b = VK_NULL_HANDLE;
+
+  void allocate(ComputeProgram& program);
+  // Calls write(set, input, output) for each of the five sets.
+  template <class Write>
+  void write(const vk::Image& source, const vk::Image& a, const vk::Image& b,
+             const vk::Image& temp, Write&& write) const {
+    write(h_source, source, temp);
+    write(h_a, a, temp);
+    write(h_b, b, temp);
+    write(v_a, temp, a);
+    write(v_b, temp, b);
+  }
+  // Gaussians 0 .. count - 1, each a horizontal then a vertical dispatch over width x height
+  // with a compute barrier after it. The push constant is one vec4 (BlurPush, TexturePush):
+  // the direction (1, 0) or (0, 1), the Gaussian's index, and `w`.
+  void record(VkCommandBuffer cmd, const ComputeProgram& program, int count, float w,
+              std::uint32_t width, std::uint32_t height) const;
+};
+
+}  // namespace sss::renderer
