@@ -337,30 +337,56 @@ std::string describe(const EstimatorChoice& choice, double asked_spacing_mfp) {
   return std::string(what) + ": " + why;
 }
 
-ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o,
-                                const ProgressFn& progress, const std::atomic<bool>* cancel) {
-  check_options(o);
-  check_scene(s);
-  if (o.estimator == Estimator::Probe) return render_probe_reference(s, o, progress, cancel);
-  const auto t_start = Clock::now();
-  Reporter reporter(progress, cancel);
-  tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
-  ReferenceImage out;
-  ReferenceStats& stats = out.stats;
+namespace {
 
-  RayScene rays(s, o.threads);
-  auto t0 = Clock::now();
-  // The GPU's maps, for its shadows, its thickness or both; `shadow_maps` is what shadows.
-  std::unique_ptr<ShadowMaps> built;
-  if (o.shadows == Shadows::ShadowMap || o.thickness == Thickness::ShadowMap)
-    arena.execute([&] { built = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size); });
-  const ShadowMaps* shadow_maps = o.shadows == Shadows::ShadowMap ? built.get() : nullptr;
-  const ShadowMaps* thickness_maps = o.thickness == Thickness::ShadowMap ? built.get() : nullptr;
-  std::vector<Group> groups = make_groups(s, rays, o, reporter);
-  stats.profile_ms = ms_since(t0);
+// A material's light through thin parts for Transmission::Local: T(d) / R_d per channel,
+// from R's tail (RadialSampler holds its cumulative mass), or a slab's total transmittance
+// / R_d.
+struct LocalTransmittance {
+  Rgb slab_t, slab_r;
+  bool slab = false;
+  std::vector<ProfileTable> tables;
+  std::vector<RadialSampler> tails;
 
-  // Points: check the total before sampling anything.
-  t0 = Clock::now();
+  explicit LocalTransmittance(const profiles::RgbProfile& profile)
+      : slab_t(profile.total_transmittance()), slab_r(profile.total_reflectance()) {
+    slab = slab_t[0] > 0.0 || slab_t[1] > 0.0 || slab_t[2] > 0.0;
+    if (slab) return;
+    const double inner = profile.inner_radius(), S = profile.support_radius();
+    const bool costly = profiles::model_is_costly(profile.model());
+    for (int c = 0; c < 3; ++c) tables.emplace_back(profile.channel(c), false, costly, 1e-7 * inner, S);
+    for (int c = 0; c < 3; ++c) tails.emplace_back(tables[std::size_t(c)], inner, S);
+  }
+  // The fraction of R_d that channel c transmits through d mm.
+  double fraction(int c, double d) const {
+    return slab ? slab_t[c] / slab_r[c] : tails[std::size_t(c)].mass_beyond(d) / tails[std::size_t(c)].total();
+  }
+};
+
+// One octree render: what its stages share. The stages are render_reference's, in order.
+struct OctreeRender {
+  const scene::Scene& s;
+  const ReferenceOptions& o;
+  Reporter& reporter;
+  tbb::task_arena& arena;
+  const RayScene& rays;
+  const ShadowMaps* shadow_maps;     // what shadows: the GPU's maps, or null (ray cast)
+  const ShadowMaps* thickness_maps;  // the thickness's source, likewise
+
+  // Checks the planned total against --max-points, then samples every group's surface
+  // (groups in parallel).
+  void sample_points(std::vector<Group>& groups, ReferenceStats& stats) const;
+  // The irradiance at each of g's points, and its kernel.
+  void light_points(Group& g, std::atomic<std::size_t>& lit, std::size_t total) const;
+  // The light a local transmission adds at p (normal n) through the object, per channel.
+  glm::dvec3 transmitted(const LocalTransmittance& t, const SurfacePoint& p, const glm::vec3& n,
+                         const glm::dvec3* entry_eta) const;
+  void build_octrees(std::vector<Group>& groups, ReferenceStats& stats) const;
+  // One primary ray per pixel centre.
+  void render_pixels(const std::vector<Group>& groups, ReferenceImage& out) const;
+};
+
+void OctreeRender::sample_points(std::vector<Group>& groups, ReferenceStats& stats) const {
   double planned = 0.0;  // in double: a tiny spacing must not overflow a size_t
   for (const Group& g : groups) planned += std::ceil(g.planned_points);
   if (!(planned <= double(o.max_points)))
@@ -397,83 +423,70 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
   reporter.check();
   for (const Group& g : groups) stats.points += g.surface.points.size();
   reporter.report("points", 1.0);
-  stats.sampling_ms = ms_since(t0);
-  reporter.check();
+}
 
-  // Irradiance at every point, then one octree per group. Directional Fresnel: the part of
-  // each light that enters (F_t(η, θi)) here, the exit lobe at the pixel.
-  const bool fresnel = o.applies_fresnel();
-  t0 = Clock::now();
-  std::atomic<std::size_t> lit{0};
-  for (Group& g : groups) {
-    const scene::SssMaterial& sss = s.materials[g.material].sss;
-    const bool pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
-    const glm::dvec3 eta(sss.medium.eta[0], sss.medium.eta[1], sss.medium.eta[2]);
-    const glm::dvec3* entry_eta = fresnel ? &eta : nullptr;
-    // Transmission::Local: T(d) / R_d per channel, from R's tail (RadialSampler holds its
-    // cumulative mass), or a slab's total transmittance / R_d.
-    const bool local = o.transmission == Transmission::Local;
-    const Rgb slab_t = g.profile->total_transmittance(), slab_r = g.profile->total_reflectance();
-    const bool slab = slab_t[0] > 0.0 || slab_t[1] > 0.0 || slab_t[2] > 0.0;
-    std::vector<ProfileTable> tables;
-    std::vector<RadialSampler> tails;
-    if (local && !slab) {
-      const double inner = g.profile->inner_radius(), S = g.profile->support_radius();
-      const bool costly = profiles::model_is_costly(g.profile->model());
-      for (int c = 0; c < 3; ++c) tables.emplace_back(g.profile->channel(c), false, costly, 1e-7 * inner, S);
-      for (int c = 0; c < 3; ++c) tails.emplace_back(tables[std::size_t(c)], inner, S);
+glm::dvec3 OctreeRender::transmitted(const LocalTransmittance& t, const SurfacePoint& p,
+                                     const glm::vec3& n, const glm::dvec3* entry_eta) const {
+  glm::dvec3 sum(0.0);
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    // The GPU transmits only lights with a shadow map, which point lights lack.
+    if (s.lights[i].type == scene::LightType::Point) continue;
+    const std::optional<LightArrival> a = light_arrival(s, i, p.position_mm, shadow_maps);
+    if (!a) continue;
+    const double cosine = -double(glm::dot(n, a->l));
+    if (!(cosine > 0.0)) continue;
+    const double d = thickness_maps ? thickness_maps->thickness_mm(i, p.position_mm)
+                                    : thickness_towards(rays, p.position_mm, a->l, a->distance_mm);
+    if (d < 0.0) continue;  // outside the light's map: the GPU transmits nothing
+    for (int c = 0; c < 3; ++c) {
+      const double f = entry_eta ? profiles::fresnel_transmittance(cosine, (*entry_eta)[c]) : 1.0;
+      sum[c] += a->radiance[c] * cosine * f * t.fraction(c, d);
     }
-    const auto transmitted = [&](const SurfacePoint& p, const glm::vec3& n) {
-      glm::dvec3 sum(0.0);
-      for (std::size_t i = 0; i < s.lights.size(); ++i) {
-        // The GPU transmits only lights with a shadow map, which point lights lack.
-        if (s.lights[i].type == scene::LightType::Point) continue;
-        const std::optional<LightArrival> a = light_arrival(s, i, p.position_mm, shadow_maps);
-        if (!a) continue;
-        const double cosine = -double(glm::dot(n, a->l));
-        if (!(cosine > 0.0)) continue;
-        const double d = thickness_maps ? thickness_maps->thickness_mm(i, p.position_mm)
-                                        : thickness_towards(rays, p.position_mm, a->l, a->distance_mm);
-        if (d < 0.0) continue;  // outside the light's map: the GPU transmits nothing
-        for (int c = 0; c < 3; ++c) {
-          const double t = slab ? slab_t[c] / slab_r[c] : tails[std::size_t(c)].mass_beyond(d) / tails[std::size_t(c)].total();
-          const double f = fresnel ? profiles::fresnel_transmittance(cosine, eta[c]) : 1.0;
-          sum[c] += a->radiance[c] * cosine * f * t;
-        }
-      }
-      return sum;
-    };
-    std::vector<IrradiancePoint> points(g.surface.points.size());
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          if (reporter.cancelled()) return;
-                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                            const SampledPoint& sp = g.surface.points[i];
-                            const auto [instance, tri] = g.source[sp.triangle];
-                            SurfacePoint p = surface_at(s, rays, instance, tri, sp.barycentric);
-                            p.position_mm = sp.position_mm;
-                            // The G-buffer's normal: normal-mapped, not flipped (no viewer).
-                            const glm::vec3 n = shading_normal(s, p, sp.normal);
-                            const DirectLight d = direct_light(s, rays, p, n, nullptr, shadow_maps, entry_eta);
-                            glm::dvec3 e = d.irradiance;
-                            if (local) e += transmitted(p, n);
-                            if (pre_post) e *= glm::sqrt(glm::dvec3(base_colour(s, p)));
-                            points[i] = {sp.position_mm, sp.normal, glm::vec3(e)};
-                          }
-                          const std::size_t done = lit.fetch_add(r.size()) + r.size();
-                          reporter.report("irradiance", double(done) / double(std::max<std::size_t>(stats.points, 1)));
-                        });
-    });
-    reporter.check();
-    arena.execute([&] {  // its table is built with TBB: within --threads too
-      g.kernel = std::make_unique<ScatterKernel>(*g.profile, std::max(g.surface.point_area_mm2, 1e-12),
-                                                 o.transmission != Transmission::Profile);
-    });
-    g.points_for_octree = std::move(points);
   }
-  stats.irradiance_ms = ms_since(t0);
-  t0 = Clock::now();
+  return sum;
+}
+
+void OctreeRender::light_points(Group& g, std::atomic<std::size_t>& lit, std::size_t total) const {
+  // Directional Fresnel: the part of each light that enters (F_t(η, θi)) here, the exit
+  // lobe at the pixel.
+  const scene::SssMaterial& sss = s.materials[g.material].sss;
+  const bool pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
+  const glm::dvec3 eta(sss.medium.eta[0], sss.medium.eta[1], sss.medium.eta[2]);
+  const glm::dvec3* entry_eta = o.applies_fresnel() ? &eta : nullptr;
+  const bool local = o.transmission == Transmission::Local;
+  std::optional<LocalTransmittance> transmittance;
+  if (local) transmittance.emplace(*g.profile);
+  std::vector<IrradiancePoint> points(g.surface.points.size());
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        if (reporter.cancelled()) return;
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                          const SampledPoint& sp = g.surface.points[i];
+                          const auto [instance, tri] = g.source[sp.triangle];
+                          SurfacePoint p = surface_at(s, rays, instance, tri, sp.barycentric);
+                          p.position_mm = sp.position_mm;
+                          // The G-buffer's normal: normal-mapped, not flipped (no viewer).
+                          const glm::vec3 n = shading_normal(s, p, sp.normal);
+                          const DirectLight d = direct_light(s, rays, p, n, nullptr, shadow_maps, entry_eta);
+                          glm::dvec3 e = d.irradiance;
+                          if (local) e += transmitted(*transmittance, p, n, entry_eta);
+                          if (pre_post) e *= glm::sqrt(glm::dvec3(base_colour(s, p)));
+                          points[i] = {sp.position_mm, sp.normal, glm::vec3(e)};
+                        }
+                        const std::size_t done = lit.fetch_add(r.size()) + r.size();
+                        reporter.report("irradiance", double(done) / double(std::max<std::size_t>(total, 1)));
+                      });
+  });
+  reporter.check();
+  arena.execute([&] {  // its table is built with TBB: within --threads too
+    g.kernel = std::make_unique<ScatterKernel>(*g.profile, std::max(g.surface.point_area_mm2, 1e-12),
+                                               o.transmission != Transmission::Profile);
+  });
+  g.points_for_octree = std::move(points);
+}
+
+void OctreeRender::build_octrees(std::vector<Group>& groups, ReferenceStats& stats) const {
   for (Group& g : groups) {
     OctreeOptions oo;
     oo.max_solid_angle = o.max_solid_angle;
@@ -488,11 +501,10 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
     stats.groups.push_back(gs);
   }
   reporter.report("octree", 1.0);
-  stats.octree_ms = ms_since(t0);
-  reporter.check();
+}
 
-  // One primary ray per pixel centre.
-  t0 = Clock::now();
+void OctreeRender::render_pixels(const std::vector<Group>& groups, ReferenceImage& out) const {
+  const bool fresnel = o.applies_fresnel();
   const CameraRays camera(s.cameras[0], o.width, o.height, s.mm_per_unit);
   std::vector<int> group_of(s.materials.size(), -1);
   for (std::size_t k = 0; k < groups.size(); ++k) group_of[groups[k].material] = int(k);
@@ -534,6 +546,52 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
     });
   });
   reporter.check();
+}
+
+}  // namespace
+
+// The octree estimator (Jensen & Buhler 2002): points on every SSS surface, their
+// irradiance, one octree per material, then a gather per pixel.
+ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o,
+                                const ProgressFn& progress, const std::atomic<bool>* cancel) {
+  check_options(o);
+  check_scene(s);
+  if (o.estimator == Estimator::Probe) return render_probe_reference(s, o, progress, cancel);
+  const auto t_start = Clock::now();
+  Reporter reporter(progress, cancel);
+  tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
+  ReferenceImage out;
+  ReferenceStats& stats = out.stats;
+
+  RayScene rays(s, o.threads);
+  auto t0 = Clock::now();
+  // The GPU's maps, for its shadows, its thickness or both.
+  std::unique_ptr<ShadowMaps> built;
+  if (o.shadows == Shadows::ShadowMap || o.thickness == Thickness::ShadowMap)
+    arena.execute([&] { built = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size); });
+  const OctreeRender run{s, o, reporter, arena, rays,
+                         o.shadows == Shadows::ShadowMap ? built.get() : nullptr,
+                         o.thickness == Thickness::ShadowMap ? built.get() : nullptr};
+  std::vector<Group> groups = make_groups(s, rays, o, reporter);
+  stats.profile_ms = ms_since(t0);
+
+  t0 = Clock::now();
+  run.sample_points(groups, stats);
+  stats.sampling_ms = ms_since(t0);
+  reporter.check();
+
+  t0 = Clock::now();
+  std::atomic<std::size_t> lit{0};
+  for (Group& g : groups) run.light_points(g, lit, stats.points);
+  stats.irradiance_ms = ms_since(t0);
+
+  t0 = Clock::now();
+  run.build_octrees(groups, stats);
+  stats.octree_ms = ms_since(t0);
+  reporter.check();
+
+  t0 = Clock::now();
+  run.render_pixels(groups, out);
   stats.render_ms = ms_since(t0);
   out.display = image::tonemap(out.hdr, o.exposure);
   stats.total_ms = ms_since(t_start);
