@@ -321,8 +321,9 @@ std::vector<double> rim_distance(const TriangleSoup& soup, const std::vector<dou
 
 }  // namespace
 
-SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& options) {
-  const double spacing = options.spacing_mm;
+namespace {
+
+void check_soup(const TriangleSoup& soup, double spacing) {
   if (!std::isfinite(spacing) || !(spacing > 0.0))
     throw std::invalid_argument("spacing: must be finite and > 0, got " + message_number(spacing));
   if (soup.positions_mm.size() % 3 != 0)
@@ -332,10 +333,14 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
     throw std::invalid_argument("normals: " + std::to_string(soup.normals.size()) +
                                 " normals for " + std::to_string(soup.positions_mm.size()) +
                                 " corners");
+}
 
-  // Areas (in double) and their running sum, to pick triangles in proportion to area.
+// The triangles' areas (in double) and their running sum, to pick triangles in proportion
+// to area; returns the total.
+double triangle_areas(const TriangleSoup& soup, std::vector<double>& tri_area, std::vector<double>& cdf) {
   const std::size_t T = soup.triangle_count();
-  std::vector<double> tri_area(T), cdf(T);
+  tri_area.assign(T, 0.0);
+  cdf.assign(T, 0.0);
   double area = 0.0;
   for (std::size_t t = 0; t < T; ++t) {
     const glm::dvec3 p0(soup.positions_mm[3 * t]), p1(soup.positions_mm[3 * t + 1]),
@@ -347,26 +352,16 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
     area += tri_area[t];
     cdf[t] = area;
   }
-  SampledSurface out;
-  out.area_mm2 = area;
-  if (!(area > 0.0)) return out;
+  return area;
+}
 
-  const double n_real = std::ceil(area / (spacing * spacing));
-  if (!(n_real <= double(options.max_points)))
-    throw std::invalid_argument(
-        "spacing: " + message_number(n_real) + " points for an area of " + message_number(area) +
-        " mm² at a spacing of " + message_number(spacing) + " mm exceed max_points = " +
-        std::to_string(options.max_points) + "; raise the spacing");
-  const std::size_t N = std::size_t(n_real);
-  const std::size_t M = kCandidatesPerPoint * N;
-  if (M >= std::size_t(0xFFFFFFFFu))
-    throw std::invalid_argument("max_points: " + std::to_string(N) +
-                                " points need more candidates than 32-bit indices hold");
-
-  // M area-uniform candidates: a triangle in proportion to its area, then a uniform point
-  // in it by the square-root map (b1, b2) = (√u (1 − v), √u v) (Osada et al. 2002,
-  // "Shape distributions", ACM TOG 21(4)).
-  profiles::Xoshiro256ss rng(options.seed);
+// M area-uniform candidates: a triangle in proportion to its area, then a uniform point
+// in it by the square-root map (b1, b2) = (√u (1 − v), √u v) (Osada et al. 2002,
+// "Shape distributions", ACM TOG 21(4)).
+std::vector<Candidate> draw_candidates(const TriangleSoup& soup, const std::vector<double>& cdf,
+                                       double area, std::size_t M, std::uint64_t seed) {
+  const std::size_t T = cdf.size();
+  profiles::Xoshiro256ss rng(seed);
   std::vector<Candidate> cand(M);
   for (Candidate& c : cand) {
     const double x = rng.uniform() * area;
@@ -380,37 +375,43 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
     c.triangle = std::uint32_t(t);
     c.bary = glm::vec2(float(b1), float(b2));
   }
-  cdf = {};
+  return cand;
+}
 
-  Weight weight;
-  weight.d_max = 2.0 * std::sqrt(area / (2.0 * std::sqrt(3.0) * double(N)));
-  weight.d_min = weight.d_max * kBeta * (1.0 - std::pow(double(N) / double(M), kGamma));
-  weight.d_max2 = weight.d_max * weight.d_max;
-  weight.d_min_f = float(weight.d_min);
-  weight.inv_d_max_f = float(1.0 / weight.d_max);
-  const NeighbourGrid grid(cand, weight.d_max);  // reorders cand by grid cube
-
-  // Each candidate's weights are scaled by 1/F(distance to the rim) (1 inside).
+// Each candidate's weights are scaled by 1/F(distance to the rim) (1 inside).
+std::vector<float> rim_scale(const TriangleSoup& soup, const std::vector<double>& tri_area,
+                             const std::vector<Candidate>& cand, const NeighbourGrid& grid,
+                             const Weight& weight) {
+  const std::size_t M = cand.size();
   std::vector<float> scale(M, 1.0f);
-  {
-    const std::vector<double> rim = rim_distance(soup, tri_area, cand, grid, weight.d_max);
-    const std::array<double, 65> inv_f = weight.inverse_fraction_table();
-    for (std::size_t i = 0; i < M; ++i) {
-      if (!(rim[i] < weight.d_max)) continue;
-      const double x = rim[i] / weight.d_max * 64.0;
-      const std::size_t k = std::min<std::size_t>(std::size_t(x), 63);
-      scale[i] = float(inv_f[k] + (x - double(k)) * (inv_f[k + 1] - inv_f[k]));
-    }
+  const std::vector<double> rim = rim_distance(soup, tri_area, cand, grid, weight.d_max);
+  const std::array<double, 65> inv_f = weight.inverse_fraction_table();
+  for (std::size_t i = 0; i < M; ++i) {
+    if (!(rim[i] < weight.d_max)) continue;
+    const double x = rim[i] / weight.d_max * 64.0;
+    const std::size_t k = std::min<std::size_t>(std::size_t(x), 63);
+    scale[i] = float(inv_f[k] + (x - double(k)) * (inv_f[k + 1] - inv_f[k]));
   }
+  return scale;
+}
 
-  // What the elimination reads for every neighbour, in one 16-byte record: position,
-  // and the unscaled weight u = Σ_j w_ij (the queue orders by u·scale; scale is read per
-  // popped candidate only). Dead candidates are marked with u = -inf.
-  struct Hot {
-    glm::vec3 p;
-    float u;
-  };
-  std::vector<Hot> hot(M);
+// What the elimination reads for every neighbour, in one 16-byte record: position,
+// and the unscaled weight u = Σ_j w_ij (the queue orders by u·scale; scale is read per
+// popped candidate only). Dead candidates are marked with u = -inf.
+struct Hot {
+  glm::vec3 p;
+  float u;
+};
+constexpr float kEliminated = -std::numeric_limits<float>::infinity();
+
+// Eliminates the M − N candidates with the largest weight, one at a time, removing each
+// one's weight from its neighbours (Yuksel 2015); the survivors keep a finite u. False
+// when `progress` asked to stop.
+bool eliminate(const std::vector<Candidate>& cand, const NeighbourGrid& grid, const Weight& weight,
+               const std::vector<float>& scale, std::size_t N,
+               const std::function<bool(double)>& progress, std::vector<Hot>& hot) {
+  const std::size_t M = cand.size();
+  hot.resize(M);
   std::vector<double> u(M, 0.0);
   grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) {
     const glm::vec3 e = cand[j].p - cand[i].p;
@@ -423,20 +424,19 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
   });
   for (std::uint32_t i = 0; i < M; ++i) hot[i] = {cand[i].p, float(u[i])};
 
-  // Eliminate the M − N candidates with the largest weight, one at a time, removing each
-  // one's weight from its neighbours (Yuksel 2015). The queue is lazy: an entry's key
-  // is the weight its candidate had when it was queued, an upper bound of its weight now;
-  // a popped entry whose key is stale goes back with the current weight, and one whose
-  // key is current is the true maximum (to the queue's resolution; ties in queue order).
+  // The queue is lazy: an entry's key is the weight its candidate had when it was queued,
+  // an upper bound of its weight now; a popped entry whose key is stale goes back with the
+  // current weight, and one whose key is current is the true maximum (to the queue's
+  // resolution; ties in queue order).
   for (std::size_t i = 0; i < M; ++i) u[i] *= double(scale[i]);
   BucketQueue queue(u);
   u = {};
   const std::size_t report_every = std::max<std::size_t>(1, (M - N) / 100);
   std::size_t next_report = M - report_every;
   for (std::size_t count = M; count > N;) {
-    if (options.progress && count <= next_report) {
+    if (progress && count <= next_report) {
       next_report = count > report_every ? count - report_every : 0;
-      if (!options.progress(double(M - count) / double(M - N))) return SampledSurface{{}, area, 0.0};
+      if (!progress(double(M - count) / double(M - N))) return false;
     }
     const auto [key, i] = queue.pop();
     queue.peek(4, [&](std::uint32_t j) {
@@ -449,7 +449,7 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
       queue.push(current, i);
       continue;
     }
-    h.u = -std::numeric_limits<float>::infinity();
+    h.u = kEliminated;
     --count;
     // Branch-free: the weight is 0 beyond d_max, and updating the weights of candidates
     // already eliminated is harmless (-inf stays -inf).
@@ -464,11 +464,16 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
         n.u -= weight.fast(glm::dot(e, e));
       }
   }
+  return true;
+}
 
-  // The survivors in grid order (spatially coherent), with interpolated normals.
-  out.points.reserve(N);
-  for (std::uint32_t i = 0; i < M; ++i) {
-    if (hot[i].u == -std::numeric_limits<float>::infinity()) continue;
+// The survivors in grid order (spatially coherent), with interpolated normals.
+std::vector<SampledPoint> survivors(const TriangleSoup& soup, const std::vector<Candidate>& cand,
+                                    const std::vector<Hot>& hot, std::size_t N) {
+  std::vector<SampledPoint> points;
+  points.reserve(N);
+  for (std::uint32_t i = 0; i < cand.size(); ++i) {
+    if (hot[i].u == kEliminated) continue;
     const Candidate& c = cand[i];
     const std::size_t t = c.triangle;
     SampledPoint sp;
@@ -489,8 +494,47 @@ SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& o
       len = glm::length(n);
     }
     sp.normal = glm::vec3(n / len);
-    out.points.push_back(sp);
+    points.push_back(sp);
   }
+  return points;
+}
+
+}  // namespace
+
+SampledSurface sample_surface(const TriangleSoup& soup, const SamplingOptions& options) {
+  const double spacing = options.spacing_mm;
+  check_soup(soup, spacing);
+  std::vector<double> tri_area, cdf;
+  const double area = triangle_areas(soup, tri_area, cdf);
+  SampledSurface out;
+  out.area_mm2 = area;
+  if (!(area > 0.0)) return out;
+
+  const double n_real = std::ceil(area / (spacing * spacing));
+  if (!(n_real <= double(options.max_points)))
+    throw std::invalid_argument(
+        "spacing: " + message_number(n_real) + " points for an area of " + message_number(area) +
+        " mm² at a spacing of " + message_number(spacing) + " mm exceed max_points = " +
+        std::to_string(options.max_points) + "; raise the spacing");
+  const std::size_t N = std::size_t(n_real);
+  const std::size_t M = kCandidatesPerPoint * N;
+  if (M >= std::size_t(0xFFFFFFFFu))
+    throw std::invalid_argument("max_points: " + std::to_string(N) +
+                                " points need more candidates than 32-bit indices hold");
+
+  std::vector<Candidate> cand = draw_candidates(soup, cdf, area, M, options.seed);
+  cdf = {};
+  Weight weight;
+  weight.d_max = 2.0 * std::sqrt(area / (2.0 * std::sqrt(3.0) * double(N)));
+  weight.d_min = weight.d_max * kBeta * (1.0 - std::pow(double(N) / double(M), kGamma));
+  weight.d_max2 = weight.d_max * weight.d_max;
+  weight.d_min_f = float(weight.d_min);
+  weight.inv_d_max_f = float(1.0 / weight.d_max);
+  const NeighbourGrid grid(cand, weight.d_max);  // reorders cand by grid cube
+  const std::vector<float> scale = rim_scale(soup, tri_area, cand, grid, weight);
+  std::vector<Hot> hot;
+  if (!eliminate(cand, grid, weight, scale, N, options.progress, hot)) return SampledSurface{{}, area, 0.0};
+  out.points = survivors(soup, cand, hot, N);
   out.point_area_mm2 = area / double(N);
   return out;
 }
