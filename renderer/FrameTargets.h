@@ -5,6 +5,7 @@
 // each image from UNDEFINED to its first layout at the start of the frame.
 #pragma once
 
+#include "renderer/RenderOptions.h"
 #include "renderer/vk/Handle.h"
 #include "renderer/vk/Image.h"
 
@@ -32,10 +33,27 @@ inline constexpr VkFormat kHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 inline constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;  // sRGB-encoded by hand
 
 struct FrameTargets {
+  // The targets that only some techniques and views read. A frame that does not read one
+  // gets it 1 x 1: its descriptors stay valid, and no shader reads it in that frame (the
+  // shaders test the technique or the view before they fetch). `sss-viewer --headless
+  // --stats` prints the total; README "Frame memory" lists it per technique.
+  struct Use {
+    bool gaussian_blur = true;   // blur_temp, blur_b: gaussians
+    bool scattered = true;       // blur_a: gaussians, and separable's scattered view
+    bool accum = true;           // gaussians, texture (its lookup's colour attachment)
+    bool line = true;            // sss_line, sss_prefix: separable
+    bool uv_stretch = true;      // the uv-stretch view (the G-buffer's third attachment)
+    bool display_source = true;  // FXAA
+    bool operator==(const Use&) const = default;
+  };
+  // What a frame with these options reads.
+  static Use use_for(const RenderOptions& options);
+
   FrameTargets(const vk::Context& context, std::uint32_t width, std::uint32_t height,
-               std::uint32_t shadow_layers, std::uint32_t shadow_size);
+               std::uint32_t shadow_layers, std::uint32_t shadow_size, const Use& use);
 
   std::uint32_t width, height;
+  Use use;
   vk::Image shadow;  // D32 array, one layer per light
   std::vector<vk::ImageViewHandle> shadow_layers;
   // The same depths without the shadow pass's slope-scaled bias, for thickness
@@ -63,6 +81,8 @@ struct FrameTargets {
 
   // The compute targets (GENERAL layout), for the frame's initial transition.
   std::vector<const vk::Image*> compute_targets() const;
+  // The device memory of every target, shadow maps included.
+  VkDeviceSize memory_bytes() const;
 };
 
 }  // namespace sss::renderer

@@ -110,7 +110,7 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
       materials_(context, scene, options.separable_taps, options.single_scattering),
       scene_(context, scene),
       targets_(context, options.width, options.height, shadow_layers_for(lights_),
-               options.shadow_map_size),
+               options.shadow_map_size, FrameTargets::use_for(options)),
       frame_uniforms_(context, {sizeof(shader::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                 vk::MemoryUsage::Dynamic, "frame uniforms"}),
       light_buffer_(context, {sizeof(shader::LightBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -169,9 +169,10 @@ void Renderer::collect_warnings() {
 }
 
 void Renderer::recreate_targets(std::uint32_t width, std::uint32_t height,
-                                std::uint32_t shadow_layers, std::uint32_t shadow_size) {
+                                std::uint32_t shadow_layers, std::uint32_t shadow_size,
+                                const FrameTargets::Use& use) {
   context_.wait_idle();  // a window may still be blitting the display image
-  FrameTargets fresh(context_, width, height, shadow_layers, shadow_size);
+  FrameTargets fresh(context_, width, height, shadow_layers, shadow_size, use);
   {
     // Destroyed member by member in reverse order: the shadow layer views before their image.
     const FrameTargets old = std::move(targets_);
@@ -311,7 +312,7 @@ void Renderer::set_lights(const std::vector<scene::Light>& lights) {
   LightSetup setup = make_light_setup(lights, bounds_, options_.shadow_map_size);
   const std::uint32_t layers = shadow_layers_for(setup);
   if (layers > targets_.shadow_layers.size())
-    recreate_targets(options_.width, options_.height, layers, options_.shadow_map_size);
+    recreate_targets(options_.width, options_.height, layers, options_.shadow_map_size, targets_.use);
   scene_lights_ = lights;
   write_lights(std::move(setup));
   write_frame_uniforms();  // the light count
@@ -351,10 +352,12 @@ void Renderer::set_options(const RenderOptions& options) {
                                options.single_scattering);  // checks taps
   const bool size_changed = options.width != options_.width || options.height != options_.height;
   const bool shadow_changed = options.shadow_map_size != options_.shadow_map_size;
-  if (size_changed || shadow_changed)
+  // Another technique or view may read targets this one made 1 x 1, or no longer read some.
+  const FrameTargets::Use use = FrameTargets::use_for(options);
+  if (size_changed || shadow_changed || use != targets_.use)
     recreate_targets(options.width, options.height,
                      static_cast<std::uint32_t>(targets_.shadow_layers.size()),
-                     options.shadow_map_size);
+                     options.shadow_map_size, use);
   if (data) materials_.replace(context_, std::move(*data));
   // These change the texture path's irradiance atlases (entry Fresnel is in E), and a
   // refit its blurred ones (the Gaussians, and E's transmitted part divided by the total).

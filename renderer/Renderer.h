@@ -91,7 +91,8 @@ class Renderer {
   // `data` was built for another tap count than options().separable_taps or another
   // material count.
   void set_materials(const std::vector<scene::Material>& materials, MaterialData data);
-  // SSS mode / kind / taps / exposure; a new size or shadow map size recreates targets.
+  // Technique / taps / exposure / views; a new size, shadow map size, or a technique or
+  // view that reads other targets (FrameTargets::Use) recreates the targets.
   // Invalid options (as for the constructor) throw std::invalid_argument.
   void set_options(const RenderOptions& options);
   // Recreates the frame targets at width x height; 0 (a minimized window) or more than
@@ -105,6 +106,9 @@ class Renderer {
   const vk::Image& display_image() const { return targets_.display; }
   static constexpr VkImageLayout display_layout() { return VK_IMAGE_LAYOUT_GENERAL; }
   const FrameStats& stats() const { return stats_; }
+  // The device memory of the frame's targets (FrameTargets: the technique's and the view's
+  // images, the shadow maps), without the scene's buffers and the texture path's atlases.
+  VkDeviceSize target_bytes() const { return targets_.memory_bytes(); }
 
   // The last frame: linear radiance L (rgb; alpha 1 on geometry, 0 on background) and
   // the display image (tonemapped, sRGB-encoded, codes / 255; straight alpha, which is 0
@@ -147,7 +151,7 @@ class Renderer {
   // Waits for the device to be idle, replaces targets_ and points the passes' descriptor
   // sets at the new images.
   void recreate_targets(std::uint32_t width, std::uint32_t height, std::uint32_t shadow_layers,
-                        std::uint32_t shadow_size);
+                        std::uint32_t shadow_size, const FrameTargets::Use& use);
   // separable_ / gaussians_ for options_ and the material table.
   void update_sss_pass();
   // debug_ and what the view needs from the other passes, for options_.debug_view, and

@@ -53,7 +53,9 @@ void main() {
   vec3 E = texelFetch(irradiance_tex, p, 0).rgb;
   vec3 diffuse;
   if (scatters) {
-    diffuse = scattered_diffuse(materials[id].total_reflectance * E, texelFetch(accumulated_tex, p, 0));
+    vec4 accumulated = vec4(0.0);
+    if (accumulates()) accumulated = texelFetch(accumulated_tex, p, 0);
+    diffuse = scattered_diffuse(materials[id].total_reflectance * E, accumulated);
   } else {
     diffuse = E;  // Lambert
   }

@@ -71,9 +71,13 @@ void main() {
     int technique = int(frame.options.y);
     vec3 diffuse = E;  // Lambert
     if (scatters) {
-      if (technique == SSS_TECHNIQUE_SEPARABLE) diffuse = texelFetch(scattered_tex, p, 0).rgb;
-      else diffuse = scattered_diffuse(materials[id].total_reflectance * E,
-                                       texelFetch(accumulated_tex, p, 0));
+      if (technique == SSS_TECHNIQUE_SEPARABLE) {
+        diffuse = texelFetch(scattered_tex, p, 0).rgb;
+      } else {
+        vec4 accumulated = vec4(0.0);
+        if (accumulates()) accumulated = texelFetch(accumulated_tex, p, 0);
+        diffuse = scattered_diffuse(materials[id].total_reflectance * E, accumulated);
+      }
     }
     c = display_encode(diffuse / kPi);
   } else if (view == 4) {  // kernel radius in pixels

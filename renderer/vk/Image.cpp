@@ -130,6 +130,7 @@ Image::Image(const Context& context, const ImageDesc& desc)
   Allocation allocation =
       allocate_memory(context, requirements, desc.memory, VK_NULL_HANDLE, image);
   memory_ = std::move(allocation.memory);
+  bytes_ = requirements.size;
   VK_CHECK(vkBindImageMemory(device, image, memory_.get(), 0));
 
   view_ = make_view(desc.view_type, 0, desc.mip_levels, 0, desc.array_layers);
@@ -145,7 +146,8 @@ Image::Image(Image&& other) noexcept
       image_(std::move(other.image_)),
       view_(std::move(other.view_)),
       desc_(std::exchange(other.desc_, {})),
-      aspect_(std::exchange(other.aspect_, 0)) {}
+      aspect_(std::exchange(other.aspect_, 0)),
+      bytes_(std::exchange(other.bytes_, 0)) {}
 
 Image& Image::operator=(Image&& other) noexcept {
   if (this != &other) {
@@ -154,6 +156,7 @@ Image& Image::operator=(Image&& other) noexcept {
     memory_ = std::move(other.memory_);
     desc_ = std::exchange(other.desc_, {});
     aspect_ = std::exchange(other.aspect_, 0);
+    bytes_ = std::exchange(other.bytes_, 0);
   }
   return *this;
 }

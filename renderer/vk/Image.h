@@ -63,6 +63,8 @@ class Image {
   uint32_t height() const { return desc_.height; }
   VkExtent2D extent() const { return {desc_.width, desc_.height}; }
   VkImageAspectFlags aspect() const { return aspect_; }
+  // The device memory it holds (vkGetImageMemoryRequirements' size).
+  VkDeviceSize memory_bytes() const { return bytes_; }
   explicit operator bool() const { return static_cast<bool>(image_); }
 
   // Every mip and layer, with aspect().
@@ -86,6 +88,7 @@ class Image {
   ImageViewHandle view_;
   ImageDesc desc_;
   VkImageAspectFlags aspect_ = 0;
+  VkDeviceSize bytes_ = 0;
 };
 
 }  // namespace sss::vk

@@ -29,6 +29,13 @@ vec3 scattered_diffuse(vec3 local, vec4 accumulated) {
   return local;
 }
 
+// Whether the frame's technique has its result in the accum target. Read accum only then:
+// the other techniques leave it 1 x 1 (FrameTargets::Use).
+bool accumulates() {
+  int technique = int(frame.options.y);
+  return technique == SSS_TECHNIQUE_GAUSSIANS || technique == SSS_TECHNIQUE_TEXTURE;
+}
+
 // The exit factor of a subsurface pixel seen at cosine NdotV (lighting.comp stores it in
 // the specular target's alpha): F_t(η, θo) / c with directional Fresnel, the exitance
 // leaving in the normalised Fresnel lobe instead of Lambert's (∫ F_t cos / (c π) dω = 1,

@@ -100,5 +100,49 @@ TEST_F(RenderTest, PrePostAlbedoEqualsPostScatterWithoutScattering) {
   EXPECT_GT(diff, 1e-3);
 }
 
+// A frame holds only the targets its technique and view read (FrameTargets::Use); the
+// others are 1 x 1. Bytes per pixel of the optional ones (FrameTargets.h's formats): sss
+// temp, a, b and accum rgba16f (8 each), sss line and prefix rgba32f (16 each), uv stretch
+// rgba16f (8), the display source rgba8 (4). The device may round each image's memory up
+// (alignment, tiling): at most 64 KiB per image is allowed for that, over the 15 images.
+TEST_F(RenderTest, AFrameHoldsOnlyTheTargetsItsTechniqueReads) {
+  const std::uint32_t w = 320, h = 180;
+  const double px = double(w) * double(h);
+  const double slack = 15.0 * 65536.0;
+  const FrameTargets all(ctx(), w, h, 1, 512, FrameTargets::Use{});
+  const double full = double(all.memory_bytes());
+  struct Row {
+    SssTechnique technique;
+    DebugView view;
+    Antialias aa;
+    double unread_bytes_per_px;  // of the optional targets, those this frame does not read
+  };
+  const Row rows[] = {
+      {SssTechnique::Off, DebugView::None, Antialias::Off, 4 * 8 + 2 * 16 + 8 + 4},
+      {SssTechnique::Separable, DebugView::None, Antialias::Off, 4 * 8 + 8 + 4},
+      {SssTechnique::Separable, DebugView::Scattered, Antialias::Off, 3 * 8 + 8 + 4},
+      {SssTechnique::Separable, DebugView::None, Antialias::Fxaa, 4 * 8 + 8},
+      {SssTechnique::Gaussians, DebugView::None, Antialias::Off, 2 * 16 + 8 + 4},
+      {SssTechnique::Texture, DebugView::None, Antialias::Off, 3 * 8 + 2 * 16 + 8 + 4},
+      {SssTechnique::Texture, DebugView::UvStretch, Antialias::Off, 3 * 8 + 2 * 16 + 4},
+  };
+  for (const Row& row : rows) {
+    RenderOptions o = small_options(w, h, row.technique);
+    o.debug_view = row.view;
+    o.antialias = row.aa;
+    const FrameTargets t(ctx(), w, h, 1, 512, FrameTargets::use_for(o));
+    const double saved = full - double(t.memory_bytes());
+    const std::string what = std::string(technique_name(row.technique)) + " " +
+                             std::string(debug_view_name(row.view)) + " " +
+                             std::string(antialias_name(row.aa));
+    EXPECT_NEAR(saved, row.unread_bytes_per_px * px, slack) << what;
+    // The renderer holds these targets, and switching to the row's options from the
+    // default changes them to these.
+    Renderer r(ctx(), scene::sphere_scene(), small_options(w, h, SssTechnique::Separable));
+    r.set_options(o);
+    EXPECT_EQ(r.target_bytes(), t.memory_bytes()) << what;
+  }
+}
+
 }  // namespace
 }  // namespace sss::renderer::testing
