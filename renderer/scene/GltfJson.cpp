@@ -166,23 +166,26 @@ std::optional<std::string> check_json_depth(std::string_view text, int max_depth
   return std::nullopt;
 }
 
-std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
-                                                       const std::string& file,
-                                                       std::optional<std::uint64_t> glb_bin_bytes) {
-  if (auto e = check_json_depth(text, kMaxJsonDepth)) return LoadError{file, "", "", *e};
-  const json root = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
-  if (root.is_discarded()) return LoadError{file, "", "", "is not valid JSON"};
-  if (!root.is_object()) return LoadError{file, "", "", "the JSON root must be an object"};
-  if (auto e = check_gltf_schema(root, file)) return *e;
-  const Checker c{file, root};
+namespace {
 
-  const bool meshopt = uses_extension(root, "EXT_meshopt_compression");
-  const bool draco = uses_extension(root, "KHR_draco_mesh_compression");
-  std::vector<std::pair<std::string, std::string>> file_uris;
+// The buffers as check_gltf_json learns them: their sizes, which ones are
+// EXT_meshopt_compression fallbacks (flagged, or placeholders without a uri).
+struct BufferFacts {
+  std::vector<std::uint64_t> bytes;
+  std::vector<bool> fallback, placeholder;
+};
+
+// buffers[]: each one's length, its uri (or the GLB's BIN chunk, or a meshopt placeholder);
+// the files they name go to file_uris.
+std::optional<LoadError> check_buffers(const Checker& c, bool meshopt,
+                                       std::optional<std::uint64_t> glb_bin_bytes, BufferFacts& out,
+                                       std::vector<std::pair<std::string, std::string>>& file_uris) {
   SSS_TRY(buffers, c.array("buffers"));
-  std::vector<std::uint64_t> buffer_bytes;
-  // EXT_meshopt_compression's fallback buffers: flagged, or placeholders without uri.
-  std::vector<bool> fallback(buffers->size(), false), placeholder(buffers->size(), false);
+  std::vector<std::uint64_t>& buffer_bytes = out.bytes;
+  std::vector<bool>& fallback = out.fallback;
+  std::vector<bool>& placeholder = out.placeholder;
+  fallback.assign(buffers->size(), false);
+  placeholder.assign(buffers->size(), false);
   for (std::size_t i = 0; i < buffers->size(); ++i) {
     const json& b = (*buffers)[i];
     SSS_TRY(length, c.uint_member(b, at("buffers", i), "byteLength", true));
@@ -216,9 +219,18 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
       file_uris.emplace_back(at("buffers", i), b["uri"].get<std::string>());
   }
 
-  // Every buffer view lies inside its buffer (tinygltf forms image pointers from them).
+  return std::nullopt;
+}
+
+// bufferViews[]: every view lies inside its buffer (tinygltf forms image pointers from
+// them); the EXT_meshopt_compression ones are decoded later (meshopt_views).
+std::optional<LoadError> check_views(const Checker& c, bool meshopt, const BufferFacts& buffers,
+                                     std::vector<std::optional<MeshoptView>>& meshopt_views) {
   SSS_TRY(views, c.array("bufferViews"));
-  std::vector<std::optional<MeshoptView>> meshopt_views(views->size());
+  const std::vector<std::uint64_t>& buffer_bytes = buffers.bytes;
+  const std::vector<bool>& fallback = buffers.fallback;
+  const std::vector<bool>& placeholder = buffers.placeholder;
+  meshopt_views.assign(views->size(), std::nullopt);
   for (std::size_t v = 0; v < views->size(); ++v) {
     const json& view = (*views)[v];
     const std::string name = at("bufferViews", v);
@@ -257,8 +269,18 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
     }
   }
 
+  return std::nullopt;
+}
+
+// images[]: one of uri and bufferView, each image's media type; the files they name go to
+// file_uris.
+std::optional<LoadError> check_images(const Checker& c,
+                                      const std::vector<std::optional<MeshoptView>>& meshopt_views,
+                                      std::vector<std::string>& media_types,
+                                      std::vector<std::pair<std::string, std::string>>& file_uris) {
   SSS_TRY(images, c.array("images"));
-  std::vector<std::string> media_types(images->size());
+  const std::size_t view_count = meshopt_views.size();
+  media_types.assign(images->size(), std::string());
   for (std::size_t i = 0; i < images->size(); ++i) {
     const json& img = (*images)[i];
     const std::string object = at("images", i);
@@ -280,10 +302,10 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
       continue;
     }
     SSS_TRY(v, c.uint_member(img, object, "bufferView", true));
-    if (v >= views->size())
+    if (v >= view_count)
       return c.fail(object, "bufferView", "bufferViews[" + std::to_string(v) +
                                               "] does not exist (the file has " +
-                                              std::to_string(views->size()) + ")");
+                                              std::to_string(view_count) + ")");
     // tinygltf reads an image's view before meshopt data is decoded (compressors leave
     // images uncompressed: their formats are compressed already).
     if (meshopt_views[v])
@@ -292,7 +314,12 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
                                               "in compressed views are not supported");
   }
 
-  // Required extensions: those the loader implements (GltfContext.h).
+  return std::nullopt;
+}
+
+// Required extensions: those the loader implements (GltfContext.h).
+std::optional<LoadError> check_required_extensions(const Checker& c) {
+  const json& root = c.root;
   if (root.contains("extensionsRequired")) {
     const json& req = root["extensionsRequired"];
     if (!req.is_array()) return c.fail("extensionsRequired", "", "must be an array");
@@ -301,14 +328,12 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
         return c.fail("extensionsRequired", "[" + std::to_string(i) + "]",
                       req[i].dump() + " is required by the file but not supported");
   }
+  return std::nullopt;
+}
 
-  SSS_TRY(materials, c.array("materials"));
-  GltfJsonFacts facts;
-  facts.image_media_type = std::move(media_types);
-  facts.file_uris = std::move(file_uris);
-  facts.meshopt_views = std::move(meshopt_views);
-  facts.placeholder_buffers = placeholder;
-  // KHR_draco_mesh_compression (the schema checked the types and the view index).
+// KHR_draco_mesh_compression's primitives (the schema checked the types and the view index).
+std::optional<LoadError> read_draco(const Checker& c, bool draco, GltfJsonFacts& facts) {
+  const json& root = c.root;
   if (root.contains("meshes")) {
     const json& meshes = root["meshes"];
     facts.draco.resize(meshes.size());
@@ -330,8 +355,14 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
         facts.draco[m][p] = std::move(d);
       }
     }
-  }
-  // What tinygltf 2.7.0 cannot parse as the file has it (GltfJsonFacts::parser_json).
+  }  return std::nullopt;
+}
+
+// What tinygltf 2.7.0 cannot parse as the file has it (GltfJsonFacts::parser_json): a
+// placeholder buffer gets one byte of data, a Draco primitive loses its indices. None when
+// the file parses as it is.
+std::optional<std::string> parser_text(const json& root, const GltfJsonFacts& facts) {
+  const std::vector<bool>& placeholder = facts.placeholder_buffers;
   std::optional<json> parser_root;
   for (std::size_t i = 0; i < placeholder.size(); ++i)
     if (placeholder[i]) {
@@ -345,12 +376,17 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
         if (!parser_root) parser_root = root;
         (*parser_root)["meshes"][m]["primitives"][p].erase("indices");
       }
-  if (parser_root) facts.parser_json = parser_root->dump();
-  facts.material_count = materials->size();
-  facts.material_sss.resize(materials->size());
-  facts.material_khr.resize(materials->size());
-  for (std::size_t i = 0; i < materials->size(); ++i) {
-    const json& m = (*materials)[i];
+  if (!parser_root) return std::nullopt;
+  return parser_root->dump();
+}
+
+// materials[]: each one's KHR volume / subsurface extensions and extras.sss.
+std::optional<LoadError> read_materials(const Checker& c, const json& materials, GltfJsonFacts& facts) {
+  facts.material_count = materials.size();
+  facts.material_sss.resize(materials.size());
+  facts.material_khr.resize(materials.size());
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    const json& m = materials[i];
     if (m.contains("extensions")) {
       auto khr = parse_khr_medium(m["extensions"]);
       if (auto* e = std::get_if<FieldError>(&khr))
@@ -365,6 +401,41 @@ std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
                     e->message);
     facts.material_sss[i] = std::get<SssMaterial>(std::move(sss));
   }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::variant<GltfJsonFacts, LoadError> check_gltf_json(std::string_view text,
+                                                       const std::string& file,
+                                                       std::optional<std::uint64_t> glb_bin_bytes) {
+  if (auto e = check_json_depth(text, kMaxJsonDepth)) return LoadError{file, "", "", *e};
+  const json root = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
+  if (root.is_discarded()) return LoadError{file, "", "", "is not valid JSON"};
+  if (!root.is_object()) return LoadError{file, "", "", "the JSON root must be an object"};
+  if (auto e = check_gltf_schema(root, file)) return *e;
+  const Checker c{file, root};
+
+  const bool meshopt = uses_extension(root, "EXT_meshopt_compression");
+  const bool draco = uses_extension(root, "KHR_draco_mesh_compression");
+  std::vector<std::pair<std::string, std::string>> file_uris;
+  BufferFacts buffers;
+  if (auto e = check_buffers(c, meshopt, glb_bin_bytes, buffers, file_uris)) return std::move(*e);
+  std::vector<std::optional<MeshoptView>> meshopt_views;
+  if (auto e = check_views(c, meshopt, buffers, meshopt_views)) return std::move(*e);
+  std::vector<std::string> media_types;
+  if (auto e = check_images(c, meshopt_views, media_types, file_uris)) return std::move(*e);
+  if (auto e = check_required_extensions(c)) return std::move(*e);
+
+  SSS_TRY(materials, c.array("materials"));
+  GltfJsonFacts facts;
+  facts.image_media_type = std::move(media_types);
+  facts.file_uris = std::move(file_uris);
+  facts.meshopt_views = std::move(meshopt_views);
+  facts.placeholder_buffers = buffers.placeholder;
+  if (auto e = read_draco(c, draco, facts)) return std::move(*e);
+  facts.parser_json = parser_text(root, facts);
+  if (auto e = read_materials(c, *materials, facts)) return std::move(*e);
   return facts;
 }
 
