@@ -91,6 +91,204 @@ std::string rgb_text(const Rgb& v) {
 
 }  // namespace
 
+namespace {
+
+// --g, --eta and --thickness, shared by every way of giving a medium.
+struct Scalars {
+  double g = 0.0, eta = 1.3, thickness = std::numeric_limits<double>::infinity();
+  bool eta_given = false;
+};
+
+std::variant<Scalars, FieldError> parse_scalars(const MediumArgs& a) {
+  Scalars out;
+  if (!a.g.empty()) {
+    auto v = parse_number("--g", a.g);
+    if (auto* e = std::get_if<FieldError>(&v)) return *e;
+    out.g = std::get<double>(v);
+  }
+  out.eta_given = !a.eta.empty();
+  if (out.eta_given) {
+    auto v = parse_number("--eta", a.eta);
+    if (auto* e = std::get_if<FieldError>(&v)) return *e;
+    out.eta = std::get<double>(v);
+  }
+  if (!a.thickness.empty()) {
+    auto v = parse_number("--thickness", a.thickness);
+    if (auto* e = std::get_if<FieldError>(&v)) return *e;
+    out.thickness = std::get<double>(v);
+  }
+  return out;
+}
+
+// --preset NAME [--eta]: a preset's reduced coefficients.
+std::optional<FieldError> from_preset(const MediumArgs& a, const Scalars& k, ResolvedMedium& out,
+                                      std::ostringstream& desc) {
+  const bool eta_given = k.eta_given;
+  const double eta = k.eta;
+  const profiles::Preset* p = profiles::find_preset(a.preset);
+  if (!p)
+    return FieldError{"--preset", "unknown preset '" + a.preset +
+                                      "'; known: " + profiles::preset_names()};
+  if (!a.g.empty())
+    return FieldError{"--g", "presets give the reduced scattering σs' only (g = 0); "
+                             "use --sigma-a/--sigma-s with --g instead"};
+  out.medium = profiles::preset_medium(*p);
+  if (eta_given) out.medium.eta = {eta, eta, eta};
+  desc << "preset " << p->name;
+  if (eta_given) desc << ", eta " << eta;
+  return std::nullopt;
+}
+
+// --sigma-a and --sigma-s [--g] [--eta].
+std::optional<FieldError> from_coefficients(const MediumArgs& a, const Scalars& k, ResolvedMedium& out,
+                                            std::ostringstream& desc) {
+  const double g = k.g, eta = k.eta;
+  if (a.sigma_a.empty()) return FieldError{"--sigma-a", "is required with --sigma-s"};
+  if (a.sigma_s.empty()) return FieldError{"--sigma-s", "is required with --sigma-a"};
+  auto sa = parse_rgb("--sigma-a", a.sigma_a);
+  if (auto* e = std::get_if<FieldError>(&sa)) return *e;
+  auto ss = parse_rgb("--sigma-s", a.sigma_s);
+  if (auto* e = std::get_if<FieldError>(&ss)) return *e;
+  out.medium.sigma_a = std::get<Rgb>(sa);
+  out.medium.sigma_s = std::get<Rgb>(ss);
+  out.medium.g = {g, g, g};
+  out.medium.eta = {eta, eta, eta};
+  desc << "sigma_a " << rgb_text(out.medium.sigma_a) << " sigma_s "
+       << rgb_text(out.medium.sigma_s) << " /mm, g " << g << ", eta " << eta;
+  return std::nullopt;
+}
+
+// OpenPBR's or Standard Surface's --subsurface-* parameters, inverted to coefficients.
+std::optional<FieldError> from_openpbr(const MediumArgs& a, const Scalars& k, profiles::Model model,
+                                       const profiles::ModelOptions& opt, ResolvedMedium& out,
+                                       std::ostringstream& desc) {
+  const double g = k.g, eta = k.eta;
+  const bool eta_given = k.eta_given;
+  if (a.subsurface_color.empty()) return FieldError{"--subsurface-color", "is required with --subsurface-radius"};
+  if (a.subsurface_radius.empty()) return FieldError{"--subsurface-radius", "is required with --subsurface-color"};
+  auto col = parse_rgb("--subsurface-color", a.subsurface_color);
+  if (auto* e = std::get_if<FieldError>(&col)) return *e;
+  auto radius = parse_rgb("--subsurface-radius", a.subsurface_radius);
+  if (auto* e = std::get_if<FieldError>(&radius)) return *e;
+  // Standard Surface's radius is a colour; OpenPBR's one length.
+  const bool standard_surface =
+      !a.subsurface_scale.empty() || a.subsurface_radius.find(',') != std::string::npos;
+  if (standard_surface && !a.subsurface_radius_scale.empty())
+    return FieldError{"--subsurface-radius-scale",
+                      "is OpenPBR's; with Standard Surface's --subsurface-radius R,G,B or "
+                      "--subsurface-scale the radius is the colour"};
+  profiles::AlbedoInversion inversion = profiles::AlbedoInversion::VanDeHulst;
+  if (!a.albedo_inversion.empty()) {
+    const auto parsed = profiles::parse_albedo_inversion(a.albedo_inversion);
+    if (!parsed)
+      return FieldError{"--albedo-inversion", "expected van-de-hulst or model, got '" + a.albedo_inversion + "'"};
+    inversion = *parsed;
+  }
+  profiles::OpenPbrSubsurface p;
+  if (standard_surface) {
+    profiles::StandardSurfaceSubsurface ss;
+    ss.color = std::get<Rgb>(col);
+    ss.radius = std::get<Rgb>(radius);
+    if (!a.subsurface_scale.empty()) {
+      auto v = parse_number("--subsurface-scale", a.subsurface_scale);
+      if (auto* e = std::get_if<FieldError>(&v)) return *e;
+      ss.scale = std::get<double>(v);
+    }
+    ss.anisotropy = g;
+    ss.ior = eta_given ? eta : 1.5;
+    if (auto e = profiles::validate(ss)) {
+      // Standard Surface's field → the option that set it.
+      static const std::pair<const char*, const char*> kOptions[] = {
+          {"subsurface_color", "--subsurface-color"}, {"subsurface_radius", "--subsurface-radius"},
+          {"subsurface_scale", "--subsurface-scale"}, {"subsurface_anisotropy", "--g"},
+          {"specular_IOR", "--eta"}};
+      return named_by_option(std::move(*e), kOptions);
+    }
+    p = profiles::openpbr_from_standard_surface(ss);
+  } else {
+    p.color = std::get<Rgb>(col);
+    p.radius_mm = std::get<Rgb>(radius)[0];
+    if (!a.subsurface_radius_scale.empty()) {
+      auto v = parse_rgb("--subsurface-radius-scale", a.subsurface_radius_scale);
+      if (auto* e = std::get_if<FieldError>(&v)) return *e;
+      p.radius_scale = std::get<Rgb>(v);
+    }
+    p.anisotropy = g;
+    p.ior = eta_given ? eta : 1.5;  // OpenPBR's default specular_ior
+  }
+  auto m = profiles::medium_from_openpbr(p, inversion, model, opt);
+  if (auto* e = std::get_if<FieldError>(&m)) {
+    // The spec's field → the option that set it.
+    static const std::pair<const char*, const char*> kOptions[] = {
+        {"subsurface_color", "--subsurface-color"}, {"subsurface_radius_scale", "--subsurface-radius-scale"},
+        {"subsurface_radius", "--subsurface-radius"}, {"subsurface_scatter_anisotropy", "--g"},
+        {"specular_ior", "--eta"}};
+    return named_by_option(std::move(*e), kOptions);
+  }
+  out.medium = std::get<Medium>(m);
+  out.openpbr = p;
+  out.inversion = inversion;
+  out.standard_surface = standard_surface;
+  const Rgb mfp = p.mean_free_path_mm();
+  desc << (standard_surface ? "Standard Surface" : "OpenPBR") << " subsurface color "
+       << rgb_text(p.color) << ", mean free path " << rgb_text(mfp) << " mm via "
+       << profiles::albedo_inversion_name(inversion);
+  if (inversion == profiles::AlbedoInversion::Model)
+    desc << " (" << profiles::model_name(model == profiles::Model::MonteCarlo ? profiles::Model::McTable : model) << ")";
+  desc << ", g " << p.anisotropy << ", ior " << p.ior << " = sigma_a " << rgb_text(out.medium.sigma_a)
+       << " sigma_s " << rgb_text(out.medium.sigma_s) << " /mm";
+  return std::nullopt;
+}
+
+// --color and --mfp, an artist's colour and mean free path, inverted through the model.
+std::optional<FieldError> from_artist(const MediumArgs& a, const Scalars& k, profiles::Model model,
+                                      const profiles::ModelOptions& opt, ResolvedMedium& out,
+                                      std::ostringstream& desc) {
+  const double g = k.g, eta = k.eta, thickness = k.thickness;
+  if (a.color.empty()) return FieldError{"--color", "is required with --mfp"};
+  if (a.mfp.empty()) return FieldError{"--mfp", "is required with --color"};
+  auto col = parse_rgb("--color", a.color);
+  if (auto* e = std::get_if<FieldError>(&col)) return *e;
+  auto mfp = parse_rgb("--mfp", a.mfp);
+  if (auto* e = std::get_if<FieldError>(&mfp)) return *e;
+  profiles::ArtistParameters ap{std::get<Rgb>(col), std::get<Rgb>(mfp), eta, g, thickness};
+  // mc has no total to invert before its walk has run: it inverts through mc-table,
+  // whose total is the same Monte Carlo tabulated (within 0.2%, README "How right is
+  // each model?").
+  const profiles::Model inversion =
+      model == profiles::Model::MonteCarlo ? profiles::Model::McTable : model;
+  auto m = profiles::medium_from_artist(inversion, ap, opt);
+  if (auto* e = std::get_if<FieldError>(&m)) {
+    e->field = "--" + e->field;
+    return *e;
+  }
+  out.medium = std::get<Medium>(m);
+  // The coefficients it came to, so that the user sees what was rendered or fitted.
+  desc << "color " << rgb_text(ap.color) << ", mfp " << rgb_text(ap.mfp_mm) << " mm via "
+       << profiles::model_name(inversion) << ", g " << g << ", eta " << eta << " = sigma_a "
+       << rgb_text(out.medium.sigma_a) << " sigma_s " << rgb_text(out.medium.sigma_s) << " /mm";
+  return std::nullopt;
+}
+
+// The medium's own field (Medium::validate) as the option the user typed, e.g. "sigma_a[G]"
+// as "--sigma-a[G]".
+std::string option_of_field(const std::string& field, const MediumArgs& a, bool by_preset) {
+  std::string f = field;
+  for (const char* key : {"sigma_a", "sigma_s"})
+    if (f.rfind(key, 0) == 0) f = std::string(by_preset ? "--preset " + a.preset + ": " : "--") +
+                                   (key[6] == 'a' ? "sigma-a" : "sigma-s") + f.substr(7);
+  if (f.rfind("thickness", 0) == 0) f = "--thickness";
+  if (f.rfind("eta", 0) == 0) f = "--eta" + f.substr(3);
+  if (f.rfind("g[", 0) == 0) f = "--g" + f.substr(1);
+  // sigma_t[C] is made of both options (and --g for the reduced one).
+  if (f.rfind("sigma_t", 0) == 0)
+    f = std::string(by_preset ? "--preset " + a.preset + ": " : "") + "--sigma-a/--sigma-s" +
+        f.substr(7);
+  return f;
+}
+
+}  // namespace
+
 std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
                                                         profiles::Model model,
                                                         const profiles::ModelOptions& opt) {
@@ -107,166 +305,22 @@ std::variant<ResolvedMedium, FieldError> resolve_medium(const MediumArgs& a,
                                 "exclude each other"};
   if (!a.albedo_inversion.empty() && !by_openpbr)
     return FieldError{"--albedo-inversion", "applies only to --subsurface-color"};
-
-  double g = 0.0, eta = 1.3, thickness = std::numeric_limits<double>::infinity();
-  if (!a.g.empty()) {
-    auto v = parse_number("--g", a.g);
-    if (auto* e = std::get_if<FieldError>(&v)) return *e;
-    g = std::get<double>(v);
-  }
-  const bool eta_given = !a.eta.empty();
-  if (eta_given) {
-    auto v = parse_number("--eta", a.eta);
-    if (auto* e = std::get_if<FieldError>(&v)) return *e;
-    eta = std::get<double>(v);
-  }
-  if (!a.thickness.empty()) {
-    auto v = parse_number("--thickness", a.thickness);
-    if (auto* e = std::get_if<FieldError>(&v)) return *e;
-    thickness = std::get<double>(v);
-  }
+  auto scalars = parse_scalars(a);
+  if (auto* e = std::get_if<FieldError>(&scalars)) return *e;
+  const Scalars& k = std::get<Scalars>(scalars);
 
   ResolvedMedium out;
   std::ostringstream desc;
-  if (by_preset) {
-    const profiles::Preset* p = profiles::find_preset(a.preset);
-    if (!p)
-      return FieldError{"--preset", "unknown preset '" + a.preset +
-                                        "'; known: " + profiles::preset_names()};
-    if (!a.g.empty())
-      return FieldError{"--g", "presets give the reduced scattering σs' only (g = 0); "
-                               "use --sigma-a/--sigma-s with --g instead"};
-    out.medium = profiles::preset_medium(*p);
-    if (eta_given) out.medium.eta = {eta, eta, eta};
-    desc << "preset " << p->name;
-    if (eta_given) desc << ", eta " << eta;
-  } else if (by_coeff) {
-    if (a.sigma_a.empty()) return FieldError{"--sigma-a", "is required with --sigma-s"};
-    if (a.sigma_s.empty()) return FieldError{"--sigma-s", "is required with --sigma-a"};
-    auto sa = parse_rgb("--sigma-a", a.sigma_a);
-    if (auto* e = std::get_if<FieldError>(&sa)) return *e;
-    auto ss = parse_rgb("--sigma-s", a.sigma_s);
-    if (auto* e = std::get_if<FieldError>(&ss)) return *e;
-    out.medium.sigma_a = std::get<Rgb>(sa);
-    out.medium.sigma_s = std::get<Rgb>(ss);
-    out.medium.g = {g, g, g};
-    out.medium.eta = {eta, eta, eta};
-    desc << "sigma_a " << rgb_text(out.medium.sigma_a) << " sigma_s "
-         << rgb_text(out.medium.sigma_s) << " /mm, g " << g << ", eta " << eta;
-  } else if (by_openpbr) {
-    if (a.subsurface_color.empty()) return FieldError{"--subsurface-color", "is required with --subsurface-radius"};
-    if (a.subsurface_radius.empty()) return FieldError{"--subsurface-radius", "is required with --subsurface-color"};
-    auto col = parse_rgb("--subsurface-color", a.subsurface_color);
-    if (auto* e = std::get_if<FieldError>(&col)) return *e;
-    auto radius = parse_rgb("--subsurface-radius", a.subsurface_radius);
-    if (auto* e = std::get_if<FieldError>(&radius)) return *e;
-    // Standard Surface's radius is a colour; OpenPBR's one length.
-    const bool standard_surface =
-        !a.subsurface_scale.empty() || a.subsurface_radius.find(',') != std::string::npos;
-    if (standard_surface && !a.subsurface_radius_scale.empty())
-      return FieldError{"--subsurface-radius-scale",
-                        "is OpenPBR's; with Standard Surface's --subsurface-radius R,G,B or "
-                        "--subsurface-scale the radius is the colour"};
-    profiles::AlbedoInversion inversion = profiles::AlbedoInversion::VanDeHulst;
-    if (!a.albedo_inversion.empty()) {
-      const auto parsed = profiles::parse_albedo_inversion(a.albedo_inversion);
-      if (!parsed)
-        return FieldError{"--albedo-inversion", "expected van-de-hulst or model, got '" + a.albedo_inversion + "'"};
-      inversion = *parsed;
-    }
-    profiles::OpenPbrSubsurface p;
-    if (standard_surface) {
-      profiles::StandardSurfaceSubsurface ss;
-      ss.color = std::get<Rgb>(col);
-      ss.radius = std::get<Rgb>(radius);
-      if (!a.subsurface_scale.empty()) {
-        auto v = parse_number("--subsurface-scale", a.subsurface_scale);
-        if (auto* e = std::get_if<FieldError>(&v)) return *e;
-        ss.scale = std::get<double>(v);
-      }
-      ss.anisotropy = g;
-      ss.ior = eta_given ? eta : 1.5;
-      if (auto e = profiles::validate(ss)) {
-        // Standard Surface's field → the option that set it.
-        static const std::pair<const char*, const char*> kOptions[] = {
-            {"subsurface_color", "--subsurface-color"}, {"subsurface_radius", "--subsurface-radius"},
-            {"subsurface_scale", "--subsurface-scale"}, {"subsurface_anisotropy", "--g"},
-            {"specular_IOR", "--eta"}};
-        return named_by_option(std::move(*e), kOptions);
-      }
-      p = profiles::openpbr_from_standard_surface(ss);
-    } else {
-      p.color = std::get<Rgb>(col);
-      p.radius_mm = std::get<Rgb>(radius)[0];
-      if (!a.subsurface_radius_scale.empty()) {
-        auto v = parse_rgb("--subsurface-radius-scale", a.subsurface_radius_scale);
-        if (auto* e = std::get_if<FieldError>(&v)) return *e;
-        p.radius_scale = std::get<Rgb>(v);
-      }
-      p.anisotropy = g;
-      p.ior = eta_given ? eta : 1.5;  // OpenPBR's default specular_ior
-    }
-    auto m = profiles::medium_from_openpbr(p, inversion, model, opt);
-    if (auto* e = std::get_if<FieldError>(&m)) {
-      // The spec's field → the option that set it.
-      static const std::pair<const char*, const char*> kOptions[] = {
-          {"subsurface_color", "--subsurface-color"}, {"subsurface_radius_scale", "--subsurface-radius-scale"},
-          {"subsurface_radius", "--subsurface-radius"}, {"subsurface_scatter_anisotropy", "--g"},
-          {"specular_ior", "--eta"}};
-      return named_by_option(std::move(*e), kOptions);
-    }
-    out.medium = std::get<Medium>(m);
-    out.openpbr = p;
-    out.inversion = inversion;
-    out.standard_surface = standard_surface;
-    const Rgb mfp = p.mean_free_path_mm();
-    desc << (standard_surface ? "Standard Surface" : "OpenPBR") << " subsurface color "
-         << rgb_text(p.color) << ", mean free path " << rgb_text(mfp) << " mm via "
-         << profiles::albedo_inversion_name(inversion);
-    if (inversion == profiles::AlbedoInversion::Model)
-      desc << " (" << profiles::model_name(model == profiles::Model::MonteCarlo ? profiles::Model::McTable : model) << ")";
-    desc << ", g " << p.anisotropy << ", ior " << p.ior << " = sigma_a " << rgb_text(out.medium.sigma_a)
-         << " sigma_s " << rgb_text(out.medium.sigma_s) << " /mm";
-  } else {
-    if (a.color.empty()) return FieldError{"--color", "is required with --mfp"};
-    if (a.mfp.empty()) return FieldError{"--mfp", "is required with --color"};
-    auto col = parse_rgb("--color", a.color);
-    if (auto* e = std::get_if<FieldError>(&col)) return *e;
-    auto mfp = parse_rgb("--mfp", a.mfp);
-    if (auto* e = std::get_if<FieldError>(&mfp)) return *e;
-    profiles::ArtistParameters ap{std::get<Rgb>(col), std::get<Rgb>(mfp), eta, g, thickness};
-    // mc has no total to invert before its walk has run: it inverts through mc-table,
-    // whose total is the same Monte Carlo tabulated (within 0.2%, README "How right is
-    // each model?").
-    const profiles::Model inversion =
-        model == profiles::Model::MonteCarlo ? profiles::Model::McTable : model;
-    auto m = profiles::medium_from_artist(inversion, ap, opt);
-    if (auto* e = std::get_if<FieldError>(&m)) {
-      e->field = "--" + e->field;
-      return *e;
-    }
-    out.medium = std::get<Medium>(m);
-    // The coefficients it came to, so that the user sees what was rendered or fitted.
-    desc << "color " << rgb_text(ap.color) << ", mfp " << rgb_text(ap.mfp_mm) << " mm via "
-         << profiles::model_name(inversion) << ", g " << g << ", eta " << eta << " = sigma_a "
-         << rgb_text(out.medium.sigma_a) << " sigma_s " << rgb_text(out.medium.sigma_s) << " /mm";
-  }
-  out.medium.thickness_mm = thickness;
-  if (out.medium.is_slab()) desc << ", slab " << thickness << " mm";
+  const std::optional<FieldError> error =
+      by_preset    ? from_preset(a, k, out, desc)
+      : by_coeff   ? from_coefficients(a, k, out, desc)
+      : by_openpbr ? from_openpbr(a, k, model, opt, out, desc)
+                   : from_artist(a, k, model, opt, out, desc);
+  if (error) return *error;
+  out.medium.thickness_mm = k.thickness;
+  if (out.medium.is_slab()) desc << ", slab " << k.thickness << " mm";
   if (auto e = out.medium.validate()) {
-    // Name the option the user typed, e.g. "--sigma-a[G]".
-    std::string f = e->field;
-    for (const char* key : {"sigma_a", "sigma_s"})
-      if (f.rfind(key, 0) == 0) f = std::string(by_preset ? "--preset " + a.preset + ": " : "--") +
-                                     (key[6] == 'a' ? "sigma-a" : "sigma-s") + f.substr(7);
-    if (f.rfind("thickness", 0) == 0) f = "--thickness";
-    if (f.rfind("eta", 0) == 0) f = "--eta" + f.substr(3);
-    if (f.rfind("g[", 0) == 0) f = "--g" + f.substr(1);
-    // sigma_t[C] is made of both options (and --g for the reduced one).
-    if (f.rfind("sigma_t", 0) == 0)
-      f = std::string(by_preset ? "--preset " + a.preset + ": " : "") + "--sigma-a/--sigma-s" +
-          f.substr(7);
-    e->field = f;
+    e->field = option_of_field(e->field, a, by_preset);
     return *e;
   }
   out.description = desc.str();
