@@ -176,106 +176,176 @@ std::variant<OpenPbrSource, FieldError> read_openpbr(const json& o, bool standar
 
 }  // namespace
 
-std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
-  if (!o.is_object()) return FieldError{"", "must be a JSON object"};
-  for (const auto& item : o.items())
-    if (std::find(kKeys.begin(), kKeys.end(), item.key()) == kKeys.end())
-      return FieldError{item.key(), "unknown field; expected one of " + key_list()};
+namespace {
 
+// What every way of giving the medium shares: the switch, the model, the fit's size, the
+// scale, where the albedo applies, and a thickness.
+struct Common {
   bool enabled = true;
+  profiles::Model model = profiles::kDefaultModel;
+  int gaussians = kDefaultGaussians;
+  double scale = 1.0;
+  AlbedoMode albedo_mode = AlbedoMode::PostScatter;
+  double thickness = std::numeric_limits<double>::infinity();
+};
+
+std::variant<Common, FieldError> read_common(const json& o) {
+  Common common;
   if (o.contains("enabled")) {
     if (!o["enabled"].is_boolean()) return FieldError{"enabled", "must be true or false"};
-    enabled = o["enabled"].get<bool>();
+    common.enabled = o["enabled"].get<bool>();
   }
-  profiles::Model model = profiles::kDefaultModel;
   if (o.contains("model")) {
     const json& m = o["model"];
     const auto parsed = m.is_string() ? profiles::parse_model(m.get<std::string>()) : std::nullopt;
     if (!parsed)
       return FieldError{"model", "unknown model " + m.dump() + "; expected one of " +
                                      profiles::model_names()};
-    model = *parsed;
+    common.model = *parsed;
   }
-  int gaussians = kDefaultGaussians;
   if (o.contains("gaussians")) {
     const json& n = o["gaussians"];
     const double v = n.is_number() ? n.get<double>() : std::nan("");
     if (!profiles::valid_gaussian_count(v))
       return FieldError{"gaussians", profiles::gaussian_count_rule() + ", got " + n.dump()};
-    gaussians = static_cast<int>(v);
+    common.gaussians = static_cast<int>(v);
   }
-  double scale = 1.0;
   if (o.contains("scale")) {
     if (!o["scale"].is_number()) return FieldError{"scale", "must be a number"};
-    scale = o["scale"].get<double>();
+    common.scale = o["scale"].get<double>();
   }
-  AlbedoMode albedo_mode = AlbedoMode::PostScatter;
   if (o.contains("albedo_mode")) {
     const json& a = o["albedo_mode"];
     const auto parsed = a.is_string() ? parse_albedo_mode(a.get<std::string>()) : std::nullopt;
     if (!parsed)
       return FieldError{"albedo_mode", "must be \"post-scatter\" or \"pre-post\", got " + a.dump()};
-    albedo_mode = *parsed;
+    common.albedo_mode = *parsed;
   }
-  double thickness = std::numeric_limits<double>::infinity();
-  if (auto e = detail::read_thickness(o, "thickness", thickness)) return *e;
+  if (auto e = detail::read_thickness(o, "thickness", common.thickness)) return *e;
 
-  if (o.contains("layers")) {  // a stack (SssLayers.h): it is the medium and the model
-    for (const char* k : {"preset", "sigma_a", "sigma_s", "g", "eta", "color", "mfp",
-                          "thickness", "model", "openpbr", "standard_surface", "albedo_inversion"})
-      if (o.contains(k))
-        return FieldError{k, "cannot be combined with layers (the layers give the medium, "
-                             "their thicknesses, and the model: layered)"};
-    auto stack = parse_sss_layers(o["layers"]);
-    if (auto* e = std::get_if<FieldError>(&stack)) return *e;
-    auto made = make_layered_sss_material(std::get<profiles::LayerStack>(std::move(stack)),
-                                          gaussians, scale, albedo_mode);
-    if (auto* e = std::get_if<FieldError>(&made)) return *e;
-    std::get<SssMaterial>(made).enabled = enabled;
-    return made;
+  return common;
+}
+
+// "layers": a stack (SssLayers.h), which is the medium and the model.
+std::variant<SssMaterial, FieldError> from_layers(const json& o, const Common& common) {
+  for (const char* k : {"preset", "sigma_a", "sigma_s", "g", "eta", "color", "mfp",
+                        "thickness", "model", "openpbr", "standard_surface", "albedo_inversion"})
+    if (o.contains(k))
+      return FieldError{k, "cannot be combined with layers (the layers give the medium, "
+                           "their thicknesses, and the model: layered)"};
+  auto stack = parse_sss_layers(o["layers"]);
+  if (auto* e = std::get_if<FieldError>(&stack)) return *e;
+  auto made = make_layered_sss_material(std::get<profiles::LayerStack>(std::move(stack)),
+                                        common.gaussians, common.scale, common.albedo_mode);
+  if (auto* e = std::get_if<FieldError>(&made)) return *e;
+  std::get<SssMaterial>(made).enabled = common.enabled;
+  return made;
+}
+
+// "openpbr" or "standard_surface": the spec's subsurface block, inverted to a medium.
+std::variant<SssMaterial, FieldError> from_openpbr(const json& o, const Common& common) {
+  bool enabled = common.enabled;  // read_openpbr: a weight of 0 turns it off
+  if (o.contains("openpbr") && o.contains("standard_surface"))
+    return FieldError{"standard_surface", "cannot be combined with openpbr: give one of them"};
+  for (const char* k : {"preset", "sigma_a", "sigma_s", "g", "eta", "color", "mfp"})
+    if (o.contains(k))
+      return FieldError{k, "cannot be combined with openpbr or standard_surface (they give the "
+                           "medium, its anisotropy and its ior)"};
+  const bool standard_surface = o.contains("standard_surface");
+  const char* block = standard_surface ? "standard_surface" : "openpbr";
+  auto read = read_openpbr(o[block], standard_surface, enabled);
+  if (auto* e = std::get_if<FieldError>(&read)) return *e;
+  if (!enabled) {
+    // A weight of 0: no subsurface. The spec's other values are not read (they need not
+    // describe a medium); the material keeps the default source, resolved, as every
+    // material without subsurface scattering does, so that it exports and reads back.
+    auto off = make_sss_material(PresetSource{"skin1"}, common.model, common.gaussians, common.scale, common.albedo_mode);
+    if (auto* e = std::get_if<FieldError>(&off)) return *e;
+    std::get<SssMaterial>(off).enabled = false;
+    return off;
   }
+  OpenPbrSource source = std::get<OpenPbrSource>(std::move(read));
+  source.thickness_mm = common.thickness;
+  if (o.contains("albedo_inversion")) {
+    const json& a = o["albedo_inversion"];
+    const auto parsed = a.is_string() ? profiles::parse_albedo_inversion(a.get<std::string>()) : std::nullopt;
+    if (!parsed)
+      return FieldError{"albedo_inversion", "must be \"van-de-hulst\" (the spec's) or \"model\" "
+                                            "(the model's total reflectance), got " + a.dump()};
+    source.inversion = *parsed;
+  }
+  auto made = make_sss_material(std::move(source), common.model, common.gaussians, common.scale, common.albedo_mode);
+  if (auto* e = std::get_if<FieldError>(&made)) {
+    if (e->field.rfind("subsurface_", 0) == 0) e->field = std::string(block) + "." + e->field;
+    return *e;
+  }
+  std::get<SssMaterial>(made).enabled = enabled;
+  return made;
+}
 
+// "sigma_a" and "sigma_s" [+ "g", "eta"]: the coefficients, checked per channel.
+std::variant<SssSource, FieldError> read_coefficients(const json& o, double thickness) {
+  for (const char* k : {"sigma_a", "sigma_s"})
+    if (!o.contains(k)) return FieldError{k, "is required with sigma_a and sigma_s"};
+  profiles::Medium m;
+  m.g.fill(0.0);
+  m.eta.fill(1.3);
+  m.thickness_mm = thickness;
+  bool scalar = false;
+  if (auto e = read_rgb(o, "sigma_a", m.sigma_a, scalar)) return *e;
+  if (auto e = read_rgb(o, "sigma_s", m.sigma_s, scalar)) return *e;
+  if (o.contains("g"))
+    if (auto e = read_rgb(o, "g", m.g, scalar)) return *e;
+  if (o.contains("eta"))
+    if (auto e = read_rgb(o, "eta", m.eta, scalar)) return *e;
+  for (int c = 0; c < 3; ++c)
+    if (auto e = m.channel(c).validate("[" + std::to_string(c) + "]")) return as_written(*e, o);
+  return CoefficientSource{m};
+}
+
+// "color" and "mfp" [+ "g", "eta" as single numbers]: an artist's parameters.
+std::variant<SssSource, FieldError> read_artist(const json& o, double thickness) {
+  for (const char* k : {"color", "mfp"})
+    if (!o.contains(k)) return FieldError{k, "is required with color and mfp"};
+  profiles::ArtistParameters p;
+  p.thickness_mm = thickness;
+  bool scalar = false;
+  if (auto e = read_rgb(o, "color", p.color, scalar)) return *e;
+  for (int c = 0; c < 3; ++c)
+    if (!(p.color[c] > 0.0 && p.color[c] < 1.0))
+      return FieldError{scalar ? "color" : "color[" + std::to_string(c) + "]",
+                        "must lie strictly between 0 and 1, got " + str(p.color[c])};
+  if (auto e = read_rgb(o, "mfp", p.mfp_mm, scalar)) return *e;
+  for (int c = 0; c < 3; ++c)
+    if (!(p.mfp_mm[c] > 0.0))
+      return FieldError{scalar ? "mfp" : "mfp[" + std::to_string(c) + "]",
+                        "mean free path must be > 0 mm, got " + str(p.mfp_mm[c])};
+  for (auto [k, dst] : {std::pair{"g", &p.g}, std::pair{"eta", &p.eta}}) {
+    if (!o.contains(k)) continue;
+    if (!o[k].is_number())
+      return FieldError{k, "must be a single number with color + mfp"};
+    *dst = o[k].get<double>();
+  }
+  if (!(std::fabs(p.g) < 1.0)) return FieldError{"g", "must lie in (-1, 1), got " + str(p.g)};
+  if (!(p.eta > 0.0)) return FieldError{"eta", "must be > 0, got " + str(p.eta)};
+  return ArtistSource{p};
+}
+
+}  // namespace
+
+std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
+  if (!o.is_object()) return FieldError{"", "must be a JSON object"};
+  for (const auto& item : o.items())
+    if (std::find(kKeys.begin(), kKeys.end(), item.key()) == kKeys.end())
+      return FieldError{item.key(), "unknown field; expected one of " + key_list()};
+  auto read = read_common(o);
+  if (auto* e = std::get_if<FieldError>(&read)) return *e;
+  const Common& common = std::get<Common>(read);
+  if (o.contains("layers")) return from_layers(o, common);
   const bool openpbr = o.contains("openpbr") || o.contains("standard_surface");
   if (o.contains("albedo_inversion") && !openpbr)
     return FieldError{"albedo_inversion", "applies only to openpbr or standard_surface"};
-  if (openpbr) {
-    if (o.contains("openpbr") && o.contains("standard_surface"))
-      return FieldError{"standard_surface", "cannot be combined with openpbr: give one of them"};
-    for (const char* k : {"preset", "sigma_a", "sigma_s", "g", "eta", "color", "mfp"})
-      if (o.contains(k))
-        return FieldError{k, "cannot be combined with openpbr or standard_surface (they give the "
-                             "medium, its anisotropy and its ior)"};
-    const bool standard_surface = o.contains("standard_surface");
-    const char* block = standard_surface ? "standard_surface" : "openpbr";
-    auto read = read_openpbr(o[block], standard_surface, enabled);
-    if (auto* e = std::get_if<FieldError>(&read)) return *e;
-    if (!enabled) {
-      // A weight of 0: no subsurface. The spec's other values are not read (they need not
-      // describe a medium); the material keeps the default source, resolved, as every
-      // material without subsurface scattering does, so that it exports and reads back.
-      auto off = make_sss_material(PresetSource{"skin1"}, model, gaussians, scale, albedo_mode);
-      if (auto* e = std::get_if<FieldError>(&off)) return *e;
-      std::get<SssMaterial>(off).enabled = false;
-      return off;
-    }
-    OpenPbrSource source = std::get<OpenPbrSource>(std::move(read));
-    source.thickness_mm = thickness;
-    if (o.contains("albedo_inversion")) {
-      const json& a = o["albedo_inversion"];
-      const auto parsed = a.is_string() ? profiles::parse_albedo_inversion(a.get<std::string>()) : std::nullopt;
-      if (!parsed)
-        return FieldError{"albedo_inversion", "must be \"van-de-hulst\" (the spec's) or \"model\" "
-                                              "(the model's total reflectance), got " + a.dump()};
-      source.inversion = *parsed;
-    }
-    auto made = make_sss_material(std::move(source), model, gaussians, scale, albedo_mode);
-    if (auto* e = std::get_if<FieldError>(&made)) {
-      if (e->field.rfind("subsurface_", 0) == 0) e->field = std::string(block) + "." + e->field;
-      return *e;
-    }
-    std::get<SssMaterial>(made).enabled = enabled;
-    return made;
-  }
+  if (openpbr) return from_openpbr(o, common);
 
   const bool preset = o.contains("preset");
   const bool coefficients = o.contains("sigma_a") || o.contains("sigma_s");
@@ -289,55 +359,17 @@ std::variant<SssMaterial, FieldError> parse_sss_extras(const json& o) {
       if (o.contains(k)) return FieldError{k, "cannot be combined with a preset (it has its own)"};
     if (!o["preset"].is_string()) return FieldError{"preset", "must be a preset name (a string)"};
     source = PresetSource{o["preset"].get<std::string>()};
-  } else if (coefficients) {
-    for (const char* k : {"sigma_a", "sigma_s"})
-      if (!o.contains(k)) return FieldError{k, "is required with sigma_a and sigma_s"};
-    profiles::Medium m;
-    m.g.fill(0.0);
-    m.eta.fill(1.3);
-    m.thickness_mm = thickness;
-    bool scalar = false;
-    if (auto e = read_rgb(o, "sigma_a", m.sigma_a, scalar)) return *e;
-    if (auto e = read_rgb(o, "sigma_s", m.sigma_s, scalar)) return *e;
-    if (o.contains("g"))
-      if (auto e = read_rgb(o, "g", m.g, scalar)) return *e;
-    if (o.contains("eta"))
-      if (auto e = read_rgb(o, "eta", m.eta, scalar)) return *e;
-    for (int c = 0; c < 3; ++c)
-      if (auto e = m.channel(c).validate("[" + std::to_string(c) + "]")) return as_written(*e, o);
-    source = CoefficientSource{m};
   } else {
-    for (const char* k : {"color", "mfp"})
-      if (!o.contains(k)) return FieldError{k, "is required with color and mfp"};
-    profiles::ArtistParameters p;
-    p.thickness_mm = thickness;
-    bool scalar = false;
-    if (auto e = read_rgb(o, "color", p.color, scalar)) return *e;
-    for (int c = 0; c < 3; ++c)
-      if (!(p.color[c] > 0.0 && p.color[c] < 1.0))
-        return FieldError{scalar ? "color" : "color[" + std::to_string(c) + "]",
-                          "must lie strictly between 0 and 1, got " + str(p.color[c])};
-    if (auto e = read_rgb(o, "mfp", p.mfp_mm, scalar)) return *e;
-    for (int c = 0; c < 3; ++c)
-      if (!(p.mfp_mm[c] > 0.0))
-        return FieldError{scalar ? "mfp" : "mfp[" + std::to_string(c) + "]",
-                          "mean free path must be > 0 mm, got " + str(p.mfp_mm[c])};
-    for (auto [k, dst] : {std::pair{"g", &p.g}, std::pair{"eta", &p.eta}}) {
-      if (!o.contains(k)) continue;
-      if (!o[k].is_number())
-        return FieldError{k, "must be a single number with color + mfp"};
-      *dst = o[k].get<double>();
-    }
-    if (!(std::fabs(p.g) < 1.0)) return FieldError{"g", "must lie in (-1, 1), got " + str(p.g)};
-    if (!(p.eta > 0.0)) return FieldError{"eta", "must be > 0, got " + str(p.eta)};
-    source = ArtistSource{p};
+    auto read_source = coefficients ? read_coefficients(o, common.thickness) : read_artist(o, common.thickness);
+    if (auto* e = std::get_if<FieldError>(&read_source)) return *e;
+    source = std::get<SssSource>(std::move(read_source));
   }
 
-  auto made = make_sss_material(std::move(source), model, gaussians, scale, albedo_mode);
+  auto made = make_sss_material(std::move(source), common.model, common.gaussians, common.scale, common.albedo_mode);
   if (auto* e = std::get_if<FieldError>(&made)) return as_written(*e, o);
   auto& s = std::get<SssMaterial>(made);
-  s.enabled = enabled;
-  if (preset && o.contains("thickness")) s.medium.thickness_mm = thickness;
+  s.enabled = common.enabled;
+  if (preset && o.contains("thickness")) s.medium.thickness_mm = common.thickness;
   return s;
 }
 
