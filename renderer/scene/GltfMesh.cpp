@@ -80,57 +80,45 @@ Status transform_tangents(GltfContext& ctx, const tinygltf::Primitive& prim, con
   return std::nullopt;
 }
 
-Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
-                         std::optional<std::uint32_t>& default_material) {
-  const tinygltf::Mesh& gm = ctx.model.meshes[m];
-  const tinygltf::Primitive& prim = gm.primitives[p];
-  const std::string object = indexed("meshes", m) + "." + indexed("primitives", p);
-  const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;  // -1: not given
-  if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN)
-    return ctx.fail(object, "mode", std::to_string(prim.mode) + " is not a glTF primitive mode (0..6)");
-  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-    ctx.scene.warnings.push_back(ctx.file + ": " + object + ": mode " + std::to_string(mode) +
-                                 " (points or lines) skipped; only triangles scatter light");
-    return std::nullopt;
-  }
-  if (!prim.targets.empty())
-    ctx.scene.warnings.push_back(ctx.file + ": " + object + ": morph targets ignored");
+// A primitive's attributes: from the Draco bitstream where it names them, else from
+// their accessors.
+struct AttributeSource {
+  GltfContext& ctx;
+  const tinygltf::Primitive& prim;
+  const DracoGeometry& draco;
+  const std::string& object;
 
-  Mesh mesh;
-  mesh.name = gm.name.empty() ? indexed("meshes", m) : gm.name;
-  if (gm.primitives.size() > 1) mesh.name += "/" + std::to_string(p);
-  const auto attr = [&](const char* s) {
-    const auto it = prim.attributes.find(s);
+  // The accessor of attributes.SEMANTIC, or -1.
+  int accessor(const char* semantic) const {
+    const auto it = prim.attributes.find(semantic);
     return it == prim.attributes.end() ? -1 : it->second;
-  };
-  if (attr("POSITION") < 0) return ctx.fail(object, "attributes.POSITION", "is required");
-  // KHR_draco_mesh_compression: the attributes it names and the indices come from the
-  // bitstream; the primitive's other attributes are read as usual (its README).
-  const std::optional<DracoPrimitive>* draco_ext =
-      m < ctx.draco.size() && p < ctx.draco[m].size() ? &ctx.draco[m][p] : nullptr;
-  const bool compressed = draco_ext && draco_ext->has_value();
-  DracoGeometry draco;
-  if (compressed) {
-    if (mode != TINYGLTF_MODE_TRIANGLES)
-      return ctx.fail(object, "mode", "must be 4 (triangles) with KHR_draco_mesh_compression");
-    if (auto e = decode_draco(ctx, **draco_ext, object, draco)) return e;
   }
-  // attributes.SEMANTIC as `rule` says, from Draco or from its accessor.
-  const auto read = [&](const AttributeRule& rule, std::vector<float>& out) -> Status {
+  // attributes.SEMANTIC as `rule` says.
+  Status read(const AttributeRule& rule, std::vector<float>& out) const {
     const std::string field = std::string("attributes.") + rule.semantic;
     const auto it = draco.attributes.find(rule.semantic);
-    if (it == draco.attributes.end()) return read_attribute(ctx, attr(rule.semantic), rule, object, field, out);
+    if (it == draco.attributes.end()) return read_attribute(ctx, accessor(rule.semantic), rule, object, field, out);
     if (it->second.components != rule.components)
       return ctx.fail(object + ".extensions.KHR_draco_mesh_compression", field,
                       "decodes to " + std::to_string(it->second.components) + " components; " +
                           rule.semantic + " has " + std::to_string(rule.components));
     out = it->second.values;
     return std::nullopt;
-  };
+  }
+};
+
+// POSITION, NORMAL, TEXCOORD_0 (with KHR_texture_transform) and TANGENT into `mesh`; the
+// vertex count in `n`.
+Status read_vertices(const AttributeSource& source, bool compressed, Mesh& mesh, std::size_t& n) {
+  GltfContext& ctx = source.ctx;
+  const tinygltf::Primitive& prim = source.prim;
+  const DracoGeometry& draco = source.draco;
+  const std::string& object = source.object;
+  const auto attr = [&](const char* s) { return source.accessor(s); };
+  const auto read = [&](const AttributeRule& rule, std::vector<float>& out) { return source.read(rule, out); };
   std::vector<float> f;
   if (auto e = read(kPosition, f)) return e;
-  const std::size_t n = f.size() / 3;
+  n = f.size() / 3;
   if (n > std::numeric_limits<std::uint32_t>::max())
     return ctx.fail(object, "attributes.POSITION", "too many vertices for 32-bit indices");
   if (compressed && n != draco.points)  // Draco's indices count its points
@@ -196,6 +184,15 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
     if (auto e = transform_tangents(ctx, prim, object, mesh)) return e;
   }
 
+  return std::nullopt;
+}
+
+// The index sequence (Draco's, the accessor's, or 0..n-1) as triangles (strips and fans
+// unrolled) into mesh.indices.
+Status read_triangles(GltfContext& ctx, const tinygltf::Primitive& prim, int mode, std::size_t n,
+                      const std::optional<DracoPrimitive>* draco_ext, DracoGeometry& draco,
+                      const std::string& object, Mesh& mesh) {
+  const bool compressed = draco_ext && draco_ext->has_value();
   std::vector<std::uint32_t> seq;
   if (compressed) {
     // check_gltf_schema: the index exists.
@@ -223,7 +220,12 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
     mesh.indices = to_triangles(seq, mode);
   }
   if (mesh.indices.empty()) return ctx.fail(object, what, "has no triangles");
+  return std::nullopt;
+}
 
+// The primitive's material, or the glTF default one (made once per file).
+Status assign_material(GltfContext& ctx, const tinygltf::Primitive& prim, const std::string& object,
+                       std::optional<std::uint32_t>& default_material, Mesh& mesh) {
   if (prim.material >= 0) {
     if (auto e = out_of_range("materials", prim.material, ctx.model.materials.size()))
       return ctx.fail(object, "material", *e);
@@ -237,6 +239,46 @@ Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
     }
     mesh.material = *default_material;
   }
+  return std::nullopt;
+}
+
+Status convert_primitive(GltfContext& ctx, std::size_t m, std::size_t p,
+                         std::optional<std::uint32_t>& default_material) {
+  const tinygltf::Mesh& gm = ctx.model.meshes[m];
+  const tinygltf::Primitive& prim = gm.primitives[p];
+  const std::string object = indexed("meshes", m) + "." + indexed("primitives", p);
+  const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;  // -1: not given
+  if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN)
+    return ctx.fail(object, "mode", std::to_string(prim.mode) + " is not a glTF primitive mode (0..6)");
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    ctx.scene.warnings.push_back(ctx.file + ": " + object + ": mode " + std::to_string(mode) +
+                                 " (points or lines) skipped; only triangles scatter light");
+    return std::nullopt;
+  }
+  if (!prim.targets.empty())
+    ctx.scene.warnings.push_back(ctx.file + ": " + object + ": morph targets ignored");
+
+  Mesh mesh;
+  mesh.name = gm.name.empty() ? indexed("meshes", m) : gm.name;
+  if (gm.primitives.size() > 1) mesh.name += "/" + std::to_string(p);
+  if (prim.attributes.find("POSITION") == prim.attributes.end())
+    return ctx.fail(object, "attributes.POSITION", "is required");
+  // KHR_draco_mesh_compression: the attributes it names and the indices come from the
+  // bitstream; the primitive's other attributes are read as usual (its README).
+  const std::optional<DracoPrimitive>* draco_ext =
+      m < ctx.draco.size() && p < ctx.draco[m].size() ? &ctx.draco[m][p] : nullptr;
+  const bool compressed = draco_ext && draco_ext->has_value();
+  DracoGeometry draco;
+  if (compressed) {
+    if (mode != TINYGLTF_MODE_TRIANGLES)
+      return ctx.fail(object, "mode", "must be 4 (triangles) with KHR_draco_mesh_compression");
+    if (auto e = decode_draco(ctx, **draco_ext, object, draco)) return e;
+  }
+  std::size_t n = 0;
+  if (auto e = read_vertices({ctx, prim, draco, object}, compressed, mesh, n)) return e;
+  if (auto e = read_triangles(ctx, prim, mode, n, draco_ext, draco, object, mesh)) return e;
+  if (auto e = assign_material(ctx, prim, object, default_material, mesh)) return e;
   if (auto e = ctx.charge(n * sizeof(glm::vec3), object)) return e;  // generated normals
   if (const std::size_t replaced = repair_normals(mesh))
     ctx.scene.warnings.push_back(ctx.file + ": " + object + ": " + std::to_string(replaced) +
