@@ -141,6 +141,8 @@ class Context {
   };
 
   void create_instance(const ContextOptions& options);
+  // The debug-utils entry points, and the validation messenger when the layer is used.
+  void load_debug_utils(bool use_layer, VkDebugUtilsMessengerCreateInfoEXT& messenger_info);
   void create_device(const ContextOptions& options);
 
   std::shared_ptr<ValidationLog> log_;  // outlives core_: the layer reports until the end

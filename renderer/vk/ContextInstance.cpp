@@ -52,9 +52,9 @@ std::vector<const char*> c_strings(const std::vector<std::string>& names) {
   return out;
 }
 
-}  // namespace
 
-void Context::create_instance(const ContextOptions& options) {
+// The loader must offer Vulkan 1.3.
+void check_loader_version() {
   uint32_t loader_version = 0;
   VK_CHECK(vkEnumerateInstanceVersion(&loader_version));
   if (loader_version < VK_API_VERSION_1_3) {
@@ -64,21 +64,12 @@ void Context::create_instance(const ContextOptions& options) {
                           std::to_string(VK_API_VERSION_MINOR(loader_version)) +
                           "; the renderer needs 1.3");
   }
+}
 
-  // A validation run (SSS_VALIDATION_CHECKS set) names the checks, replacing the
-  // options' own, and must not run without the layer.
-  const std::optional<ValidationChecks> run_checks =
-      options.enable_validation ? validation_checks_from_environment() : std::nullopt;
-  bool sync_validation = options.sync_validation;
-  bool best_practices = options.best_practices;
-  if (run_checks) {
-    sync_validation = *run_checks == ValidationChecks::Sync;
-    best_practices = *run_checks == ValidationChecks::BestPractices;
-  }
-  validation_checks_ = best_practices    ? ValidationChecks::BestPractices
-                       : sync_validation ? ValidationChecks::Sync
-                                         : ValidationChecks::Core;
-
+// Whether the validation layer is used: validation asked for and the layer installed. A
+// validation run (SSS_VALIDATION_CHECKS) without the layer throws; otherwise its absence
+// is warned about once.
+bool use_validation_layer(const ContextOptions& options, const std::optional<ValidationChecks>& run_checks) {
   bool use_layer = false;
   if (options.enable_validation) {
     use_layer = layer_installed(kValidationLayer);
@@ -99,13 +90,18 @@ void Context::create_instance(const ContextOptions& options) {
       });
     }
   }
-  const std::vector<std::string> available = instance_extensions(nullptr);
-  const std::vector<std::string> from_layer =
-      use_layer ? instance_extensions(kValidationLayer) : std::vector<std::string>{};
+  return use_layer;
+}
+
+// The options' instance extensions (each one offered, else VulkanError), and debug utils
+// when offered (*debug_utils_offered).
+std::vector<std::string> instance_extension_list(const ContextOptions& options,
+                                                 const std::vector<std::string>& available,
+                                                 const std::vector<std::string>& from_layer,
+                                                 bool* debug_utils_offered) {
   const auto offered = [&](std::string_view name) {
     return contains(available, name) || contains(from_layer, name);
   };
-
   std::vector<std::string> extensions;
   for (const std::string& name : options.instance_extensions) {
     if (!offered(name)) {
@@ -116,6 +112,35 @@ void Context::create_instance(const ContextOptions& options) {
   }
   const bool debug_utils = offered(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   if (debug_utils) add_unique(extensions, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+
+  *debug_utils_offered = debug_utils;
+  return extensions;
+}
+
+}  // namespace
+
+void Context::create_instance(const ContextOptions& options) {
+  check_loader_version();
+
+  // A validation run (SSS_VALIDATION_CHECKS set) names the checks, replacing the
+  // options' own, and must not run without the layer.
+  const std::optional<ValidationChecks> run_checks =
+      options.enable_validation ? validation_checks_from_environment() : std::nullopt;
+  bool sync_validation = options.sync_validation;
+  bool best_practices = options.best_practices;
+  if (run_checks) {
+    sync_validation = *run_checks == ValidationChecks::Sync;
+    best_practices = *run_checks == ValidationChecks::BestPractices;
+  }
+  validation_checks_ = best_practices    ? ValidationChecks::BestPractices
+                       : sync_validation ? ValidationChecks::Sync
+                                         : ValidationChecks::Core;
+  const bool use_layer = use_validation_layer(options, run_checks);
+  const std::vector<std::string> available = instance_extensions(nullptr);
+  const std::vector<std::string> from_layer =
+      use_layer ? instance_extensions(kValidationLayer) : std::vector<std::string>{};
+  bool debug_utils = false;
+  std::vector<std::string> extensions = instance_extension_list(options, available, from_layer, &debug_utils);
 
   // Synchronization validation and best practices are off by default in the layer.
   // Layer 1.3.239 (Debian 12) takes them from VkValidationFeaturesEXT in the instance's
@@ -170,25 +195,26 @@ void Context::create_instance(const ContextOptions& options) {
   info.ppEnabledExtensionNames = extension_names.data();
   VK_CHECK(vkCreateInstance(&info, nullptr, &core_.instance));
 
-  if (debug_utils) {
-    const auto load = [&](const char* name) { return vkGetInstanceProcAddr(core_.instance, name); };
-    cmd_begin_label_ =
-        reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(load("vkCmdBeginDebugUtilsLabelEXT"));
-    cmd_end_label_ =
-        reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(load("vkCmdEndDebugUtilsLabelEXT"));
-    set_object_name_ =
-        reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(load("vkSetDebugUtilsObjectNameEXT"));
-    if (use_layer) {
-      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-          load("vkCreateDebugUtilsMessengerEXT"));
-      core_.destroy_messenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-          load("vkDestroyDebugUtilsMessengerEXT"));
-      if (create != nullptr && core_.destroy_messenger != nullptr) {
-        messenger_info.pNext = nullptr;
-        VK_CHECK(create(core_.instance, &messenger_info, nullptr, &core_.messenger));
-        validation_enabled_ = true;
-      }
-    }
+  if (debug_utils) load_debug_utils(use_layer, messenger_info);
+}
+
+void Context::load_debug_utils(bool use_layer, VkDebugUtilsMessengerCreateInfoEXT& messenger_info) {
+  const auto load = [&](const char* name) { return vkGetInstanceProcAddr(core_.instance, name); };
+  cmd_begin_label_ =
+      reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(load("vkCmdBeginDebugUtilsLabelEXT"));
+  cmd_end_label_ =
+      reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(load("vkCmdEndDebugUtilsLabelEXT"));
+  set_object_name_ =
+      reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(load("vkSetDebugUtilsObjectNameEXT"));
+  if (!use_layer) return;
+  auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+      load("vkCreateDebugUtilsMessengerEXT"));
+  core_.destroy_messenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+      load("vkDestroyDebugUtilsMessengerEXT"));
+  if (create != nullptr && core_.destroy_messenger != nullptr) {
+    messenger_info.pNext = nullptr;
+    VK_CHECK(create(core_.instance, &messenger_info, nullptr, &core_.messenger));
+    validation_enabled_ = true;
   }
 }
 
