@@ -261,12 +261,24 @@ void add_material_override_options(CLI::App& app, MaterialOverrideArgs& args) {
   add_medium_options(app, args.medium);
 }
 
-std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
-                                                       const MaterialOverrideArgs& args) {
+namespace {
+
+// The options that apply to every SSS material the --sss-material specs leave alone.
+struct GlobalOverrides {
   std::optional<profiles::Model> model;
+  std::optional<scene::AlbedoMode> albedo;
+  bool medium = false;  // a MEDIUM option was given
+  std::optional<profiles::LayerStack> layers;
+  bool any(const MaterialOverrideArgs& args) const {
+    return model || args.gaussians || medium || albedo || layers || args.scale;
+  }
+};
+
+std::variant<GlobalOverrides, FieldError> parse_globals(const MaterialOverrideArgs& args) {
+  GlobalOverrides out;
   if (!args.model.empty()) {
-    model = profiles::parse_model(args.model);
-    if (!model)
+    out.model = profiles::parse_model(args.model);
+    if (!out.model)
       return FieldError{"--model", "unknown model '" + args.model + "' (expected one of " +
                                        profiles::model_names() + ")"};
   }
@@ -274,18 +286,16 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
     return FieldError{"--gaussians", profiles::gaussian_count_rule() + ", got " + std::to_string(*args.gaussians)};
   if (args.scale && !valid_scale(*args.scale))
     return FieldError{"--scale", "must be a finite number > 0, got " + message_number(*args.scale)};
-  std::optional<scene::AlbedoMode> albedo;
   if (!args.albedo.empty()) {
-    albedo = scene::parse_albedo_mode(args.albedo);
-    if (!albedo)
+    out.albedo = scene::parse_albedo_mode(args.albedo);
+    if (!out.albedo)
       return FieldError{"--albedo", "expected post-scatter or pre-post, got '" + args.albedo + "'"};
   }
-  const bool medium = any_medium(args.medium);
-  std::optional<profiles::LayerStack> layers;
+  out.medium = any_medium(args.medium);
   if (!args.layers.empty()) {
-    if (medium || model)
+    if (out.medium || out.model)
       return FieldError{"--layers", std::string("cannot be combined with ") +
-                                        (model ? "--model" : "the MEDIUM options") +
+                                        (out.model ? "--model" : "the MEDIUM options") +
                                         ": the layers are the medium, and the model is layered"};
     auto parsed = scene::parse_sss_layers_file(args.layers);
     if (auto* e = std::get_if<FieldError>(&parsed)) {
@@ -293,11 +303,19 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
       const std::string field = e->field == args.layers ? e->field : args.layers + ": " + e->field;
       return FieldError{"--layers " + field, e->message};
     }
-    layers = std::get<profiles::LayerStack>(std::move(parsed));
+    out.layers = std::get<profiles::LayerStack>(std::move(parsed));
   }
 
-  // --sss-material: parsed and matched before anything changes, so an error leaves the
-  // scene as it was loaded.
+  return out;
+}
+
+// --sss-material onto `materials` (by_spec marks those a spec set). Parsed and matched
+// before anything changes, so an error leaves the scene as it was loaded.
+std::optional<FieldError> apply_specs(const scene::Scene& scene, const MaterialOverrideArgs& args,
+                                      const GlobalOverrides& g, std::vector<scene::Material>& materials,
+                                      std::vector<bool>& by_spec, int& changed) {
+  const std::optional<profiles::Model>& model = g.model;
+  const std::optional<scene::AlbedoMode>& albedo = g.albedo;
   std::vector<std::pair<SssMaterialSpec, std::vector<std::size_t>>> specs;
   for (const std::string& text : args.sss_material) {
     auto spec = parse_sss_material_spec(text);
@@ -307,9 +325,6 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
     specs.emplace_back(std::get<SssMaterialSpec>(std::move(spec)),
                        std::get<std::vector<std::size_t>>(std::move(matched)));
   }
-  std::vector<scene::Material> materials = scene.materials;
-  std::vector<bool> by_spec(materials.size(), false);
-  int changed = 0;
   for (const auto& [spec, matched] : specs)
     for (std::size_t i : matched) {
       scene::Material& m = materials[i];
@@ -323,9 +338,20 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
       changed += by_spec[i] ? 0 : 1;
       by_spec[i] = true;
     }
+  return std::nullopt;
+}
 
-  // The global options: every SSS material the specs left alone.
-  const bool any_global = model || args.gaussians || medium || albedo || layers || args.scale;
+// A global option that would change nothing is an error: the scene has no SSS material,
+// or the specs set every one and a medium was given.
+std::optional<FieldError> check_globals_match(const scene::Scene& scene, const MaterialOverrideArgs& args,
+                                              const GlobalOverrides& g,
+                                              const std::vector<scene::Material>& materials,
+                                              const std::vector<bool>& by_spec) {
+  const bool medium = g.medium;
+  const auto& model = g.model;
+  const auto& albedo = g.albedo;
+  const auto& layers = g.layers;
+  const bool any_global = g.any(args);
   std::size_t sss_count = 0, left = 0;
   for (std::size_t i = 0; i < materials.size(); ++i)
     if (materials[i].sss.enabled) {
@@ -347,40 +373,64 @@ std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
         : "matches no material: every subsurface material of " + scene_name +
               " is set by --sss-material, whose SPEC gives the medium"};
   }
-  for (std::size_t i = 0; i < materials.size() && any_global; ++i) {
-    scene::Material& m = materials[i];
-    if (!m.sss.enabled || by_spec[i]) continue;
-    const double scale = args.scale.value_or(m.sss.scale);
-    // A stack given, or kept: the layered material with the other overrides applied.
-    const bool keep_stack = !m.sss.layers.empty() && !medium && !model;
-    if (layers || keep_stack) {
-      scene::SssMaterial s = m.sss;
-      if (layers) {  // parse_sss_layers_file validated the stack, and s its other fields
-        auto made = scene::make_layered_sss_material(*layers, s.gaussians, scale, s.albedo_mode);
-        if (auto* e = std::get_if<FieldError>(&made)) return FieldError{"--layers " + args.layers, e->what()};
-        s = std::get<scene::SssMaterial>(std::move(made));
-      }
-      s.gaussians = args.gaussians.value_or(s.gaussians);
-      s.albedo_mode = albedo.value_or(s.albedo_mode);
-      s.scale = scale;
-      m.sss = std::move(s);
-      ++changed;
-      continue;
+  return std::nullopt;
+}
+
+// The global options onto one SSS material the specs left alone.
+std::optional<FieldError> apply_globals(const MaterialOverrideArgs& args, const GlobalOverrides& g,
+                                        scene::Material& m) {
+  const bool medium = g.medium;
+  const auto& model = g.model;
+  const auto& albedo = g.albedo;
+  const auto& layers = g.layers;
+  const double scale = args.scale.value_or(m.sss.scale);
+  // A stack given, or kept: the layered material with the other overrides applied.
+  const bool keep_stack = !m.sss.layers.empty() && !medium && !model;
+  if (layers || keep_stack) {
+    scene::SssMaterial s = m.sss;
+    if (layers) {  // parse_sss_layers_file validated the stack, and s its other fields
+      auto made = scene::make_layered_sss_material(*layers, s.gaussians, scale, s.albedo_mode);
+      if (auto* e = std::get_if<FieldError>(&made)) return FieldError{"--layers " + args.layers, e->what()};
+      s = std::get<scene::SssMaterial>(std::move(made));
     }
-    // A medium or model given to a layered material replaces its stack.
-    const profiles::Model use_model = model_for(m.sss, model);
-    scene::SssSource source = m.sss.source;
-    if (medium) {
-      profiles::ModelOptions options;
-      auto resolved = resolve_medium(args.medium, use_model, options);
-      if (auto* e = std::get_if<FieldError>(&resolved)) return *e;
-      const auto& r = std::get<ResolvedMedium>(resolved);
-      source = r.openpbr ? openpbr_source(r) : scene::SssSource{scene::CoefficientSource{r.medium}};
-    }
-    auto made = scene::make_sss_material(source, use_model, args.gaussians.value_or(m.sss.gaussians),
-                                         scale, albedo.value_or(m.sss.albedo_mode));
-    if (auto* e = std::get_if<FieldError>(&made)) return *e;
-    m.sss = std::get<scene::SssMaterial>(made);
+    s.gaussians = args.gaussians.value_or(s.gaussians);
+    s.albedo_mode = albedo.value_or(s.albedo_mode);
+    s.scale = scale;
+    m.sss = std::move(s);
+    return std::nullopt;
+  }
+  // A medium or model given to a layered material replaces its stack.
+  const profiles::Model use_model = model_for(m.sss, model);
+  scene::SssSource source = m.sss.source;
+  if (medium) {
+    profiles::ModelOptions options;
+    auto resolved = resolve_medium(args.medium, use_model, options);
+    if (auto* e = std::get_if<FieldError>(&resolved)) return *e;
+    const auto& r = std::get<ResolvedMedium>(resolved);
+    source = r.openpbr ? openpbr_source(r) : scene::SssSource{scene::CoefficientSource{r.medium}};
+  }
+  auto made = scene::make_sss_material(source, use_model, args.gaussians.value_or(m.sss.gaussians),
+                                       scale, albedo.value_or(m.sss.albedo_mode));
+  if (auto* e = std::get_if<FieldError>(&made)) return *e;
+  m.sss = std::get<scene::SssMaterial>(made);
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::variant<int, FieldError> apply_material_overrides(scene::Scene& scene,
+                                                       const MaterialOverrideArgs& args) {
+  auto parsed = parse_globals(args);
+  if (auto* e = std::get_if<FieldError>(&parsed)) return *e;
+  const GlobalOverrides& g = std::get<GlobalOverrides>(parsed);
+  std::vector<scene::Material> materials = scene.materials;
+  std::vector<bool> by_spec(materials.size(), false);
+  int changed = 0;
+  if (auto e = apply_specs(scene, args, g, materials, by_spec, changed)) return *e;
+  if (auto e = check_globals_match(scene, args, g, materials, by_spec)) return *e;
+  for (std::size_t i = 0; i < materials.size() && g.any(args); ++i) {
+    if (!materials[i].sss.enabled || by_spec[i]) continue;
+    if (auto e = apply_globals(args, g, materials[i])) return *e;
     ++changed;
   }
 
