@@ -360,34 +360,46 @@ McTableOptions shipped_mc_table_g_options(double g) {
   return o;
 }
 
-McTableData generate_mc_table(const McTableOptions& opt) {
-  validate(opt);
-  const std::size_t ne = opt.eta.size(), na = opt.albedo.size(), nb = opt.r_edges.size() - 1;
-  const std::uint64_t chunks = opt.photons / opt.chunk_photons;
-  // Running sums over chunks of the chunk sums and of their squares, in chunk order
-  // (OrderedChunks.h: the result does not depend on the thread count).
-  std::vector<double> flux_sum(nb * ne * na, 0.0), flux_sq(nb * ne * na, 0.0);
-  std::vector<double> total_sum(ne * na, 0.0), total_sq(ne * na, 0.0);
+namespace {
+
+// Running sums over chunks of the chunk sums and of their squares, in chunk order
+// (OrderedChunks.h: the result does not depend on the thread count).
+struct ChunkSums {
+  std::size_t na, per_node;  // albedo nodes; once-scattered values per (bin, eta): 1 or na
+  std::vector<double> flux_sum, flux_sq, total_sum, total_sq;
   // g = 0: once-scattered per unit albedo, [bin][eta] and [eta]; g != 0: per node.
-  const std::size_t per_node = opt.g != 0.0 ? na : 1;
-  std::vector<double> single_flux_sum(nb * ne * per_node, 0.0),
-      single_flux_sq(nb * ne * per_node, 0.0);
-  std::vector<double> single_total_sum(ne * per_node, 0.0), single_total_sq(ne * per_node, 0.0);
+  std::vector<double> single_flux_sum, single_flux_sq, single_total_sum, single_total_sq;
   // The multiply-scattered part of each chunk, d = S - α' S1 (S a chunk's sum at a node,
   // S1 its once-scattered sum per unit albedo): sums and squares of d, for its own
   // batch-means error (the two parts are correlated; see McTable.h).
-  std::vector<double> multiple_flux_sum(nb * ne * na, 0.0), multiple_flux_sq(nb * ne * na, 0.0);
-  std::vector<double> multiple_total_sum(ne * na, 0.0), multiple_total_sq(ne * na, 0.0);
-  auto add = [](std::vector<double>& sum, std::vector<double>& sq, const std::vector<double>& v) {
+  std::vector<double> multiple_flux_sum, multiple_flux_sq, multiple_total_sum, multiple_total_sq;
+
+  ChunkSums(std::size_t ne, std::size_t n_albedo, std::size_t nb, std::size_t once_per_node)
+      : na(n_albedo),
+        per_node(once_per_node),
+        flux_sum(nb * ne * na, 0.0),
+        flux_sq(nb * ne * na, 0.0),
+        total_sum(ne * na, 0.0),
+        total_sq(ne * na, 0.0),
+        single_flux_sum(nb * ne * per_node, 0.0),
+        single_flux_sq(nb * ne * per_node, 0.0),
+        single_total_sum(ne * per_node, 0.0),
+        single_total_sq(ne * per_node, 0.0),
+        multiple_flux_sum(nb * ne * na, 0.0),
+        multiple_flux_sq(nb * ne * na, 0.0),
+        multiple_total_sum(ne * na, 0.0),
+        multiple_total_sq(ne * na, 0.0) {}
+
+  static void add(std::vector<double>& sum, std::vector<double>& sq, const std::vector<double>& v) {
     for (std::size_t i = 0; i < v.size(); ++i) {
       sum[i] += v[i];
       sq[i] += v[i] * v[i];
     }
-  };
+  }
   // v: [block][eta][albedo], once: [block][eta] (g = 0: per unit albedo) or the same
   // layout as v (g != 0: the once-scattered flux itself).
-  auto add_multiple = [&](std::vector<double>& sum, std::vector<double>& sq,
-                          const std::vector<double>& v, const std::vector<double>& once) {
+  void add_multiple(std::vector<double>& sum, std::vector<double>& sq, const std::vector<double>& v,
+                    const std::vector<double>& once, const std::vector<double>& albedo) const {
     if (per_node > 1) {
       for (std::size_t k = 0; k < v.size(); ++k) {
         const double d = v[k] - once[k];
@@ -399,11 +411,97 @@ McTableData generate_mc_table(const McTableOptions& opt) {
     for (std::size_t i = 0; i < once.size(); ++i)
       for (std::size_t a = 0; a < na; ++a) {
         const std::size_t k = i * na + a;
-        const double d = v[k] - opt.albedo[a] * once[i];
+        const double d = v[k] - albedo[a] * once[i];
         sum[k] += d;
         sq[k] += d * d;
       }
-  };
+  }
+  void add(const Chunk& c, const std::vector<double>& albedo) {
+    add(flux_sum, flux_sq, c.flux);
+    add(total_sum, total_sq, c.total);
+    add(single_flux_sum, single_flux_sq, c.single_flux);
+    add(single_total_sum, single_total_sq, c.single_total);
+    add_multiple(multiple_flux_sum, multiple_flux_sq, c.flux, c.single_flux, albedo);
+    add_multiple(multiple_total_sum, multiple_total_sq, c.total, c.single_total, albedo);
+  }
+};
+
+// Batch means: chunk j's mean is m_j = S_j / M; the estimate is mean(m_j) and its
+// standard error sqrt(Σ(m_j - m̄)² / (K (K - 1))).
+struct BatchMeans {
+  double K, M;  // chunks, photons per chunk
+  void finish(double sum, double sq, double& mean, double& se) const {
+    mean = sum / (K * M);
+    const double m2 = std::max(0.0, sq / (M * M) - K * mean * mean);
+    se = std::sqrt(m2 / (K * (K - 1.0)));
+  }
+};
+
+// Every node's total and binned flux with their errors, and the multiply-scattered errors.
+void write_estimates(const ChunkSums& s, const BatchMeans& bm, McTableData& t) {
+  const std::size_t ne = t.eta.size(), na = t.albedo.size(), nb = t.r_edges.size() - 1;
+  t.total.resize(ne * na);
+  t.total_se.resize(ne * na);
+  t.flux.resize(ne * na * nb);
+  t.flux_se.resize(ne * na * nb);
+  t.multiple_total_se.resize(ne * na);
+  t.multiple_flux_se.resize(ne * na * nb);
+  double unused;  // the multiply-scattered means are flux - α' q: only their errors are kept
+  for (std::size_t e = 0; e < ne; ++e)
+    for (std::size_t a = 0; a < na; ++a) {
+      const std::size_t node = e * na + a;
+      bm.finish(s.total_sum[node], s.total_sq[node], t.total[node], t.total_se[node]);
+      bm.finish(s.multiple_total_sum[node], s.multiple_total_sq[node], unused, t.multiple_total_se[node]);
+      for (std::size_t b = 0; b < nb; ++b) {
+        const std::size_t src = (b * ne + e) * na + a;
+        bm.finish(s.flux_sum[src], s.flux_sq[src], t.flux[t.slot(e, a, b)], t.flux_se[t.slot(e, a, b)]);
+        bm.finish(s.multiple_flux_sum[src], s.multiple_flux_sq[src], unused,
+                  t.multiple_flux_se[t.slot(e, a, b)]);
+      }
+    }
+}
+
+// The once-scattered flux: per node (g != 0), laid out as total and flux; or per unit
+// albedo, [eta] and [eta][bin] (g = 0).
+void write_single(const ChunkSums& s, const BatchMeans& bm, McTableData& t) {
+  const std::size_t ne = t.eta.size(), na = t.albedo.size(), nb = t.r_edges.size() - 1;
+  if (s.per_node > 1) {
+    t.single_total.resize(ne * na);
+    t.single_total_se.resize(ne * na);
+    t.single_flux.resize(ne * na * nb);
+    t.single_flux_se.resize(ne * na * nb);
+    for (std::size_t e = 0; e < ne; ++e)
+      for (std::size_t a = 0; a < na; ++a) {
+        const std::size_t node = e * na + a;
+        bm.finish(s.single_total_sum[node], s.single_total_sq[node], t.single_total[node],
+                  t.single_total_se[node]);
+        for (std::size_t b = 0; b < nb; ++b) {
+          const std::size_t src = (b * ne + e) * na + a;
+          bm.finish(s.single_flux_sum[src], s.single_flux_sq[src], t.single_flux[t.slot(e, a, b)],
+                    t.single_flux_se[t.slot(e, a, b)]);
+        }
+      }
+    return;
+  }
+  t.single_total.resize(ne);
+  t.single_total_se.resize(ne);
+  t.single_flux.resize(ne * nb);
+  t.single_flux_se.resize(ne * nb);
+  for (std::size_t e = 0; e < ne; ++e) {
+    bm.finish(s.single_total_sum[e], s.single_total_sq[e], t.single_total[e], t.single_total_se[e]);
+    for (std::size_t b = 0; b < nb; ++b)
+      bm.finish(s.single_flux_sum[b * ne + e], s.single_flux_sq[b * ne + e],
+                t.single_flux[t.single_slot(e, b)], t.single_flux_se[t.single_slot(e, b)]);
+  }
+}
+
+}  // namespace
+
+McTableData generate_mc_table(const McTableOptions& opt) {
+  validate(opt);
+  const std::size_t ne = opt.eta.size(), na = opt.albedo.size(), nb = opt.r_edges.size() - 1;
+  const std::uint64_t chunks = opt.photons / opt.chunk_photons;
+  ChunkSums sums(ne, na, nb, opt.g != 0.0 ? na : 1);
   detail::run_ordered_chunks<Chunk>(
       chunks, opt.threads,
       [&] {
@@ -412,12 +510,7 @@ McTableData generate_mc_table(const McTableOptions& opt) {
         };
       },
       [&](const Chunk& c, std::uint64_t done) {
-        add(flux_sum, flux_sq, c.flux);
-        add(total_sum, total_sq, c.total);
-        add(single_flux_sum, single_flux_sq, c.single_flux);
-        add(single_total_sum, single_total_sq, c.single_total);
-        add_multiple(multiple_flux_sum, multiple_flux_sq, c.flux, c.single_flux);
-        add_multiple(multiple_total_sum, multiple_total_sq, c.total, c.single_total);
+        sums.add(c, opt.albedo);
         if (opt.progress) opt.progress(static_cast<double>(done) / chunks);
       });
 
@@ -430,63 +523,10 @@ McTableData generate_mc_table(const McTableOptions& opt) {
   t.eta = opt.eta;
   t.albedo = opt.albedo;
   t.r_edges = opt.r_edges;
-  // Batch means: chunk j's mean is m_j = S_j / M; the estimate is mean(m_j) and its
-  // standard error sqrt(Σ(m_j - m̄)² / (K (K - 1))).
-  const double K = static_cast<double>(chunks), M = static_cast<double>(opt.chunk_photons);
-  auto finish = [&](double sum, double sq, double& mean, double& se) {
-    mean = sum / (K * M);
-    const double m2 = std::max(0.0, sq / (M * M) - K * mean * mean);
-    se = std::sqrt(m2 / (K * (K - 1.0)));
-  };
-  t.total.resize(ne * na);
-  t.total_se.resize(ne * na);
-  t.flux.resize(ne * na * nb);
-  t.flux_se.resize(ne * na * nb);
-  t.multiple_total_se.resize(ne * na);
-  t.multiple_flux_se.resize(ne * na * nb);
-  double unused;  // the multiply-scattered means are flux - α' q: only their errors are kept
-  for (std::size_t e = 0; e < ne; ++e)
-    for (std::size_t a = 0; a < na; ++a) {
-      const std::size_t node = e * na + a;
-      finish(total_sum[node], total_sq[node], t.total[node], t.total_se[node]);
-      finish(multiple_total_sum[node], multiple_total_sq[node], unused, t.multiple_total_se[node]);
-      for (std::size_t b = 0; b < nb; ++b) {
-        const std::size_t src = (b * ne + e) * na + a;
-        finish(flux_sum[src], flux_sq[src], t.flux[t.slot(e, a, b)], t.flux_se[t.slot(e, a, b)]);
-        finish(multiple_flux_sum[src], multiple_flux_sq[src], unused,
-               t.multiple_flux_se[t.slot(e, a, b)]);
-      }
-    }
   t.g = opt.g;
-  if (per_node > 1) {
-    // The once-scattered flux per node, laid out as total and flux.
-    t.single_total.resize(ne * na);
-    t.single_total_se.resize(ne * na);
-    t.single_flux.resize(ne * na * nb);
-    t.single_flux_se.resize(ne * na * nb);
-    for (std::size_t e = 0; e < ne; ++e)
-      for (std::size_t a = 0; a < na; ++a) {
-        const std::size_t node = e * na + a;
-        finish(single_total_sum[node], single_total_sq[node], t.single_total[node],
-               t.single_total_se[node]);
-        for (std::size_t b = 0; b < nb; ++b) {
-          const std::size_t src = (b * ne + e) * na + a;
-          finish(single_flux_sum[src], single_flux_sq[src], t.single_flux[t.slot(e, a, b)],
-                 t.single_flux_se[t.slot(e, a, b)]);
-        }
-      }
-    return t;
-  }
-  t.single_total.resize(ne);
-  t.single_total_se.resize(ne);
-  t.single_flux.resize(ne * nb);
-  t.single_flux_se.resize(ne * nb);
-  for (std::size_t e = 0; e < ne; ++e) {
-    finish(single_total_sum[e], single_total_sq[e], t.single_total[e], t.single_total_se[e]);
-    for (std::size_t b = 0; b < nb; ++b)
-      finish(single_flux_sum[b * ne + e], single_flux_sq[b * ne + e],
-             t.single_flux[t.single_slot(e, b)], t.single_flux_se[t.single_slot(e, b)]);
-  }
+  const BatchMeans bm{static_cast<double>(chunks), static_cast<double>(opt.chunk_photons)};
+  write_estimates(sums, bm, t);
+  write_single(sums, bm, t);
   return t;
 }
 
