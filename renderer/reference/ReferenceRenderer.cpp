@@ -3,6 +3,7 @@
 #include "renderer/image/Tonemap.h"
 #include "renderer/reference/PixelShading.h"
 #include "renderer/reference/ProbeReference.h"
+#include "renderer/reference/ReferenceChecks.h"
 #include "renderer/reference/RandomWalk.h"
 #include "renderer/reference/SamplePasses.h"
 #include "renderer/reference/RayScene.h"
@@ -82,42 +83,6 @@ class Reporter {
   double best_ = -1.0;
 };
 
-void check_options(const ReferenceOptions& o) {
-  if (o.width == 0 || o.height == 0)
-    throw std::invalid_argument("width/height: the image must be at least 1x1, got " +
-                                std::to_string(o.width) + "x" + std::to_string(o.height));
-  if (o.width > 16384 || o.height > 16384)
-    throw std::invalid_argument("width/height: at most 16384 pixels a side");
-  if (!(std::isfinite(o.spacing_mfp) && o.spacing_mfp > 0.0))
-    throw std::invalid_argument("spacing: must be finite and > 0, got " + message_number(o.spacing_mfp));
-  if (!(std::isfinite(o.max_solid_angle) && o.max_solid_angle >= 0.0))
-    throw std::invalid_argument("error bound: the maximum solid angle must be finite and >= 0, got " +
-                                message_number(o.max_solid_angle));
-  if (!(std::isfinite(o.exposure) && o.exposure >= 0.0f))
-    throw std::invalid_argument("exposure: must be finite and >= 0, got " + message_number(o.exposure));
-  if (std::uint64_t(o.width) * o.height > image::kMaxImagePixels)
-    throw std::invalid_argument("width/height: at most " + std::to_string(image::kMaxImagePixels) +
-                                " pixels (what image files are read back with)");
-  if (o.thickness == Thickness::ShadowMap && o.transmission != Transmission::Local)
-    throw std::invalid_argument("thickness: shadow-map applies to transmission local only, not " +
-                                std::string(transmission_name(o.transmission)));
-  if ((o.shadows == Shadows::ShadowMap || o.thickness == Thickness::ShadowMap) &&
-      (o.shadow_map_size < 1 || o.shadow_map_size > 16384))
-    throw std::invalid_argument("shadow map size: must be 1..16384, got " + std::to_string(o.shadow_map_size));
-  if (o.threads < 0) throw std::invalid_argument("threads: must be >= 0 (0: all), got " + std::to_string(o.threads));
-  if (o.estimator == Estimator::Probe) {
-    check_sample_counts(o.spp, o.target_error, "probe batches");
-    check_tile(o.tile, o.height, o.target_error);
-    if (o.transmission != Transmission::Profile)
-      throw std::invalid_argument("transmission: " + std::string(transmission_name(o.transmission)) +
-                                  " applies to the octree estimator only");
-  } else if (!o.tile.whole()) {
-    throw std::invalid_argument("tile: applies to the probe estimator only (the octree renders whole frames)");
-  } else if (o.spp != 0 || o.target_error != 0.0) {
-    throw std::invalid_argument("spp/target error: apply to the probe estimator only (the octree's error is set by "
-                                "the spacing and the error bound)");
-  }
-}
 
 double soup_area(const TriangleSoup& soup) {
   double area = 0.0;
@@ -128,11 +93,6 @@ double soup_area(const TriangleSoup& soup) {
   return area;
 }
 
-double smallest_mfp(const profiles::Medium& m) {
-  double mfp = std::numeric_limits<double>::infinity();
-  for (int c = 0; c < 3; ++c) mfp = std::min(mfp, m.channel(c).mfp_reduced());
-  return mfp;
-}
 
 std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, const ReferenceOptions& o,
                                Reporter& reporter) {
@@ -173,7 +133,7 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
     const scene::SssMaterial& sss = s.materials[g.material].sss;
     const profiles::Medium medium = sss.effective_medium();
     g.profile = reference_profile(sss, o.kernel, o.profile_options());
-    g.spacing_mm = o.spacing_mfp * smallest_mfp(medium);
+    g.spacing_mm = o.spacing_mfp * detail::smallest_mfp(medium);
     g.planned_points = g.area_mm2 / (g.spacing_mm * g.spacing_mm);
     reporter.report("profiles", double(k + 1) / double(groups.size()));
   }
@@ -201,17 +161,6 @@ std::unique_ptr<profiles::RgbProfile> reference_profile(const scene::SssMaterial
 
 namespace {
 
-void check_scene(const scene::Scene& s) {
-  if (s.cameras.empty()) throw std::invalid_argument("scene '" + s.name + "' has no camera");
-  for (const scene::Instance& inst : s.instances)
-    if (inst.mesh >= s.meshes.size())
-      throw std::invalid_argument("instance '" + inst.node + "': mesh index out of range");
-  for (const scene::Mesh& mesh : s.meshes) {
-    if (auto broken = scene::check_mesh(mesh)) throw std::invalid_argument("mesh '" + mesh.name + "': " + *broken);
-    if (mesh.material >= s.materials.size())
-      throw std::invalid_argument("mesh '" + mesh.name + "': material index out of range");
-  }
-}
 
 // Transmission::Local's path towards the light from p: the distance to the last surface
 // along l before the light (the first one the light meets, what a shadow map stores), 0
@@ -228,114 +177,9 @@ double thickness_towards(const RayScene& rays, const glm::vec3& p, const glm::ve
   return double(last);
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 }  // namespace
 
-EstimatorChoice choose_estimator(const scene::Scene& s, const ReferenceOptions& o) {
-  ReferenceOptions checked = o;
-  checked.estimator = Estimator::Octree;
-  checked.spp = 0;
-  checked.target_error = 0.0;
-  checked.tile = {};
-  check_options(checked);
-  check_scene(s);
-  EstimatorChoice choice;
-  const RayScene rays(s, o.threads);
-  const CameraRays camera(s.cameras[0], o.width, o.height, s.mm_per_unit);
-  std::vector<double> spacing_of(s.materials.size(), 0.0);
-  for (std::size_t m = 0; m < s.materials.size(); ++m)
-    if (s.materials[m].sss.enabled) spacing_of[m] = o.spacing_mfp * smallest_mfp(s.materials[m].sss.effective_medium());
-  const std::uint32_t stride = std::max<std::uint32_t>(
-      1, std::uint32_t(std::ceil(std::sqrt(double(o.width) * double(o.height) / 4096.0))));
-  std::vector<double> ratios, footprints, spacings;
-  for (std::uint32_t y = stride / 2; y < o.height; y += stride)
-    for (std::uint32_t x = stride / 2; x < o.width; x += stride) {
-      const CameraRays::Ray ray = camera.pixel(x, y);
-      const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
-      if (!hit) continue;
-      const std::uint32_t material = s.meshes[s.instances[hit->instance].mesh].material;
-      if (!(spacing_of[material] > 0.0)) continue;
-      const glm::dvec3 n = face_normal(s, rays, hit->instance, hit->triangle);
-      const glm::dvec3 p = glm::dvec3(ray.origin) + double(hit->t) * glm::dvec3(ray.direction);
-      // Where the next pixel's ray meets the tangent plane at p: the pixel's step on the
-      // surface (the camera's rays are defined past the image's last column and row too).
-      auto step = [&](std::uint32_t nx, std::uint32_t ny) -> std::optional<glm::dvec3> {
-        const CameraRays::Ray r = camera.pixel(nx, ny);
-        const double along = glm::dot(glm::dvec3(r.direction), n);
-        if (std::abs(along) < 1e-9) return std::nullopt;
-        const double t = glm::dot(p - glm::dvec3(r.origin), n) / along;
-        return glm::dvec3(r.origin) + t * glm::dvec3(r.direction) - p;
-      };
-      const auto dx = step(x + 1, y), dy = step(x, y + 1);
-      if (!dx || !dy) continue;
-      const double footprint = std::sqrt(glm::length(glm::cross(*dx, *dy)));
-      if (!std::isfinite(footprint)) continue;
-      ratios.push_back(footprint / spacing_of[material]);
-      footprints.push_back(footprint);
-      spacings.push_back(spacing_of[material]);
-    }
-  choice.pixels = ratios.size();
-  choice.ratio = median(ratios);
-  choice.footprint_mm = median(footprints);
-  choice.spacing_mm = median(spacings);
-  choice.spacing_mfp = o.spacing_mfp;
-  if (!ratios.empty() && choice.ratio < 1.0) choice.spacing_mfp = o.spacing_mfp * choice.ratio;
-  // The points that spacing plans over every SSS surface (as make_groups plans them).
-  std::vector<double> area(s.materials.size(), 0.0);
-  for (const scene::Instance& inst : s.instances) {
-    const scene::Mesh& mesh = s.meshes[inst.mesh];
-    if (!(spacing_of[mesh.material] > 0.0)) continue;
-    const glm::dmat4 world(inst.world);
-    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-      glm::dvec3 p[3];
-      for (int k = 0; k < 3; ++k)
-        p[k] = s.mm_per_unit * glm::dvec3(world * glm::dvec4(glm::dvec3(mesh.positions[mesh.indices[3 * t + std::size_t(k)]]), 1.0));
-      area[mesh.material] += 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
-    }
-  }
-  for (std::size_t m = 0; m < s.materials.size(); ++m)
-    if (spacing_of[m] > 0.0) {
-      const double spacing_mm = spacing_of[m] * choice.spacing_mfp / o.spacing_mfp;
-      choice.planned_points += area[m] / (spacing_mm * spacing_mm);
-    }
-  const bool fits = choice.planned_points <= double(o.max_points);
-  choice.estimator = !ratios.empty() && choice.ratio < 1.0 && !fits ? Estimator::Probe : Estimator::Octree;
-  if (choice.estimator == Estimator::Probe) choice.spacing_mfp = o.spacing_mfp;
-  return choice;
-}
-
-ReferenceOptions with_choice(ReferenceOptions o, const EstimatorChoice& choice) {
-  o.estimator = choice.estimator;
-  o.spacing_mfp = choice.spacing_mfp;
-  if (choice.estimator == Estimator::Probe) {
-    o.spp = kDefaultProbeBatches;
-    o.target_error = 0.0;
-  }
-  return o;
-}
-
-std::string describe(const EstimatorChoice& choice, double asked_spacing_mfp) {
-  const bool probe = choice.estimator == Estimator::Probe;
-  char what[160], why[400];
-  if (probe)
-    std::snprintf(what, sizeof what, "probe (%llu batches per pixel)", (unsigned long long)kDefaultProbeBatches);
-  else
-    std::snprintf(what, sizeof what, "octree at spacing %.3g mfp (%.3g points)", choice.spacing_mfp,
-                  choice.planned_points);
-  if (choice.pixels == 0) return std::string(what) + ": no pixel sees a medium";
-  std::snprintf(why, sizeof why,
-                "the pixels' median footprint on the surface is %.3g mm, the octree's point spacing %.3g mm at "
-                "--spacing %.3g (median ratio %.3g over %zu subsurface pixels)%s",
-                choice.footprint_mm, choice.spacing_mm, asked_spacing_mfp, choice.ratio, choice.pixels,
-                probe ? "; points as dense as the pixels would exceed --max-points" : "");
-  return std::string(what) + ": " + why;
-}
 
 namespace {
 
@@ -554,8 +398,8 @@ void OctreeRender::render_pixels(const std::vector<Group>& groups, ReferenceImag
 // irradiance, one octree per material, then a gather per pixel.
 ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o,
                                 const ProgressFn& progress, const std::atomic<bool>* cancel) {
-  check_options(o);
-  check_scene(s);
+  detail::check_options(o);
+  detail::check_scene(s);
   if (o.estimator == Estimator::Probe) return render_probe_reference(s, o, progress, cancel);
   const auto t_start = Clock::now();
   Reporter reporter(progress, cancel);
