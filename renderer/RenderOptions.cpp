@@ -12,6 +12,14 @@ namespace sss::renderer {
 namespace {
 constexpr SssTechnique kTechniques[] = {SssTechnique::Off, SssTechnique::Separable,
                                        SssTechnique::Gaussians, SssTechnique::Texture};
+
+// The value among `values` whose name_of(value) is `name`: every option's parser.
+template <class Enum, class Values, class NameOf>
+std::optional<Enum> parse_named(const Values& values, std::string_view name, NameOf name_of) {
+  for (const Enum v : values)
+    if (name_of(v) == name) return v;
+  return std::nullopt;
+}
 }  // namespace
 
 std::span<const SssTechnique> all_techniques() { return kTechniques; }
@@ -27,9 +35,7 @@ std::string_view technique_name(SssTechnique technique) {
 }
 
 std::optional<SssTechnique> parse_technique(std::string_view name) {
-  for (SssTechnique t : kTechniques)
-    if (technique_name(t) == name) return t;
-  return std::nullopt;
+  return parse_named<SssTechnique>(kTechniques, name, technique_name);
 }
 
 std::variant<SssTechnique, std::string> technique_from_cli(std::string_view sss, std::string_view mode) {
@@ -47,9 +53,8 @@ std::string_view texture_update_name(TextureUpdate update) {
 }
 
 std::optional<TextureUpdate> parse_texture_update(std::string_view name) {
-  for (TextureUpdate u : {TextureUpdate::EveryFrame, TextureUpdate::OnChange})
-    if (texture_update_name(u) == name) return u;
-  return std::nullopt;
+  constexpr TextureUpdate kUpdates[] = {TextureUpdate::EveryFrame, TextureUpdate::OnChange};
+  return parse_named<TextureUpdate>(kUpdates, name, texture_update_name);
 }
 
 std::string texture_size_error(long long size) {
@@ -110,9 +115,8 @@ std::string background_error(const std::array<float, 3>& colour) {
 std::string_view antialias_name(Antialias aa) { return aa == Antialias::Fxaa ? "fxaa" : "off"; }
 
 std::optional<Antialias> parse_antialias(std::string_view name) {
-  for (Antialias a : {Antialias::Off, Antialias::Fxaa})
-    if (antialias_name(a) == name) return a;
-  return std::nullopt;
+  constexpr Antialias kModes[] = {Antialias::Off, Antialias::Fxaa};
+  return parse_named<Antialias>(kModes, name, antialias_name);
 }
 
 std::string_view debug_view_name(DebugView view) {
@@ -131,9 +135,7 @@ std::string_view debug_view_name(DebugView view) {
 }
 
 std::optional<DebugView> parse_debug_view(std::string_view name) {
-  for (DebugView v : kDebugViews)
-    if (debug_view_name(v) == name) return v;
-  return std::nullopt;
+  return parse_named<DebugView>(kDebugViews, name, debug_view_name);
 }
 
 std::span<const DebugView> all_debug_views() { return kDebugViews; }

@@ -56,4 +56,9 @@ inline void print_pass_times(const renderer::FrameStats& s) {
   std::printf("%-16s %10.3f\n", "cpu frame", s.cpu_ms);
 }
 
+// The frame targets' device memory (Renderer::target_bytes), in MiB.
+inline void print_target_memory(const renderer::Renderer& r) {
+  std::printf("%-16s %10.1f MiB\n", "frame targets", double(r.target_bytes()) / (1024.0 * 1024.0));
+}
+
 }  // namespace sss::app

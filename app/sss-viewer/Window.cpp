@@ -329,6 +329,7 @@ void print_window_stats(const vk::Context& ctx, const Presenter& presenter, cons
     std::printf("%-16s %10.3f\n", "window frame", loop.timed_ms / loop.timed_frames);
     std::printf("%-16s %10.1f\n", "fps", 1000.0 * loop.timed_frames / loop.timed_ms);
   }
+  print_target_memory(r);
   session.ui->print_stats(stdout);
   std::printf("%-16s %10llu\n", "allocations", static_cast<unsigned long long>(ctx.successful_allocations()));
   std::printf("%-16s %10llu\n", "allocations @1", static_cast<unsigned long long>(loop.allocations_at_first_frame));

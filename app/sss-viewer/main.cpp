@@ -86,7 +86,7 @@ void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
               r.options().height, std::string(renderer::technique_name(r.options().technique)).c_str(), frames);
   print_pass_times(s);
   std::printf("%-16s %10.3f\n", "cpu mean", cpu_total_ms / frames);
-  std::printf("%-16s %10.1f MiB\n", "frame targets", double(r.target_bytes()) / (1024.0 * 1024.0));
+  print_target_memory(r);
 }
 
 // The scene and how it is drawn.

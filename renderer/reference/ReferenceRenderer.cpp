@@ -408,7 +408,7 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
   ReferenceStats& stats = out.stats;
 
   RayScene rays(s, o.threads);
-  auto t0 = Clock::now();
+  const auto t0 = Clock::now();
   // The GPU's maps, for its shadows, its thickness or both.
   std::unique_ptr<ShadowMaps> built;
   if (o.shadows == Shadows::ShadowMap || o.thickness == Thickness::ShadowMap)
@@ -419,24 +419,21 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
   std::vector<Group> groups = make_groups(s, rays, o, reporter);
   stats.profile_ms = ms_since(t0);
 
-  t0 = Clock::now();
-  run.sample_points(groups, stats);
-  stats.sampling_ms = ms_since(t0);
+  // Each stage, timed into its stats field.
+  const auto timed = [](double& ms, auto&& stage) {
+    const auto begin = Clock::now();
+    stage();
+    ms = ms_since(begin);
+  };
+  timed(stats.sampling_ms, [&] { run.sample_points(groups, stats); });
   reporter.check();
-
-  t0 = Clock::now();
   std::atomic<std::size_t> lit{0};
-  for (Group& g : groups) run.light_points(g, lit, stats.points);
-  stats.irradiance_ms = ms_since(t0);
-
-  t0 = Clock::now();
-  run.build_octrees(groups, stats);
-  stats.octree_ms = ms_since(t0);
+  timed(stats.irradiance_ms, [&] {
+    for (Group& g : groups) run.light_points(g, lit, stats.points);
+  });
+  timed(stats.octree_ms, [&] { run.build_octrees(groups, stats); });
   reporter.check();
-
-  t0 = Clock::now();
-  run.render_pixels(groups, out);
-  stats.render_ms = ms_since(t0);
+  timed(stats.render_ms, [&] { run.render_pixels(groups, out); });
   out.display = image::tonemap(out.hdr, o.exposure);
   stats.total_ms = ms_since(t_start);
   return out;

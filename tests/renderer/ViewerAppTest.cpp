@@ -66,7 +66,7 @@ TEST(ViewerApp, StatsPrintEveryPassAndTheCpuFrameTime) {
     const ViewerRun r = run("builtin:sphere --headless --out " + out +
                       " --width 64 --height 36 --frames 2 --stats --mode " + mode);
     EXPECT_EQ(r.code, 0) << r.out;
-    for (const char* row : {"shadow", "gbuffer", "lighting", "composite", "cpu frame"})
+    for (const char* row : {"shadow", "gbuffer", "lighting", "composite", "cpu frame", "frame targets"})
       EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
     EXPECT_NE(r.out.find(std::string("sss ") + mode), std::string::npos) << r.out;
   }

@@ -250,7 +250,7 @@ TEST(ViewerWindow, ExrScreenshotAndStats) {
   const CommandRun r = run_windowed("builtin:sphere --width 96 --height 54 --frames 3 --stats --screenshot " + exr);
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_FALSE(has_validation_message(r.out)) << r.out;
-  for (const char* row : {"window 96x54", "shadow", "composite", "fps"})
+  for (const char* row : {"window 96x54", "shadow", "composite", "fps", "frame targets"})
     EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
   auto image = sss::image::read_image(exr);
   ASSERT_TRUE(std::holds_alternative<sss::image::Image>(image)) << exr;
