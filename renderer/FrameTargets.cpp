@@ -23,7 +23,7 @@ FrameTargets::Use FrameTargets::use_for(const RenderOptions& o) {
   use.accum = t == SssTechnique::Gaussians || t == SssTechnique::Texture;
   use.line = t == SssTechnique::Separable;
   use.uv_stretch = o.debug_view == DebugView::UvStretch;
-  // Renderer::update_display_passes: FXAA, never under a debug view.
+  // FXAA, never under a debug view (Renderer::update_display_passes follows this).
   use.display_source = o.antialias == Antialias::Fxaa && o.debug_view == DebugView::None;
   return use;
 }

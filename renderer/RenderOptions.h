@@ -2,7 +2,7 @@
 // style). The CLI (app/sss-viewer) and the tests fill it.
 #pragma once
 
-#include "shaders/shared/frame.h"
+#include "shaders/shared/config.h"
 
 #include <array>
 #include <cstdint>
@@ -22,7 +22,7 @@ namespace sss::renderer {
 //   gaussians  screen space, each Gaussian of the fit as its own blur;
 //   texture    texture space: irradiance in each subsurface object's UV atlas, blurred
 //              there (renderer/README.md "Texture space").
-// The values are the shaders' SSS_TECHNIQUE_* (shaders/shared/frame.h), which they read in
+// The values are the shaders' SSS_TECHNIQUE_* (shaders/shared/config.h), which they read in
 // FrameUniforms::options.y.
 enum class SssTechnique : int {
   Off = SSS_TECHNIQUE_OFF,

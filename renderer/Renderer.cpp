@@ -223,12 +223,13 @@ void Renderer::update_display_passes() {
   } else {
     if (!debug_) debug_ = std::make_unique<DebugViewPass>(resources_);
   }
-  // A debug view is data (its colour bar maps values to colours): no anti-aliasing there.
-  if (options_.antialias != Antialias::Fxaa || view != DebugView::None)
+  // FXAA, never under a debug view (its colour bar maps values to colours): the rule that
+  // also gives the pass its source target (FrameTargets::use_for), always options_'s here.
+  if (!targets_.use.display_source)
     antialias_.reset();
   else if (!antialias_)
     antialias_ = std::make_unique<AntialiasPass>(resources_);
-  gbuffer_->set_uv_stretch(view == DebugView::UvStretch);
+  gbuffer_->set_uv_stretch(targets_.use.uv_stretch);
   if (separable_) separable_->set_write_scattered(view == DebugView::Scattered);
 }
 

@@ -10,6 +10,12 @@
 // (tests/vk/ShaderConfigTest.cpp checks it at compile time).
 #define SSS_MAX_GAUSSIANS 8
 
+// The SSS technique (renderer::SssTechnique; FrameUniforms::options.y).
+#define SSS_TECHNIQUE_OFF 0
+#define SSS_TECHNIQUE_SEPARABLE 1
+#define SSS_TECHNIQUE_GAUSSIANS 2
+#define SSS_TECHNIQUE_TEXTURE 3
+
 // Compute workgroup sizes. 8x8 suits image passes (subgroup size 8 on lavapipe, 32-64 on
 // GPUs); 64 suits 1D passes over buffers.
 #define SSS_WORKGROUP_2D_X 8

@@ -17,11 +17,6 @@
 // Gaussian blur half-taps at most per 1D pass (gaussians mode); wider Gaussians are
 // sampled with an integer stride.
 #define SSS_GAUSSIAN_HALF_TAPS 12
-// The SSS technique (renderer::SssTechnique; FrameUniforms::options.y).
-#define SSS_TECHNIQUE_OFF 0
-#define SSS_TECHNIQUE_SEPARABLE 1
-#define SSS_TECHNIQUE_GAUSSIANS 2
-#define SSS_TECHNIQUE_TEXTURE 3
 // Light types (Light::type).
 #define SSS_LIGHT_DIRECTIONAL 0
 #define SSS_LIGHT_POINT 1

@@ -103,8 +103,9 @@ TEST_F(RenderTest, PrePostAlbedoEqualsPostScatterWithoutScattering) {
 // A frame holds only the targets its technique and view read (FrameTargets::Use); the
 // others are 1 x 1. Bytes per pixel of the optional ones (FrameTargets.h's formats): sss
 // temp, a, b and accum rgba16f (8 each), sss line and prefix rgba32f (16 each), uv stretch
-// rgba16f (8), the display source rgba8 (4). The device may round each image's memory up
-// (alignment, tiling): at most 64 KiB per image is allowed for that, over the 15 images.
+// rgba16f (8), the display source rgba8 (4). The device rounds each image's memory up to
+// its VkMemoryRequirements alignment (tiling padding included); 64 KiB, the largest page
+// alignment Vulkan devices ask for an image, bounds that per image, over the 15 images.
 TEST_F(RenderTest, AFrameHoldsOnlyTheTargetsItsTechniqueReads) {
   const std::uint32_t w = 320, h = 180;
   const double px = double(w) * double(h);
