@@ -169,12 +169,14 @@ void add_options(CLI::App& app, Args& a) {
                  "diffusion, octree: how light crosses thin parts: profile (default: far-side points summed with "
                  "the profile, the model's own answer), local (as sss-viewer: the far side dark, each point facing "
                  "away from a light given E (-n.l) T(d) / R_d, d ray-cast towards the light, T(d) R's tail beyond "
-                 "d), or off (far side dark, nothing transmitted: sss-viewer --transmission off); the error "
+                 "d; with --environment also the sky behind each point, through its inward thickness along -n), or "
+                 "off (far side dark, nothing transmitted: sss-viewer --transmission off); the error "
                  "budget's transmission link");
   app.add_option("--thickness-from", a.thickness,
                  "diffusion, --transmission local: the thickness d towards each light, ray-cast (default: the last "
                  "surface on the light's line) or shadow-map (read as sss-viewer reads it from the light's "
-                 "unbiased shadow map at --shadow-map-size; the error budget's thickness link)");
+                 "unbiased shadow map at --shadow-map-size, and the sky's inward thickness from its per-vertex "
+                 "bake; the error budget's thickness link)");
   app.add_option("--shadow-map-size", a.shadow_map_size,
                  "diffusion --shadows shadow-map or --thickness-from shadow-map: texels a side (default 1024, as sss-viewer's)")
       ->check(CLI::Range(1, 16384));

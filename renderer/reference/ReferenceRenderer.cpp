@@ -10,6 +10,7 @@
 #include "renderer/reference/Shading.h"
 #include "renderer/reference/SingleScatter.h"
 #include "renderer/reference/SurfaceSampling.h"
+#include "renderer/reference/Thickness.h"
 
 #include "profiles/Fresnel.h"
 #include "profiles/GaussianSumProfile.h"
@@ -177,6 +178,14 @@ double thickness_towards(const RayScene& rays, const glm::vec3& p, const glm::ve
   return double(last);
 }
 
+// The environment's thickness for Transmission::Local, ray-cast: the distance from p along
+// -n (the interpolated normal) to the first surface, what the GPU's per-vertex inward
+// thickness (Thickness.h) is at its vertices; -1 where the ray leaves the scene.
+double thickness_inward(const RayScene& rays, const glm::vec3& p, const glm::vec3& n) {
+  const float t_near = 1e-4f * std::max(1.0f, glm::length(p));
+  const std::optional<Hit> hit = rays.intersect(p, -n, t_near, std::numeric_limits<float>::max());
+  return hit ? double(hit->t) : -1.0;
+}
 
 }  // namespace
 
@@ -216,15 +225,25 @@ struct OctreeRender {
   const RayScene& rays;
   const ShadowMaps* shadow_maps;     // what shadows: the GPU's maps, or null (ray cast)
   const ShadowMaps* thickness_maps;  // the thickness's source, likewise
+  // The GPU's inward thickness per mesh vertex (Thickness.h), in mesh units, for the
+  // environment's transmission with Thickness::ShadowMap (what the G-buffer interpolates);
+  // empty otherwise, and the thickness is ray-cast at each point.
+  const std::vector<std::vector<float>>& vertex_thickness;
 
   // Checks the planned total against --max-points, then samples every group's surface
   // (groups in parallel).
   void sample_points(std::vector<Group>& groups, ReferenceStats& stats) const;
   // The irradiance at each of g's points, and its kernel.
   void light_points(Group& g, std::atomic<std::size_t>& lit, std::size_t total) const;
-  // The light a local transmission adds at p (normal n) through the object, per channel.
+  // The light a local transmission adds at p (normal n) through the object, per channel:
+  // each light's through its thickness towards the light, and the environment's through
+  // `inward_mm` (the thickness along -n; negative: none).
   glm::dvec3 transmitted(const LocalTransmittance& t, const SurfacePoint& p, const glm::vec3& n,
-                         const glm::dvec3* entry_eta) const;
+                         const glm::dvec3* entry_eta, double inward_mm) const;
+  // inward_mm for a sampled point of triangle `tri` of `instance`: the GPU's interpolated
+  // vertex thickness, or ray-cast along the interpolated normal.
+  double inward_thickness_at(const SurfacePoint& p, std::uint32_t instance, std::uint32_t tri,
+                             const glm::vec2& barycentric) const;
   void build_octrees(std::vector<Group>& groups, ReferenceStats& stats) const;
   // One primary ray per pixel centre.
   void render_pixels(const std::vector<Group>& groups, ReferenceImage& out) const;
@@ -270,7 +289,7 @@ void OctreeRender::sample_points(std::vector<Group>& groups, ReferenceStats& sta
 }
 
 glm::dvec3 OctreeRender::transmitted(const LocalTransmittance& t, const SurfacePoint& p,
-                                     const glm::vec3& n, const glm::dvec3* entry_eta) const {
+                                     const glm::vec3& n, const glm::dvec3* entry_eta, double inward_mm) const {
   glm::dvec3 sum(0.0);
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     // The GPU transmits only lights with a shadow map, which point lights lack.
@@ -287,7 +306,35 @@ glm::dvec3 OctreeRender::transmitted(const LocalTransmittance& t, const SurfaceP
       sum[c] += a->radiance[c] * cosine * f * t.fraction(c, d);
     }
   }
+  // The environment (shading.glsl): no one light's map gives the sky's path, so the surface
+  // behind p is taken inward_mm away along -n, facing -n. It receives the sky's irradiance
+  // about -n (the part that enters, with directional Fresnel) and sends T(d) / R_d of it
+  // through. As the GPU takes it with its shadow maps (spherical harmonics, no occlusion);
+  // ray-traced otherwise, from that far point. Exact for a flat slab under any sky.
+  if (s.environment && inward_mm >= 0.0 && std::isfinite(inward_mm)) {
+    SurfacePoint behind = p;
+    behind.position_mm = p.position_mm - n * float(inward_mm);
+    behind.geometric_normal = -n;
+    const glm::dvec3 e =
+        environment_irradiance(*s.environment, rays, behind, -n, shadow_maps != nullptr, entry_eta);
+    for (int c = 0; c < 3; ++c) sum[c] += e[c] * t.fraction(c, inward_mm);
+  }
   return sum;
+}
+
+double OctreeRender::inward_thickness_at(const SurfacePoint& p, std::uint32_t instance, std::uint32_t tri,
+                                         const glm::vec2& b) const {
+  if (!s.environment) return -1.0;
+  const std::uint32_t mesh_index = s.instances[instance].mesh;
+  if (vertex_thickness.empty()) return thickness_inward(rays, p.position_mm, p.normal);
+  // The GPU's: the vertices' values interpolated (a -1 among them pulls it below 0, and
+  // the GPU then transmits nothing), in mm by the scene's unit alone (shaders'
+  // thickness_mm(): frame.scale.x, the instance's scale not applied).
+  const std::vector<float>& v = vertex_thickness[mesh_index];
+  const std::vector<std::uint32_t>& idx = s.meshes[mesh_index].indices;
+  if (v.empty()) return -1.0;
+  const double t = v[idx[3 * tri]] * (1.0 - b.x - b.y) + v[idx[3 * tri + 1]] * b.x + v[idx[3 * tri + 2]] * b.y;
+  return t * s.mm_per_unit;
 }
 
 void OctreeRender::light_points(Group& g, std::atomic<std::size_t>& lit, std::size_t total) const {
@@ -314,7 +361,9 @@ void OctreeRender::light_points(Group& g, std::atomic<std::size_t>& lit, std::si
                           const glm::vec3 n = shading_normal(s, p, sp.normal);
                           const DirectLight d = direct_light(s, rays, p, n, nullptr, shadow_maps, entry_eta);
                           glm::dvec3 e = d.irradiance;
-                          if (local) e += transmitted(*transmittance, p, n, entry_eta);
+                          if (local)
+                            e += transmitted(*transmittance, p, n, entry_eta,
+                                             inward_thickness_at(p, instance, tri, sp.barycentric));
                           if (pre_post) e *= glm::sqrt(glm::dvec3(base_colour(s, p)));
                           points[i] = {sp.position_mm, sp.normal, glm::vec3(e)};
                         }
@@ -413,9 +462,16 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
   std::unique_ptr<ShadowMaps> built;
   if (o.shadows == Shadows::ShadowMap || o.thickness == Thickness::ShadowMap)
     arena.execute([&] { built = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size); });
+  // The environment's transmission through the GPU's thickness: its per-vertex bake.
+  std::vector<std::vector<float>> vertex_thickness;
+  if (s.environment && o.transmission == Transmission::Local && o.thickness == Thickness::ShadowMap) {
+    vertex_thickness.resize(s.meshes.size());
+    for (std::size_t m = 0; m < s.meshes.size(); ++m)
+      if (s.materials[s.meshes[m].material].sss.enabled) vertex_thickness[m] = inward_thickness(s.meshes[m]);
+  }
   const OctreeRender run{s, o, reporter, arena, rays,
                          o.shadows == Shadows::ShadowMap ? built.get() : nullptr,
-                         o.thickness == Thickness::ShadowMap ? built.get() : nullptr};
+                         o.thickness == Thickness::ShadowMap ? built.get() : nullptr, vertex_thickness};
   std::vector<Group> groups = make_groups(s, rays, o, reporter);
   stats.profile_ms = ms_since(t0);
 

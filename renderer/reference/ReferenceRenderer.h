@@ -70,7 +70,9 @@ enum class Transmission {
   // irradiance, d the path through the geometry towards the light (ray-cast to the last
   // surface the light meets: what a shadow map stores), T(d) = ∫_d^∞ 2πs R(s) ds the
   // light a point source at depth d sends through the surface (for the Gaussian fit,
-  // Σ w_i exp(−d²/2v_i), the GPU's own), a slab's total transmittance for slabs. Octree only.
+  // Σ w_i exp(−d²/2v_i), the GPU's own), a slab's total transmittance for slabs. With an
+  // environment, every point also adds the sky's irradiance about −n at the surface d_in
+  // behind it (the inward thickness along −n) times T(d_in) / R_d. Octree only.
   Local,
   // Far side dark, no local term: sss-viewer --transmission off. Octree only.
   Off,
@@ -81,6 +83,8 @@ std::string_view transmission_name(Transmission t);  // "profile" | "local" | "o
 // light's line through the point), or read as the GPU reads it from the light's unbiased
 // shadow map at shadow_map_size (ShadowMaps::thickness_mm: the texel's depth moved along
 // its neighbours' gradient; -1 outside the map, where the GPU transmits nothing).
+// The environment's inward thickness likewise: ray-cast from the point along −n, or the
+// GPU's per-vertex bake (Thickness.h) interpolated as the G-buffer does.
 enum class Thickness { RayCast, ShadowMap };
 
 struct ReferenceOptions {
