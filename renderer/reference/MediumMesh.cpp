@@ -29,16 +29,17 @@ bool traverses(const TriangleRef& t, std::uint32_t a, std::uint32_t b) {
   return false;
 }
 
-MediumSurface make_surface(const scene::Scene& s, const RayScene& rays, std::uint32_t material,
-                           const std::vector<std::uint32_t>& instances) {
-  MediumSurface out;
-  out.material = material;
-  out.instances = instances;
-  out.outward.resize(s.instances.size());
+// The surface's triangles over welded vertex ids, and the welded positions. Positions
+// closer than 1e-6 of the surface's size are one: seams split for UV charts share their
+// positions bit for bit, but a generated sphere's seam (cos 2π vs cos 0) differs in the
+// last bits. Cells of that size, a position matched against its 27 neighbours. Triangles
+// whose welded corners coincide (no area) are left out.
+struct WeldedSurface {
+  std::vector<TriangleRef> tris;
+  std::vector<glm::dvec3> positions;
+};
 
-  // Weld positions closer than 1e-6 of the surface's size: seams split for UV charts share
-  // their positions bit for bit, but a generated sphere's seam (cos 2π vs cos 0) differs
-  // in the last bits. Cells of that size, a position matched against its 27 neighbours.
+WeldedSurface weld_triangles(const scene::Scene& s, const RayScene& rays, const std::vector<std::uint32_t>& instances) {
   double extent = 0.0;
   {
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
@@ -56,7 +57,8 @@ MediumSurface make_surface(const scene::Scene& s, const RayScene& rays, std::uin
     }
   };
   std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, CellHash> cells;
-  std::vector<glm::dvec3> positions;
+  WeldedSurface out;
+  std::vector<glm::dvec3>& positions = out.positions;
   auto weld = [&](const glm::dvec3& p) {
     const std::array<std::int64_t, 3> k = {std::int64_t(std::floor(p.x / tol)), std::int64_t(std::floor(p.y / tol)),
                                            std::int64_t(std::floor(p.z / tol))};
@@ -73,33 +75,28 @@ MediumSurface make_surface(const scene::Scene& s, const RayScene& rays, std::uin
     cells[k].push_back(id);
     return id;
   };
-  std::vector<TriangleRef> tris;
   for (std::uint32_t i : instances) {
     const scene::Mesh& mesh = s.meshes[s.instances[i].mesh];
     const std::vector<glm::vec3>& world = rays.world_positions(i);
-    out.outward[i].assign(mesh.triangle_count(), 1);
     for (std::uint32_t t = 0; t < mesh.triangle_count(); ++t) {
       TriangleRef ref{i, t, {}};
       for (int k = 0; k < 3; ++k) ref.v[std::size_t(k)] = weld(glm::dvec3(world[mesh.indices[3 * t + k]]));
       if (ref.v[0] == ref.v[1] || ref.v[1] == ref.v[2] || ref.v[0] == ref.v[2]) continue;  // no area
-      tris.push_back(ref);
+      out.tris.push_back(ref);
     }
   }
-  MediumTopology& topo = out.topology;
-  topo.triangles = tris.size();
+  return out;
+}
 
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> edges;  // edge -> triangles
-  edges.reserve(tris.size() * 2);
-  for (std::uint32_t t = 0; t < tris.size(); ++t)
-    for (int k = 0; k < 3; ++k) edges[edge_key(tris[t].v[k], tris[t].v[(k + 1) % 3])].push_back(t);
-  for (const auto& [key, users] : edges) {
-    if (users.size() == 1) ++topo.boundary_edges;
-    if (users.size() > 2) ++topo.non_manifold_edges;
-  }
+using EdgeUsers = std::unordered_map<std::uint64_t, std::vector<std::uint32_t>>;  // edge -> triangles
 
-  // Orient each piece by breadth-first propagation across manifold edges: a neighbour
-  // must traverse the shared edge the other way, else it is flipped.
-  std::vector<int> flip(tris.size(), 0), piece(tris.size(), -1);
+// Each piece's orientation: breadth-first propagation across manifold edges, a neighbour
+// must traverse the shared edge the other way, else it is flipped. Fills flip, piece and
+// the topology's pieces, unorientable edges and rewound triangles.
+void orient_pieces(const std::vector<TriangleRef>& tris, EdgeUsers& edges, std::vector<int>& flip,
+                   std::vector<int>& piece, MediumTopology& topo) {
+  flip.assign(tris.size(), 0);
+  piece.assign(tris.size(), -1);
   std::unordered_map<std::uint64_t, bool> conflicts;
   for (std::uint32_t seed = 0; seed < tris.size(); ++seed) {
     if (piece[seed] >= 0) continue;
@@ -129,6 +126,31 @@ MediumSurface make_surface(const scene::Scene& s, const RayScene& rays, std::uin
   }
   topo.unorientable_edges = conflicts.size();
   for (int f : flip) topo.rewound_triangles += std::size_t(f);
+}
+
+MediumSurface make_surface(const scene::Scene& s, const RayScene& rays, std::uint32_t material,
+                           const std::vector<std::uint32_t>& instances) {
+  MediumSurface out;
+  out.material = material;
+  out.instances = instances;
+  out.outward.resize(s.instances.size());
+  for (std::uint32_t i : instances) out.outward[i].assign(s.meshes[s.instances[i].mesh].triangle_count(), 1);
+  const WeldedSurface welded = weld_triangles(s, rays, instances);
+  const std::vector<TriangleRef>& tris = welded.tris;
+  const std::vector<glm::dvec3>& positions = welded.positions;
+  MediumTopology& topo = out.topology;
+  topo.triangles = tris.size();
+
+  EdgeUsers edges;
+  edges.reserve(tris.size() * 2);
+  for (std::uint32_t t = 0; t < tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) edges[edge_key(tris[t].v[k], tris[t].v[(k + 1) % 3])].push_back(t);
+  for (const auto& [key, users] : edges) {
+    if (users.size() == 1) ++topo.boundary_edges;
+    if (users.size() > 2) ++topo.non_manifold_edges;
+  }
+  std::vector<int> flip, piece;
+  orient_pieces(tris, edges, flip, piece, topo);
 
   // Each piece's volume (divergence theorem); a negative one means it is wound inward.
   std::vector<double> volume(topo.pieces, 0.0);

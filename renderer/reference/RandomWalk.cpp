@@ -26,6 +26,50 @@ int pick_channel(const glm::dvec3& weight, double sum, double u) {
   return weight.y > 0.0 ? 1 : 0;
 }
 
+// The sky a walk meets where it reaches a face (an environment light): the part of the
+// walk the face transmits continues outside along the refracted direction and meets the
+// sky there unless the scene is in the way. Radiance entering the denser medium gains
+// eta^2 (L / n^2 is conserved), so the walk adds beta (1 - F) eta^2 L_env V and goes on
+// with the reflected part (the same estimate as choosing between the two with
+// probabilities F and 1 - F, with less noise). Pre/post albedo: sqrt(albedo) at the
+// entry, as the direct beams. `sky` gets (1 - F) eta^2 L_env (x sqrt(albedo)); false
+// where nothing refracts out or the scene hides the sky.
+bool sky_through_face(const scene::Scene& s, const RayScene& rays, bool pre_post, double eta, const Hit& hit,
+                      const glm::dvec3& p, const glm::dvec3& w, const glm::dvec3& out, double reflectance,
+                      glm::dvec3& sky) {
+  glm::dvec3 w_out;
+  if (!walk::refract(w, -out, eta, 1.0, w_out)) return false;
+  const glm::vec3 origin = glm::vec3(p + out * surface_offset_mm(p));
+  if (rays.occluded(origin, glm::vec3(w_out), 0.0f, std::numeric_limits<float>::infinity())) return false;
+  sky = glm::dvec3(s.environment->radiance(glm::vec3(w_out))) * ((1.0 - reflectance) * eta * eta);
+  if (pre_post)
+    sky *= glm::sqrt(glm::dvec3(base_colour(s, surface_at(s, rays, hit.instance, hit.triangle, hit.barycentric))));
+  return true;
+}
+
+// Next-event estimation at a scattering event at p: every direct beam of the band there,
+// scattered into the walk's direction w reversed (light arriving along b.direction leaves
+// along -w), times beta, added to L beam by beam.
+void add_next_event(const scene::Scene& s, const RayScene& rays, const WalkMedium& medium,
+                    const WalkMedium::Band& band, const glm::dvec3& p, const glm::dvec3& w, const glm::dvec3& beta,
+                    glm::dvec3& L, WalkStats& stats) {
+  thread_local std::vector<DirectBeam> beams;
+  beams.clear();
+  band.beams->gather(p, beams);
+  stats.beams += beams.size();
+  for (const DirectBeam& b : beams) {
+    const double cos_theta = -glm::dot(b.direction, w);
+    glm::dvec3 phase;
+    for (int k = 0; k < 3; ++k) phase[k] = walk::hg_pdf(medium.g[k], cos_theta);
+    glm::dvec3 contribution = b.irradiance * phase * glm::exp(-medium.sigma_t * b.distance_mm);
+    if (medium.pre_post) {
+      const SurfacePoint y = surface_at(s, rays, b.instance, b.triangle, b.barycentric);
+      contribution *= glm::sqrt(glm::dvec3(base_colour(s, y)));
+    }
+    L += beta * contribution;
+  }
+}
+
 }  // namespace
 
 glm::dvec3 face_normal(const scene::Scene& s, const RayScene& rays, std::uint32_t instance, std::uint32_t triangle) {
@@ -140,7 +184,6 @@ glm::dvec3 WalkScene::sample_radiance(const WalkMedium& medium, const WalkMedium
       if (band.channels[std::size_t(j)] && band.channels[std::size_t(k)] && medium.g[j] != medium.g[k]) one_g = false;
   glm::dvec3 p = x_o - outward * surface_offset_mm(x_o);
   glm::dvec3 w = inward;
-  thread_local std::vector<DirectBeam> beams;
   for (std::uint64_t events = 0;; ++events) {
     if (events >= kMaxEvents) {
       ++stats.truncated;
@@ -175,22 +218,11 @@ glm::dvec3 WalkScene::sample_radiance(const WalkMedium& medium, const WalkMedium
       const double cos_w = glm::dot(w, ng);
       const glm::dvec3 out = cos_w > 0.0 ? ng : -ng;  // towards where the walk was going
       const double reflectance = walk::fresnel(std::abs(cos_w), band.eta, 1.0);
-      // An environment light: the part of the walk the face transmits continues outside
-      // along the refracted direction and meets the sky there unless the scene is in the
-      // way. Radiance entering the denser medium gains eta^2 (L / n^2 is conserved), so
-      // the walk adds beta (1 - F) eta^2 L_env V and goes on with the reflected part (the
-      // same estimate as choosing between the two with probabilities F and 1 - F, with
-      // less noise). Pre/post albedo: sqrt(albedo) at the entry, as the direct beams.
-      glm::dvec3 w_out;
-      if (s.environment && reflectance < 1.0 && walk::refract(w, -out, band.eta, 1.0, w_out)) {
-        const glm::vec3 origin = glm::vec3(p + out * surface_offset_mm(p));
-        if (!rays_->occluded(origin, glm::vec3(w_out), 0.0f, std::numeric_limits<float>::infinity())) {
-          glm::dvec3 sky = glm::dvec3(s.environment->radiance(glm::vec3(w_out))) *
-                           ((1.0 - reflectance) * band.eta * band.eta);
-          if (medium.pre_post)
-            sky *= glm::sqrt(glm::dvec3(base_colour(s, surface_at(s, *rays_, hit->instance, hit->triangle, hit->barycentric))));
-          L += beta * sky;
-        }
+      // An environment light: the sky through the face (sky_through_face), then the walk
+      // goes on with the reflected part.
+      if (s.environment && reflectance < 1.0) {
+        glm::dvec3 sky;
+        if (sky_through_face(s, *rays_, medium.pre_post, band.eta, *hit, p, w, out, reflectance, sky)) L += beta * sky;
       }
       beta *= reflectance;
       ++stats.boundary_hits;
@@ -201,22 +233,7 @@ glm::dvec3 WalkScene::sample_radiance(const WalkMedium& medium, const WalkMedium
       beta *= medium.sigma_s * tr / glm::dot(prob, medium.sigma_t * tr);
       p += w * flight;
       ++stats.scattering_events;
-      // Next-event estimation: every direct beam at p, scattered into the walk's
-      // direction reversed (light arriving along b.direction leaves along -w).
-      beams.clear();
-      band.beams->gather(p, beams);
-      stats.beams += beams.size();
-      for (const DirectBeam& b : beams) {
-        const double cos_theta = -glm::dot(b.direction, w);
-        glm::dvec3 phase;
-        for (int k = 0; k < 3; ++k) phase[k] = walk::hg_pdf(medium.g[k], cos_theta);
-        glm::dvec3 contribution = b.irradiance * phase * glm::exp(-medium.sigma_t * b.distance_mm);
-        if (medium.pre_post) {
-          const SurfacePoint y = surface_at(s, *rays_, b.instance, b.triangle, b.barycentric);
-          contribution *= glm::sqrt(glm::dvec3(base_colour(s, y)));
-        }
-        L += beta * contribution;
-      }
+      add_next_event(s, *rays_, medium, band, p, w, beta, L, stats);
       // The next direction.
       if (one_g) {
         w = walk::hg_sample(medium.g[c], w, rng.uniform(), rng.uniform());
