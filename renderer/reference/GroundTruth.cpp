@@ -80,9 +80,11 @@ double relative_standard_error(const image::Image& mean, const image::Image& var
   return sq > 0.0 ? std::sqrt(var / sq) : 0.0;
 }
 
-GroundTruthImage render_ground_truth(const scene::Scene& s, const GroundTruthOptions& o, const ProgressFn& progress,
-                                     const std::atomic<bool>* cancel) {
-  check_options(o);
+namespace {
+
+// What the walk needs of a scene, else std::invalid_argument naming the part: a camera,
+// instances and meshes whose indices hold, meshes that check_mesh accepts.
+void check_walk_scene(const scene::Scene& s) {
   if (s.cameras.empty()) throw std::invalid_argument("scene '" + s.name + "' has no camera");
   for (const scene::Instance& inst : s.instances)
     if (inst.mesh >= s.meshes.size()) throw std::invalid_argument("instance '" + inst.node + "': mesh index out of range");
@@ -91,6 +93,66 @@ GroundTruthImage render_ground_truth(const scene::Scene& s, const GroundTruthOpt
     if (mesh.material >= s.materials.size())
       throw std::invalid_argument("mesh '" + mesh.name + "': material index out of range");
   }
+}
+
+// One primary ray per pixel of the tile: opaque pixels (and the alpha of every hit) are
+// written to out's hdr and variance; subsurface pixels are returned, in pixel order, with
+// what is deterministic about them.
+template <typename CancelledFn>
+std::vector<PixelPlan> plan_pixels(const scene::Scene& s, const RayScene& rays, const WalkScene& walk,
+                                   const GroundTruthOptions& o, tbb::task_arena& arena, const CancelledFn& cancelled,
+                                   GroundTruthImage& out) {
+  const CameraRays camera(s.cameras[0], o.width, o.height, s.mm_per_unit);
+  return plan_rows<PixelPlan>(o.height, o.tile, arena, cancelled, [&](std::uint32_t y, std::vector<PixelPlan>& row) {
+    for (std::uint32_t x = 0; x < o.width; ++x) {
+      const CameraRays::Ray ray = camera.pixel(x, y);
+      const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
+      if (!hit) continue;
+      const VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only);
+      float* px = out.hdr.pixel(int(x), int(y));
+      px[3] = 1.0f;
+      out.variance.pixel(int(x), int(y))[3] = 1.0f;
+      const WalkMedium* medium = v.subsurface ? walk.medium(v.point.material) : nullptr;
+      if (!medium) {
+        const glm::dvec3 L = o.diffuse_only ? glm::dvec3(0.0) : v.opaque_radiance();
+        for (int c = 0; c < 3; ++c) px[c] = float(L[c]);
+        continue;
+      }
+      PixelPlan p;
+      p.index = y * o.width + x;
+      p.medium = medium;
+      p.base = o.diffuse_only ? glm::dvec3(0.0) : v.specular;
+      p.factor = o.diffuse_only ? glm::dvec3(1.0) : v.scatter_factor;
+      p.x_o = glm::dvec3(v.point.position_mm);
+      p.eye_travel = glm::dvec3(ray.direction);
+      const glm::dvec3 ng = face_normal(s, rays, hit->instance, hit->triangle);
+      p.outward = glm::dot(ng, p.eye_travel) < 0.0 ? ng : -ng;
+      // M/π includes the light that leaves without scattering (a delta in direction).
+      if (o.exitance) p.base += p.factor * walk.unscattered_exitance(*medium, p.x_o, p.outward) / walk::kPi;
+      row.push_back(p);
+    }
+  });
+}
+
+// The media, their topology and direct beams (WalkScene), built within the arena; its
+// warnings go to stats and o.on_warning, its beam chunks are counted.
+std::unique_ptr<WalkScene> make_walk_scene(const scene::Scene& s, const RayScene& rays, const GroundTruthOptions& o,
+                                           tbb::task_arena& arena, GroundTruthStats& stats) {
+  std::unique_ptr<WalkScene> walk;
+  arena.execute([&] { walk = std::make_unique<WalkScene>(s, rays, &stats.warnings); });
+  if (o.on_warning)
+    for (const std::string& w : stats.warnings) o.on_warning(w);
+  for (const WalkMedium& m : walk->media())
+    for (const WalkMedium::Band& b : m.bands) stats.beam_chunks += b.beams->chunk_count();
+  return walk;
+}
+
+}  // namespace
+
+GroundTruthImage render_ground_truth(const scene::Scene& s, const GroundTruthOptions& o, const ProgressFn& progress,
+                                     const std::atomic<bool>* cancel) {
+  check_options(o);
+  check_walk_scene(s);
   const auto t_start = Clock::now();
   auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
   std::mutex progress_mutex;
@@ -104,57 +166,15 @@ GroundTruthImage render_ground_truth(const scene::Scene& s, const GroundTruthOpt
   GroundTruthStats& stats = out.stats;
 
   const RayScene rays(s, o.threads);
-  std::unique_ptr<WalkScene> walk;
-  arena.execute([&] { walk = std::make_unique<WalkScene>(s, rays, &stats.warnings); });
-  if (o.on_warning)
-    for (const std::string& w : stats.warnings) o.on_warning(w);
-  for (const WalkMedium& m : walk->media())
-    for (const WalkMedium::Band& b : m.bands) stats.beam_chunks += b.beams->chunk_count();
+  const std::unique_ptr<WalkScene> walk = make_walk_scene(s, rays, o, arena, stats);
   report("setup", 0.5);
   if (cancelled()) throw Cancelled();
 
   // Every pixel of the tile: its visible surface and what is deterministic about it.
-  const CameraRays camera(s.cameras[0], o.width, o.height, s.mm_per_unit);
   out.hdr = image::Image(int(o.width), int(o.height));
   out.variance = image::Image(int(o.width), int(o.height));
-  std::vector<PixelPlan> plans;  // subsurface pixels only, in pixel order
-  std::vector<std::vector<PixelPlan>> rows(o.height);
-  arena.execute([&] {
-    tbb::parallel_for(std::uint32_t(0), o.height, [&](std::uint32_t y) {
-      if (!o.tile.owns_row(y) || cancelled()) return;
-      for (std::uint32_t x = 0; x < o.width; ++x) {
-        const CameraRays::Ray ray = camera.pixel(x, y);
-        const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
-        if (!hit) continue;
-        const VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only);
-        float* px = out.hdr.pixel(int(x), int(y));
-        px[3] = 1.0f;
-        out.variance.pixel(int(x), int(y))[3] = 1.0f;
-        const WalkMedium* medium = v.subsurface ? walk->medium(v.point.material) : nullptr;
-        if (!medium) {
-          const glm::dvec3 L = o.diffuse_only ? glm::dvec3(0.0) : v.opaque_radiance();
-          for (int c = 0; c < 3; ++c) px[c] = float(L[c]);
-          continue;
-        }
-        PixelPlan p;
-        p.index = y * o.width + x;
-        p.medium = medium;
-        p.base = o.diffuse_only ? glm::dvec3(0.0) : v.specular;
-        p.factor = o.diffuse_only ? glm::dvec3(1.0) : v.scatter_factor;
-        p.x_o = glm::dvec3(v.point.position_mm);
-        p.eye_travel = glm::dvec3(ray.direction);
-        const glm::dvec3 ng = face_normal(s, rays, hit->instance, hit->triangle);
-        p.outward = glm::dot(ng, p.eye_travel) < 0.0 ? ng : -ng;
-        // M/π includes the light that leaves without scattering (a delta in direction).
-        if (o.exitance) p.base += p.factor * walk->unscattered_exitance(*medium, p.x_o, p.outward) / walk::kPi;
-        rows[y].push_back(p);
-      }
-    });
-  });
+  const std::vector<PixelPlan> plans = plan_pixels(s, rays, *walk, o, arena, cancelled, out);
   if (cancelled()) throw Cancelled();
-  for (std::vector<PixelPlan>& r : rows)
-    for (const PixelPlan& p : r) plans.push_back(p);
-  rows.clear();
   stats.subsurface_pixels = plans.size();
   stats.setup_seconds = seconds_since(t_start);
   report("setup", 1.0);

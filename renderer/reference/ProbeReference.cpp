@@ -225,6 +225,44 @@ struct ProbePixel {
   glm::dvec3 x_o{0.0}, n_o{0.0};
 };
 
+// One primary ray per pixel of the tile: what is deterministic (opaque pixels, specular,
+// single scattering, the alpha of every hit) is written to `out`; subsurface pixels are
+// returned, in pixel order, with what their batches need.
+template <class Cancelled>
+std::vector<ProbePixel> plan_probe_pixels(const scene::Scene& s, const RayScene& rays, const ProbeEstimator& estimator,
+                                          const ShadowMaps* maps, const ReferenceOptions& o, tbb::task_arena& arena,
+                                          const Cancelled& cancelled, ReferenceImage& out) {
+  const CameraRays camera(s.cameras[0], o.width, o.height, s.mm_per_unit);
+  return plan_rows<ProbePixel>(o.height, o.tile, arena, cancelled, [&](std::uint32_t y, std::vector<ProbePixel>& row) {
+    for (std::uint32_t x = 0; x < o.width; ++x) {
+      const CameraRays::Ray ray = camera.pixel(x, y);
+      const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
+      if (!hit) continue;
+      VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only, maps);
+      if (o.applies_single_scattering()) add_single_scattering(s, rays, v, maps);
+      float* px = out.hdr.pixel(int(x), int(y));
+      px[3] = 1.0f;
+      out.variance.pixel(int(x), int(y))[3] = 1.0f;
+      store_specular(out.specular, x, y, v, o.diffuse_only);
+      const ProbeGroup* g = v.subsurface ? estimator.group(v.point.material) : nullptr;
+      if (!g) {
+        const glm::dvec3 L = o.diffuse_only ? glm::dvec3(0.0) : v.opaque_radiance();
+        for (int c = 0; c < 3; ++c) px[c] = float(L[c]);
+        continue;
+      }
+      ProbePixel p;
+      p.index = y * o.width + x;
+      p.group = g;
+      p.base = o.diffuse_only ? glm::dvec3(0.0) : v.specular;
+      p.factor = (o.diffuse_only ? glm::dvec3(1.0) : v.scatter_factor * (o.applies_fresnel() ? v.exit_fresnel : glm::dvec3(1.0))) / kPi;
+      // The mesh's interpolated normal at x_o, as the octree gathers with.
+      p.x_o = glm::dvec3(v.point.position_mm);
+      p.n_o = glm::normalize(glm::dvec3(v.point.normal));
+      row.push_back(p);
+    }
+  });
+}
+
 }  // namespace
 
 ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOptions& o, const ProgressFn& progress,
@@ -262,47 +300,11 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
   }
 
   t0 = Clock::now();
-  const CameraRays camera(s.cameras[0], o.width, o.height, s.mm_per_unit);
   out.hdr = image::Image(int(o.width), int(o.height));
   out.variance = image::Image(int(o.width), int(o.height));
   out.specular = image::Image(int(o.width), int(o.height));
-  std::vector<std::vector<ProbePixel>> rows(o.height);
-  arena.execute([&] {
-    tbb::parallel_for(std::uint32_t(0), o.height, [&](std::uint32_t y) {
-      if (!o.tile.owns_row(y) || cancelled()) return;
-      for (std::uint32_t x = 0; x < o.width; ++x) {
-        const CameraRays::Ray ray = camera.pixel(x, y);
-        const std::optional<Hit> hit = rays.intersect(ray.origin, ray.direction, 0.0f, ray.t_far);
-        if (!hit) continue;
-        VisibleSurface v = visible_surface(s, rays, camera, *hit, ray.direction, o.diffuse_only, maps.get());
-        if (o.applies_single_scattering()) add_single_scattering(s, rays, v, maps.get());
-        float* px = out.hdr.pixel(int(x), int(y));
-        px[3] = 1.0f;
-        out.variance.pixel(int(x), int(y))[3] = 1.0f;
-        store_specular(out.specular, x, y, v, o.diffuse_only);
-        const ProbeGroup* g = v.subsurface ? estimator->group(v.point.material) : nullptr;
-        if (!g) {
-          const glm::dvec3 L = o.diffuse_only ? glm::dvec3(0.0) : v.opaque_radiance();
-          for (int c = 0; c < 3; ++c) px[c] = float(L[c]);
-          continue;
-        }
-        ProbePixel p;
-        p.index = y * o.width + x;
-        p.group = g;
-        p.base = o.diffuse_only ? glm::dvec3(0.0) : v.specular;
-        p.factor = (o.diffuse_only ? glm::dvec3(1.0) : v.scatter_factor * (o.applies_fresnel() ? v.exit_fresnel : glm::dvec3(1.0))) / kPi;
-        // The mesh's interpolated normal at x_o, as the octree gathers with.
-        p.x_o = glm::dvec3(v.point.position_mm);
-        p.n_o = glm::normalize(glm::dvec3(v.point.normal));
-        rows[y].push_back(p);
-      }
-    });
-  });
+  const std::vector<ProbePixel> pixels = plan_probe_pixels(s, rays, *estimator, maps.get(), o, arena, cancelled, out);
   if (cancelled()) throw Cancelled();
-  std::vector<ProbePixel> pixels;
-  for (std::vector<ProbePixel>& r : rows)
-    for (const ProbePixel& p : r) pixels.push_back(p);
-  rows.clear();
   stats.subsurface_pixels = pixels.size();
   report("setup", 1.0);
 

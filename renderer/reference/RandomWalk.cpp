@@ -70,6 +70,34 @@ void add_next_event(const scene::Scene& s, const RayScene& rays, const WalkMediu
   }
 }
 
+// No face ahead of a walk at p going w: a hole. It scatters as sampled (after `flight`)
+// if that is still within the medium's bounds; true when it has left them instead.
+bool leaves_bounds(const WalkMedium& medium, const glm::dvec3& p, const glm::dvec3& w, double flight) {
+  double exit = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    if (w[a] > 0.0) exit = std::min(exit, (medium.hi[a] - p[a]) / w[a]);
+    if (w[a] < 0.0) exit = std::min(exit, (medium.lo[a] - p[a]) / w[a]);
+  }
+  return !(flight < exit);
+}
+
+// The walk's direction after a scattering event of channel c: Henyey–Greenstein about w.
+// When the band's channels have different g (one_g false), the lobe is one channel's,
+// picked by throughput, and beta takes the balance-heuristic weight over the channels'
+// lobes (one-sample MIS).
+glm::dvec3 next_direction(const WalkMedium& medium, bool one_g, int c, const glm::dvec3& w, glm::dvec3& beta,
+                          walk::WalkRng& rng) {
+  if (one_g) return walk::hg_sample(medium.g[c], w, rng.uniform(), rng.uniform());
+  const int k = pick_channel(beta, beta.x + beta.y + beta.z, rng.uniform());
+  const glm::dvec3 next = walk::hg_sample(medium.g[k], w, rng.uniform(), rng.uniform());
+  const double cos_theta = glm::dot(w, next);
+  glm::dvec3 pdf;
+  for (int j = 0; j < 3; ++j) pdf[j] = walk::hg_pdf(medium.g[j], cos_theta);
+  const glm::dvec3 q = beta / (beta.x + beta.y + beta.z);
+  beta *= pdf / glm::dot(q, pdf);
+  return next;
+}
+
 }  // namespace
 
 glm::dvec3 face_normal(const scene::Scene& s, const RayScene& rays, std::uint32_t instance, std::uint32_t triangle) {
@@ -195,18 +223,9 @@ glm::dvec3 WalkScene::sample_radiance(const WalkMedium& medium, const WalkMedium
     const int c = pick_channel(beta, sum, rng.uniform());
     const double flight = -std::log1p(-rng.uniform()) / medium.sigma_t[c];
     const std::optional<Hit> hit = rays_->intersect(glm::vec3(p), glm::vec3(w));
-    if (!hit) {
-      // No face ahead: a hole. Scatter as sampled if that is still within the medium's
-      // bounds, else the walk has left through the hole and is lost.
-      double exit = std::numeric_limits<double>::infinity();
-      for (int a = 0; a < 3; ++a) {
-        if (w[a] > 0.0) exit = std::min(exit, (medium.hi[a] - p[a]) / w[a]);
-        if (w[a] < 0.0) exit = std::min(exit, (medium.lo[a] - p[a]) / w[a]);
-      }
-      if (!(flight < exit)) {
-        ++stats.escaped;
-        break;
-      }
+    if (!hit && leaves_bounds(medium, p, w, flight)) {  // out through a hole: lost
+      ++stats.escaped;
+      break;
     }
     if (hit && double(hit->t) <= flight) {
       // The face: transmittance over the flight, balance-heuristic weight over channels.
@@ -234,19 +253,7 @@ glm::dvec3 WalkScene::sample_radiance(const WalkMedium& medium, const WalkMedium
       p += w * flight;
       ++stats.scattering_events;
       add_next_event(s, *rays_, medium, band, p, w, beta, L, stats);
-      // The next direction.
-      if (one_g) {
-        w = walk::hg_sample(medium.g[c], w, rng.uniform(), rng.uniform());
-      } else {
-        const int k = pick_channel(beta, beta.x + beta.y + beta.z, rng.uniform());
-        const glm::dvec3 next = walk::hg_sample(medium.g[k], w, rng.uniform(), rng.uniform());
-        const double cos_theta = glm::dot(w, next);
-        glm::dvec3 pdf;
-        for (int j = 0; j < 3; ++j) pdf[j] = walk::hg_pdf(medium.g[j], cos_theta);
-        const glm::dvec3 q = beta / (beta.x + beta.y + beta.z);
-        beta *= pdf / glm::dot(q, pdf);
-        w = next;
-      }
+      w = next_direction(medium, one_g, c, w, beta, rng);
     }
     const double m = std::max({beta.x, beta.y, beta.z});
     if (events >= 2 && m < 1.0) {

@@ -86,6 +86,26 @@ struct PassResult {
   double relative_standard_error = 0.0;  // as `error` returned after the last pass
 };
 
+// The pixels to sample, planned row by row in parallel: `row(y, plans)` appends row y's
+// pixels that need samples (and may write what is deterministic about the others). Rows
+// the tile does not own (Tile: anything with owns_row(y), TileMerge.h's TileSpec) are
+// skipped, as is every row once `cancelled()`. The plans come back in pixel order.
+template <class Plan, class Tile, class Cancelled, class Row>
+std::vector<Plan> plan_rows(std::uint32_t height, const Tile& tile, tbb::task_arena& arena, const Cancelled& cancelled,
+                            const Row& row) {
+  std::vector<std::vector<Plan>> rows(height);
+  arena.execute([&] {
+    tbb::parallel_for(std::uint32_t(0), height, [&](std::uint32_t y) {
+      if (!tile.owns_row(y) || cancelled()) return;
+      row(y, rows[y]);
+    });
+  });
+  std::vector<Plan> plans;
+  for (std::vector<Plan>& r : rows)
+    for (const Plan& p : r) plans.push_back(p);
+  return plans;
+}
+
 // Samples pixels 0..count-1. `sample(i, k, tls)` returns sample k of pixel i (Tls: per
 // thread scratch or statistics); after each pass `error(acc)` writes the images from the
 // accumulators and returns the frame's relative standard error. Returns with
