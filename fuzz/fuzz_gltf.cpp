@@ -2,8 +2,8 @@
 #include "FuzzSupport.h"
 #include "FuzzTargets.h"
 
-#include "renderer/scene/GltfLoader.h"
-#include "renderer/scene/UvAtlas.h"
+#include "scene/GltfLoader.h"
+#include "scene/UvAtlas.h"
 
 #include <cmath>
 #include <cstring>

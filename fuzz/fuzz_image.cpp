@@ -2,7 +2,7 @@
 #include "FuzzSupport.h"
 #include "FuzzTargets.h"
 
-#include "renderer/image/Image.h"
+#include "image/Image.h"
 
 #include <cmath>
 #include <cstring>

@@ -7,7 +7,7 @@
 #include "MediumArgs.h"
 
 #include "profiles/Profile.h"
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include <CLI/CLI.hpp>
 

@@ -2,7 +2,7 @@
 #include "FuzzSupport.h"
 #include "FuzzTargets.h"
 
-#include "renderer/scene/SssExtras.h"
+#include "scene/SssExtras.h"
 
 #include <nlohmann/json.hpp>
 

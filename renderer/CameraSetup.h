@@ -3,8 +3,8 @@
 #pragma once
 
 #include "renderer/RenderOptions.h"
-#include "renderer/scene/Bounds.h"
-#include "renderer/scene/Camera.h"
+#include "scene/Bounds.h"
+#include "scene/Camera.h"
 #include "shaders/shared/frame.h"
 
 #include <glm/mat4x4.hpp>

@@ -1,6 +1,6 @@
 #include "renderer/EnvironmentMaps.h"
 
-#include "renderer/scene/SplitSum.h"
+#include "scene/SplitSum.h"
 #include "renderer/vk/Context.h"
 #include "renderer/vk/Transfer.h"
 

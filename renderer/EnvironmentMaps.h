@@ -6,7 +6,7 @@
 // levels hold 0 (and the frame's flag keeps the shader from reading them).
 #pragma once
 
-#include "renderer/scene/Environment.h"
+#include "scene/Environment.h"
 #include "renderer/vk/Image.h"
 
 #include <optional>

@@ -1,8 +1,8 @@
 #include "renderer/GpuScene.h"
 
 #include "renderer/CameraSetup.h"
-#include "renderer/reference/Thickness.h"
-#include "renderer/scene/UvAtlas.h"
+#include "reference/Thickness.h"
+#include "scene/UvAtlas.h"
 #include "renderer/vk/Context.h"
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Sampler.h"

@@ -4,7 +4,7 @@
 // roughness, colour, texture slots). The G-buffer and the shadow maps draw the same list.
 #pragma once
 
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 #include "renderer/vk/Buffer.h"
 #include "renderer/vk/Handle.h"
 #include "renderer/vk/Image.h"

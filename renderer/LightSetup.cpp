@@ -1,7 +1,7 @@
 #include "renderer/LightSetup.h"
 
 #include "renderer/CameraSetup.h"
-#include "renderer/scene/ShadowFrustum.h"
+#include "scene/ShadowFrustum.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>

@@ -4,7 +4,7 @@
 // shadowed yet (no cube maps). Lights beyond SSS_MAX_LIGHTS are dropped with a warning.
 #pragma once
 
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 #include "shaders/shared/frame.h"
 
 #include <cstdint>

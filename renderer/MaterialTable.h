@@ -6,7 +6,7 @@
 #pragma once
 
 #include "renderer/RenderOptions.h"
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 #include "renderer/vk/Buffer.h"
 #include "shaders/shared/frame.h"
 

@@ -28,8 +28,8 @@
 #include "renderer/LightSetup.h"
 #include "renderer/MaterialTable.h"
 #include "renderer/RenderOptions.h"
-#include "renderer/image/Image.h"
-#include "renderer/scene/Scene.h"
+#include "image/Image.h"
+#include "scene/Scene.h"
 #include "renderer/vk/Buffer.h"
 #include "renderer/vk/GpuTimer.h"
 

@@ -1,6 +1,6 @@
 #include "renderer/ShadowPass.h"
 
-#include "renderer/scene/ShadowFrustum.h"
+#include "scene/ShadowFrustum.h"
 #include "renderer/vk/Barrier.h"
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Pipeline.h"

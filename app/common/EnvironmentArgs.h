@@ -3,7 +3,7 @@
 // light").
 #pragma once
 
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 
 #include <CLI/CLI.hpp>
 

@@ -1,8 +1,8 @@
 #include "MaterialOverrides.h"
 
 #include "profiles/Presets.h"
-#include "renderer/scene/ScatterScale.h"
-#include "renderer/scene/SssLayers.h"
+#include "scene/ScatterScale.h"
+#include "scene/SssLayers.h"
 
 #include <cmath>
 #include <set>

@@ -8,7 +8,7 @@
 #include "ExitCodes.h"
 #include "MediumArgs.h"
 
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 
 #include <CLI/CLI.hpp>
 

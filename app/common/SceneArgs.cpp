@@ -2,7 +2,7 @@
 
 #include "CliSupport.h"
 
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include <utility>
 

@@ -4,7 +4,7 @@
 #include "EnvironmentArgs.h"
 #include "MaterialOverrides.h"
 
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 
 #include <cstdint>
 #include <string>

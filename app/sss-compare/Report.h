@@ -2,8 +2,8 @@
 // or as one JSON document.
 #pragma once
 
-#include "renderer/image/HeatMap.h"
-#include "renderer/image/Metrics.h"
+#include "image/HeatMap.h"
+#include "image/Metrics.h"
 
 #include <nlohmann/json.hpp>
 

@@ -3,18 +3,18 @@
 //               [--json] [--tolerance T] [--max-abs E]
 //               [--max-fraction F] [--min-ssim S] [--threshold T] [--exposure X]
 //               [--variance B.var.exr]
-// B is the reference. The metrics are defined in renderer/image/Metrics.h. The command-line
+// B is the reference. The metrics are defined in image/Metrics.h. The command-line
 // contract is DESIGN.md §4. Exit codes: 0 the images agree within the limits, 3 they do
 // not, 2 bad usage or input, 1 a runtime failure (e.g. a map cannot be written).
 #include "CliSupport.h"
 #include "ExitCodes.h"
 #include "Report.h"
 
-#include "renderer/image/AtomicFile.h"
-#include "renderer/image/HeatMap.h"
-#include "renderer/image/Image.h"
-#include "renderer/image/Metrics.h"
-#include "renderer/image/Tonemap.h"
+#include "image/AtomicFile.h"
+#include "image/HeatMap.h"
+#include "image/Image.h"
+#include "image/Metrics.h"
+#include "image/Tonemap.h"
 
 #include <CLI/CLI.hpp>
 

@@ -1,8 +1,8 @@
 #include "CommandSupport.h"
 
 #include "profiles/McTableProfile.h"
-#include "renderer/image/AtomicFile.h"
-#include "renderer/scene/SssLayers.h"
+#include "image/AtomicFile.h"
+#include "scene/SssLayers.h"
 
 #include <cstdio>
 #include <iostream>

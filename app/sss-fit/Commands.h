@@ -13,7 +13,7 @@ namespace sss::app {
 
 struct CommonArgs {
   MediumArgs medium;
-  // --layers FILE.json: a stack of layers (renderer/scene/SssLayers.h) instead of MEDIUM;
+  // --layers FILE.json: a stack of layers (scene/SssLayers.h) instead of MEDIUM;
   // implies --model layered.
   std::string layers;
   std::string model{profiles::model_name(profiles::kDefaultModel)};

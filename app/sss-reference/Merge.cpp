@@ -3,9 +3,9 @@
 #include "CliSupport.h"
 
 #include "profiles/Medium.h"
-#include "renderer/image/Image.h"
-#include "renderer/image/Tonemap.h"
-#include "renderer/reference/TileMerge.h"
+#include "image/Image.h"
+#include "image/Tonemap.h"
+#include "reference/TileMerge.h"
 
 #include <CLI/CLI.hpp>
 

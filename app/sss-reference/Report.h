@@ -2,8 +2,8 @@
 // (--stats: counts, rates and stage times), on stderr.
 #pragma once
 
-#include "renderer/reference/GroundTruth.h"
-#include "renderer/reference/ReferenceRenderer.h"
+#include "reference/GroundTruth.h"
+#include "reference/ReferenceRenderer.h"
 
 #include <chrono>
 #include <string>

@@ -3,7 +3,7 @@
 //   sss-reference merge TILE.exr... --out FILE.exr [--variance FILE.exr]
 // --method diffusion (default): the Jensen–Buhler reference with the exact diffusion
 // profile. --method random-walk: the ground truth, volumetric transport through the
-// scene's meshes (renderer/reference/GroundTruth.h), with its variance, a sample count or
+// scene's meshes (reference/GroundTruth.h), with its variance, a sample count or
 // a target error, and tiles that `merge` puts together.
 // Errors exit 2 (usage, input) or 1 (runtime); Ctrl-C (SIGTERM) stops the render, writes
 // nothing and exits 130 (143).
@@ -14,13 +14,13 @@
 #include "Merge.h"
 #include "Report.h"
 
-#include "renderer/image/AtomicFile.h"
-#include "renderer/image/Image.h"
-#include "renderer/image/Tonemap.h"
-#include "renderer/reference/GroundTruth.h"
-#include "renderer/reference/ReferenceRenderer.h"
-#include "renderer/reference/TileMerge.h"
-#include "renderer/scene/BuiltinScenes.h"
+#include "image/AtomicFile.h"
+#include "image/Image.h"
+#include "image/Tonemap.h"
+#include "reference/GroundTruth.h"
+#include "reference/ReferenceRenderer.h"
+#include "reference/TileMerge.h"
+#include "scene/BuiltinScenes.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>

@@ -12,7 +12,7 @@
 #include "ProfilePlot.h"
 
 #include "renderer/MaterialTable.h"
-#include "renderer/scene/Material.h"
+#include "scene/Material.h"
 
 #include <chrono>
 #include <condition_variable>

@@ -6,7 +6,7 @@
 #include "ViewerArgs.h"
 
 #include "renderer/Renderer.h"
-#include "renderer/image/Image.h"
+#include "image/Image.h"
 #include "renderer/vk/Context.h"
 
 #include <cstdio>

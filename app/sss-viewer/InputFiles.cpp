@@ -1,8 +1,8 @@
 #include "InputFiles.h"
 
-#include "renderer/scene/GltfFile.h"
-#include "renderer/scene/GltfLoader.h"
-#include "renderer/scene/GltfUri.h"
+#include "scene/GltfFile.h"
+#include "scene/GltfLoader.h"
+#include "scene/GltfUri.h"
 
 #include <nlohmann/json.hpp>
 

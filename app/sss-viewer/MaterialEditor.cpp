@@ -3,7 +3,7 @@
 #include "profiles/OpenPbr.h"
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"
-#include "renderer/scene/ScatterScale.h"
+#include "scene/ScatterScale.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,7 +13,7 @@
 
 #include "profiles/OpenPbr.h"
 #include "renderer/Renderer.h"
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 
 #include <array>
 #include <chrono>

@@ -3,8 +3,8 @@
 // view axis, at the depth of the scene's centre. Orbit and pan keep world +Y up.
 #pragma once
 
-#include "renderer/scene/Bounds.h"
-#include "renderer/scene/Camera.h"
+#include "scene/Bounds.h"
+#include "scene/Camera.h"
 
 #include <glm/vec3.hpp>
 

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "profiles/GaussianFit.h"
-#include "renderer/scene/Material.h"
+#include "scene/Material.h"
 
 #include <vector>
 

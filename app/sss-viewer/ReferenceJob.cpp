@@ -1,7 +1,7 @@
 // ReferenceJob: the CPU reference of one view on a worker thread (Tools.h).
 #include "Tools.h"
 
-#include "renderer/reference/ReferenceRenderer.h"
+#include "reference/ReferenceRenderer.h"
 
 #include <exception>
 #include <mutex>

@@ -6,8 +6,8 @@
 
 #include "profiles/Presets.h"
 #include "renderer/Renderer.h"
-#include "renderer/image/AtomicFile.h"
-#include "renderer/scene/Material.h"
+#include "image/AtomicFile.h"
+#include "scene/Material.h"
 #include "renderer/vk/Context.h"
 #include "renderer/vk/Handle.h"
 

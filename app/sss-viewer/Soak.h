@@ -27,7 +27,7 @@
 #include "ViewerArgs.h"
 
 #include "renderer/RenderOptions.h"
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 
 #include <cstdint>
 #include <string>

@@ -9,9 +9,9 @@
 
 #include "renderer/FrameTargets.h"
 #include "renderer/Renderer.h"
-#include "renderer/image/Tonemap.h"
-#include "renderer/scene/GltfExport.h"
-#include "renderer/scene/SssExtras.h"
+#include "image/Tonemap.h"
+#include "scene/GltfExport.h"
+#include "scene/SssExtras.h"
 #include "renderer/vk/Transfer.h"
 
 #include <imgui.h>

@@ -1,6 +1,6 @@
 // The viewer's "Tools" window (top right, beside the material panels of Ui.h):
 //   - Open: a glTF/GLB by path (or dropped on the window; Window.cpp reloads it);
-//   - Compare: the CPU reference (renderer/reference) renders the current view on a
+//   - Compare: the CPU reference (reference) renders the current view on a
 //     worker thread with progress; then the frame can be shown split A/B against it,
 //     as the reference alone, or as an error map, with the metrics of sss-compare. A
 //     stored ground truth (an EXR of `sss-reference --method random-walk`, the view's
@@ -14,11 +14,11 @@
 // Every file is written atomically (image::write_file_atomically).
 #pragma once
 
-#include "renderer/image/HeatMap.h"
-#include "renderer/image/Image.h"
-#include "renderer/image/Metrics.h"
-#include "renderer/reference/ReferenceRenderer.h"
-#include "renderer/scene/Scene.h"
+#include "image/HeatMap.h"
+#include "image/Image.h"
+#include "image/Metrics.h"
+#include "reference/ReferenceRenderer.h"
+#include "scene/Scene.h"
 #include "renderer/vk/Image.h"
 
 #include <array>

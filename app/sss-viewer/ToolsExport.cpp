@@ -10,11 +10,11 @@
 
 #include "renderer/FrameTargets.h"
 #include "renderer/Renderer.h"
-#include "renderer/image/AtomicFile.h"
-#include "renderer/image/HeatMap.h"
-#include "renderer/image/Tonemap.h"
-#include "renderer/scene/GltfExport.h"
-#include "renderer/scene/SssExtras.h"
+#include "image/AtomicFile.h"
+#include "image/HeatMap.h"
+#include "image/Tonemap.h"
+#include "scene/GltfExport.h"
+#include "scene/SssExtras.h"
 #include "renderer/vk/Transfer.h"
 #include "profiles/KernelExport.h"
 

@@ -2,7 +2,7 @@
 // log ratio, for each pair of frame, reference and ground truth) and their controls.
 #include "Tools.h"
 
-#include "renderer/image/HeatMap.h"
+#include "image/HeatMap.h"
 
 #include <imgui.h>
 

@@ -9,9 +9,9 @@
 #include "profiles/Profile.h"
 #include "renderer/CameraSetup.h"
 #include "renderer/SssTexturePass.h"
-#include "renderer/image/HeatMap.h"
-#include "renderer/image/Image.h"
-#include "renderer/scene/SssLayers.h"
+#include "image/HeatMap.h"
+#include "image/Image.h"
+#include "scene/SssLayers.h"
 
 #include <imgui.h>
 

@@ -8,7 +8,7 @@
 #include "MaterialEditor.h"
 
 #include "renderer/Renderer.h"
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 
 #include <imgui.h>
 

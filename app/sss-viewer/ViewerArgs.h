@@ -7,7 +7,7 @@
 #include "MaterialOverrides.h"
 
 #include "renderer/RenderOptions.h"
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 
 #include <array>
 #include <optional>

@@ -11,8 +11,8 @@
 #include "Ui.h"
 
 #include "renderer/Renderer.h"
-#include "renderer/image/Image.h"
-#include "renderer/scene/BuiltinScenes.h"
+#include "image/Image.h"
+#include "scene/BuiltinScenes.h"
 #include "renderer/vk/Check.h"
 #include "renderer/vk/Commands.h"
 #include "renderer/vk/Context.h"

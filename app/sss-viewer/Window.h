@@ -6,7 +6,7 @@
 #include "ViewerArgs.h"
 
 #include "renderer/RenderOptions.h"
-#include "renderer/scene/Scene.h"
+#include "scene/Scene.h"
 
 namespace sss::app {
 

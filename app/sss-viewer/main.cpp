@@ -14,9 +14,9 @@
 
 #include "renderer/Renderer.h"
 #include "renderer/SssTexturePass.h"
-#include "renderer/image/AtomicFile.h"
-#include "renderer/image/Image.h"
-#include "renderer/scene/BuiltinScenes.h"
+#include "image/AtomicFile.h"
+#include "image/Image.h"
+#include "scene/BuiltinScenes.h"
 #include "renderer/vk/Context.h"
 
 #include <CLI/CLI.hpp>

@@ -15,9 +15,9 @@
 // It depends on the renderer library only (not on the viewer), so that it builds while
 // the viewer is being worked on. bench/pass_times.sh runs it.
 #include "renderer/Renderer.h"
-#include "renderer/image/Image.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Environment.h"
+#include "image/Image.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Environment.h"
 #include "renderer/vk/Context.h"
 
 #include <glm/gtc/matrix_transform.hpp>

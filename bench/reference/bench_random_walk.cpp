@@ -1,4 +1,4 @@
-// The random-walk ground truth (renderer/reference/GroundTruth.h, issue 16): how fast the
+// The random-walk ground truth (reference/GroundTruth.h, issue 16): how fast the
 // walk runs, and what one scattering event costs in Embree ray casts.
 //
 //  * BM_RandomWalk/<scene>: render_ground_truth at 160x90 with a fixed sample count on
@@ -23,10 +23,10 @@
 // Wall time counts what other processes take from the cores: run it on an idle machine.
 //
 //   build/bench/bench_random_walk [--benchmark_filter=Threads]
-#include "renderer/reference/GroundTruth.h"
-#include "renderer/reference/MediumMesh.h"
-#include "renderer/reference/RayScene.h"
-#include "renderer/scene/BuiltinScenes.h"
+#include "reference/GroundTruth.h"
+#include "reference/MediumMesh.h"
+#include "reference/RayScene.h"
+#include "scene/BuiltinScenes.h"
 
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// The CPU reference renderer (renderer/reference), issue 4's performance targets:
+// The CPU reference renderer (reference), issue 4's performance targets:
 //
 //  * Hierarchy vs brute force, same scene, same points, same run: builtin:sphere with
 //    ~280k irradiance points (spacing 0.3 mfp), 96x54 pixels, diffuse term only. The
@@ -31,13 +31,13 @@
 
 #include "profiles/EdgeResponse.h"
 #include "profiles/Profile.h"
-#include "renderer/image/Metrics.h"
-#include "renderer/reference/RayScene.h"
-#include "renderer/reference/ReferenceRenderer.h"
-#include "renderer/reference/Thickness.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Environment.h"
-#include "renderer/scene/SplitSum.h"
+#include "image/Metrics.h"
+#include "reference/RayScene.h"
+#include "reference/ReferenceRenderer.h"
+#include "reference/Thickness.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Environment.h"
+#include "scene/SplitSum.h"
 
 #include <benchmark/benchmark.h>
 

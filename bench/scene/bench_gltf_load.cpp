@@ -7,7 +7,7 @@
 // 2CylinderEngine (Debian's assimp-testmodels, 34 meshes, 110 k triangles).
 // Counter vs_uncompressed: this variant's load time over the uncompressed file's.
 //   scripts/bench.sh --benchmark_filter='GltfLoad'
-#include "renderer/scene/GltfLoader.h"
+#include "scene/GltfLoader.h"
 
 #include <benchmark/benchmark.h>
 

@@ -10,8 +10,8 @@
 //     --test-edit layers=assets/layers/skin-three-layers.json      (one command line)
 #include "FitWorker.h"
 
-#include "renderer/scene/Material.h"
-#include "renderer/scene/SssLayers.h"
+#include "scene/Material.h"
+#include "scene/SssLayers.h"
 
 #include <benchmark/benchmark.h>
 

@@ -134,7 +134,7 @@ vec3 environment_irradiance(vec3 n) {
 }
 
 #ifdef SSS_ENVIRONMENT_SPECULAR
-// The environment's specular light by the split sum (C++: renderer/scene/SplitSum.h, which
+// The environment's specular light by the split sum (C++: scene/SplitSum.h, which
 // derives it; the same lookups, in float): Lp(R, r) (F0 A + B). Needs
 // environment_specular_tex (sampler2DArray: the prefiltered levels, equirectangular) and
 // dfg_tex (sampler2D: A, B over n.v and r at texel centres).

@@ -1,5 +1,5 @@
 // The display transform's formulas, stated once for the GPU composite (composite.glsl)
-// and the CPU (renderer/image: Tonemap.cpp's filmic, Image.cpp's sRGB encode and decode),
+// and the CPU (image: Tonemap.cpp's filmic, Image.cpp's sRGB encode and decode),
 // so that the reference's PNG and the real-time frame's display image are the same
 // function of radiance. Included by both languages: the preprocessor subset only, and
 // literals through SSS_F (float in C++, GLSL's default float in GLSL).

@@ -8,7 +8,7 @@
 #ifdef SSS_COMPARE_EXE
 
 #include "common/CliRun.h"
-#include "renderer/image/Image.h"
+#include "image/Image.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -5,7 +5,7 @@
 
 #include "common/CliRun.h"
 #include "common/FrameLessHighlight.h"
-#include "renderer/image/Image.h"
+#include "image/Image.h"
 
 #include <gtest/gtest.h>
 

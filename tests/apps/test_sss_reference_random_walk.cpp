@@ -7,7 +7,7 @@
 #ifdef SSS_REFERENCE_EXE
 
 #include "common/CliRun.h"
-#include "renderer/image/Image.h"
+#include "image/Image.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -6,7 +6,7 @@
 // taken off) and how many colour values are unchanged (where there was no specular).
 #pragma once
 
-#include "renderer/image/Image.h"
+#include "image/Image.h"
 
 #include <gtest/gtest.h>
 

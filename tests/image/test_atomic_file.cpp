@@ -1,4 +1,4 @@
-#include "renderer/image/AtomicFile.h"
+#include "image/AtomicFile.h"
 
 #include <gtest/gtest.h>
 

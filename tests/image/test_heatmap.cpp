@@ -1,7 +1,7 @@
-// Heat maps (renderer/image/HeatMap.h): the colour map's published end points and order,
+// Heat maps (image/HeatMap.h): the colour map's published end points and order,
 // the built-in font, tick labels, and the rendered image: its size, the error pixels in
 // place, the masked pixels grey, and a colour bar with ticks and labels beside it.
-#include "renderer/image/HeatMap.h"
+#include "image/HeatMap.h"
 
 #include <gtest/gtest.h>
 

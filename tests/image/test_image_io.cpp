@@ -1,5 +1,5 @@
-#include "renderer/image/AtomicFile.h"
-#include "renderer/image/Image.h"
+#include "image/AtomicFile.h"
+#include "image/Image.h"
 
 #include <gtest/gtest.h>
 

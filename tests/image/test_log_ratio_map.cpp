@@ -1,9 +1,9 @@
-// Signed log-ratio maps (renderer/image/HeatMap.h): the diverging colour map's ends and
+// Signed log-ratio maps (image/HeatMap.h): the diverging colour map's ends and
 // symmetry, r = log2(Y_a / Y_b) from its definition (luminance weights, sRGB decode of
 // display values, the floor, the guards), the statistics, and the rendered map: a half
 // twice as bright at the red end, equal pixels white, background grey, the bar and its
 // signed labels. Every expected value is worked out here from the definitions.
-#include "renderer/image/HeatMap.h"
+#include "image/HeatMap.h"
 
 #include <gtest/gtest.h>
 

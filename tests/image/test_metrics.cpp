@@ -1,9 +1,9 @@
-// Image metrics (renderer/image/Metrics.h) against closed forms: identical images, constant
+// Image metrics (image/Metrics.h) against closed forms: identical images, constant
 // offsets, scaled images, noise of known size, masking, and SSIM's own closed forms
 // (flat images) and properties (1 for identical images, symmetric, < 1 for a contrast-
 // reduced copy, negative for an inverted one).
-#include "renderer/image/Metrics.h"
-#include "renderer/image/Tonemap.h"
+#include "image/Metrics.h"
+#include "image/Tonemap.h"
 
 #include <gtest/gtest.h>
 

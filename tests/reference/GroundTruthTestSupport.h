@@ -2,10 +2,10 @@
 // slab with any medium, measured exitance with its standard error, and statistics.
 #pragma once
 
-#include "renderer/reference/GroundTruth.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Material.h"
-#include "renderer/scene/Shapes.h"
+#include "reference/GroundTruth.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Material.h"
+#include "scene/Shapes.h"
 
 #include "profiles/Fresnel.h"
 #include "profiles/Medium.h"

@@ -1,15 +1,15 @@
-// The reference's environment light (renderer/reference/Shading.h: environment_irradiance):
+// The reference's environment light (reference/Shading.h: environment_irradiance):
 // on the GPU's terms it is the spherical harmonics exactly; on its own it samples the
 // hemisphere with shadow rays, checked here against closed forms on the builtin sphere:
 // exact for a uniform sky seen whole, zero where everything is occluded, and unbiased for
 // a linear sky (a Z-test over independent points, each estimate's spread measured).
 #include "profiles/Fresnel.h"
-#include "renderer/reference/GroundTruth.h"
-#include "renderer/reference/RayScene.h"
-#include "renderer/reference/Shading.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Environment.h"
-#include "renderer/scene/SplitSum.h"
+#include "reference/GroundTruth.h"
+#include "reference/RayScene.h"
+#include "reference/Shading.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Environment.h"
+#include "scene/SplitSum.h"
 #include "tests/common/GgxQuadrature.h"
 
 #include <gtest/gtest.h>

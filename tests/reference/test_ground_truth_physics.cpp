@@ -1,4 +1,4 @@
-// The random-walk ground truth (renderer/reference/GroundTruth.h) against computations that
+// The random-walk ground truth (reference/GroundTruth.h) against computations that
 // share no code with it (issue 16): Chandrasekhar's exact half-space total, mc-table and
 // profiles' analog Monte Carlo (its own walk, RNG, HG sampler and Fresnel), and an exact
 // energy balance. Every comparison is in standard errors of both sides, plus an accuracy

@@ -4,7 +4,7 @@
 // stored ground truth (a per-pixel Z-test, as Mitsuba 3 tests its renders).
 #include "GroundTruthTestSupport.h"
 
-#include "renderer/reference/TileMerge.h"
+#include "reference/TileMerge.h"
 
 #include "profiles/Presets.h"
 
@@ -309,7 +309,7 @@ TEST(GroundTruthRender, AFreshRenderAgreesWithTheStoredGroundTruthPixelByPixel) 
 }  // namespace sss::reference::testing
 namespace sss::reference::testing {
 namespace {
-// What a hole costs (renderer/reference/README.md, "Holes"): builtin:sphere (30 mm skin1)
+// What a hole costs (reference/README.md, "Holes"): builtin:sphere (30 mm skin1)
 // with a cap of its four last rings cut out around the pole that faces the light and the
 // camera, against the closed sphere, red channel, by distance from the hole's rim in the
 // image (head-on there, so about the distance on the surface).

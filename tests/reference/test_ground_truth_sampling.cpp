@@ -13,10 +13,10 @@
 //     traced forward from the light through the faces (own Snell, profiles' Fresnel).
 #include "GroundTruthTestSupport.h"
 
-#include "renderer/reference/DirectBeams.h"
-#include "renderer/reference/MediumMesh.h"
-#include "renderer/reference/RayScene.h"
-#include "renderer/reference/WalkSampling.h"
+#include "reference/DirectBeams.h"
+#include "reference/MediumMesh.h"
+#include "reference/RayScene.h"
+#include "reference/WalkSampling.h"
 
 #include "profiles/Fresnel.h"
 

@@ -18,12 +18,12 @@
 // smooth sum (tests/reference/test_octree.cpp, RMS against brute force) and its kernel
 // table 1e-3 (ScatterKernel.h); three times their sum is 1%. A wrong thickness (0, or the
 // wrong surface) moves the local term by the whole tail ratio (R_d / T(2 mm) > 3 here).
-#include "renderer/reference/ReferenceRenderer.h"
+#include "reference/ReferenceRenderer.h"
 
 #include "GroundTruthTestSupport.h"
 
 #include "profiles/Integrate.h"
-#include "renderer/scene/Environment.h"
+#include "scene/Environment.h"
 
 #include <gtest/gtest.h>
 

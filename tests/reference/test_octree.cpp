@@ -1,10 +1,10 @@
 // PointOctree: the Jensen–Buhler hierarchy against the brute-force sum it approximates.
-#include "renderer/reference/PointOctree.h"
+#include "reference/PointOctree.h"
 
 #include "profiles/Presets.h"
 #include "profiles/Integrate.h"
 #include "profiles/Random.h"
-#include "renderer/reference/SurfaceSampling.h"
+#include "reference/SurfaceSampling.h"
 
 #include <glm/geometric.hpp>
 

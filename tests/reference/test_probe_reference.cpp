@@ -7,15 +7,15 @@
 //     (profiles/EdgeResponse.h, a 1D quadrature), for every model: per-pixel Z-scores with
 //     the estimator's own standard error (chi-square over pixels), and the error goal;
 //   * a thin multipole slab lit from behind against the closed-form total transmittance.
-#include "renderer/reference/ProbeReference.h"
-#include "renderer/reference/ReferenceRenderer.h"
+#include "reference/ProbeReference.h"
+#include "reference/ReferenceRenderer.h"
 
 #include "profiles/EdgeResponse.h"
 #include "profiles/Integrate.h"
 #include "profiles/KernelFit.h"
 #include "profiles/Presets.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Shapes.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Shapes.h"
 
 #include "GroundTruthTestSupport.h"
 

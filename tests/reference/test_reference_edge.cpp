@@ -25,12 +25,12 @@
 //    the near cells' share too: measured errors are 0.1–0.15 of this tolerance.
 // Tolerance = 4 √(σ_g² + σ_e²) + e_h + 1e-3 M(x) (the kernel table's accuracy,
 // ScatterKernel.h) + 1e-6 (float storage).
-#include "renderer/reference/ReferenceRenderer.h"
+#include "reference/ReferenceRenderer.h"
 
 #include "profiles/EdgeResponse.h"
 #include "profiles/Integrate.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Shapes.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Shapes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,15 +1,15 @@
 // The reference renderer as a whole: closed forms it must reproduce (Lambert, slab
 // transmittance), the octree against brute force, determinism across thread counts,
 // progress, cancellation and bad options.
-#include "renderer/reference/ReferenceRenderer.h"
+#include "reference/ReferenceRenderer.h"
 
 #include "profiles/Fresnel.h"
 #include "profiles/Presets.h"
 #include "profiles/SingleScattering.h"
-#include "renderer/reference/SingleScatter.h"
-#include "renderer/image/Tonemap.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Shapes.h"
+#include "reference/SingleScatter.h"
+#include "image/Tonemap.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Shapes.h"
 
 #include <gtest/gtest.h>
 

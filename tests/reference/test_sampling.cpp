@@ -1,6 +1,6 @@
 // sample_surface: area-uniform blue-noise irradiance points (weighted sample
 // elimination, Yuksel 2015).
-#include "renderer/reference/SurfaceSampling.h"
+#include "reference/SurfaceSampling.h"
 
 #include <glm/geometric.hpp>
 

@@ -6,7 +6,7 @@
 // - the profiles' own totals (closed forms for the dipoles and the multipole, PBD's own
 //   radial quadrature), which Σ_i K(|x_o − x_i|) A must reproduce over a plane of points;
 // - the mean-value bound |K(d) − R(d)| ≤ (a²/8) max |ΔR| over the disc.
-#include "renderer/reference/ScatterKernel.h"
+#include "reference/ScatterKernel.h"
 
 #include "profiles/Integrate.h"
 #include "profiles/Presets.h"

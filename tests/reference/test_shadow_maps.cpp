@@ -1,12 +1,12 @@
 // The CPU rebuild of the real-time frame's shadow maps (ShadowMaps.h, issue 17's
 // "lighting" link): what a texel holds and how a point is filtered, each checked against
 // a computation that does not share the code's formula.
-#include "renderer/reference/RayScene.h"
-#include "renderer/reference/ShadowMaps.h"
-#include "renderer/scene/Light.h"
-#include "renderer/scene/Scene.h"
-#include "renderer/scene/ShadowFrustum.h"
-#include "renderer/scene/Shapes.h"
+#include "reference/RayScene.h"
+#include "reference/ShadowMaps.h"
+#include "scene/Light.h"
+#include "scene/Scene.h"
+#include "scene/ShadowFrustum.h"
+#include "scene/Shapes.h"
 
 #include <gtest/gtest.h>
 

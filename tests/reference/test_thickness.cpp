@@ -4,9 +4,9 @@
 // and on curved shapes what the start's nudge toward the triangles around it costs (the
 // sphere's test derives it); the 1e-4 start offset only skips the vertex's own triangles
 // and does not shorten t.
-#include "renderer/reference/Thickness.h"
+#include "reference/Thickness.h"
 
-#include "renderer/scene/Shapes.h"
+#include "scene/Shapes.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 // colour, so its alpha is the coverage it reconstructs.
 #include "RenderTest.h"
 
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include <gtest/gtest.h>
 

@@ -15,9 +15,9 @@
 
 #include "profiles/SingleScattering.h"
 #include "renderer/DebugViewPass.h"
-#include "renderer/image/Image.h"
-#include "renderer/image/Tonemap.h"
-#include "renderer/scene/BuiltinScenes.h"
+#include "image/Image.h"
+#include "image/Tonemap.h"
+#include "scene/BuiltinScenes.h"
 
 #include <gtest/gtest.h>
 

@@ -50,7 +50,7 @@
 #include "profiles/Fresnel.h"
 #include "profiles/SingleScattering.h"
 #include "profiles/Profile.h"
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include <gtest/gtest.h>
 

@@ -13,14 +13,14 @@
 // under a perspective camera, where n.v at each pixel follows from the camera alone.
 #include "RenderTest.h"
 
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/SplitSum.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/SplitSum.h"
 #include "profiles/Fresnel.h"
 #include "profiles/Profile.h"
 #include "renderer/MaterialTable.h"
-#include "renderer/image/Image.h"
-#include "renderer/image/Tonemap.h"
-#include "renderer/scene/SssExtras.h"
+#include "image/Image.h"
+#include "image/Tonemap.h"
+#include "scene/SssExtras.h"
 
 #include <gtest/gtest.h>
 

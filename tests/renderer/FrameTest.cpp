@@ -2,7 +2,7 @@
 // (validation, core + synchronization, reports nothing), and deterministically.
 #include "RenderTest.h"
 
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include <gtest/gtest.h>
 

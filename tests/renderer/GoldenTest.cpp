@@ -5,7 +5,7 @@
 // tests/golden/bless.sh after looking at the new images.
 #include "RenderTest.h"
 
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

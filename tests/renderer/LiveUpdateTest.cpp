@@ -8,8 +8,8 @@
 // validation with synchronization checks (the fixture fails on any message).
 #include "RenderTest.h"
 
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Camera.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Camera.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>

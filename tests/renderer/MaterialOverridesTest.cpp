@@ -1,13 +1,13 @@
 // --sss-material, --scale and the MEDIUM flags on a glTF that has no extras.sss (issue 20
-// part 1), and the scatter-scale warnings (renderer/scene/ScatterScale.h). No GPU: the
+// part 1), and the scatter-scale warnings (scene/ScatterScale.h). No GPU: the
 // overrides and the checks are what sss-viewer and sss-reference run before rendering.
 #include <gtest/gtest.h>
 
 #include "app/common/MaterialOverrides.h"
 #include "profiles/Presets.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/GltfExport.h"
-#include "renderer/scene/ScatterScale.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/GltfExport.h"
+#include "scene/ScatterScale.h"
 #include "common/TwoBoxesGltf.h"
 #include "scene/GltfTestWriter.h"
 

@@ -4,7 +4,7 @@
 #include "RenderTest.h"
 
 #include "renderer/CameraSetup.h"
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The physics half of the golden-frame suite (issue 4): every real-time mode against the
-// CPU reference (renderer/reference), scene by scene, at small sizes on lavapipe.
+// CPU reference (reference), scene by scene, at small sizes on lavapipe.
 //
 // For each case the GPU frame and the reference image (linear radiance, EXR-equivalent)
 // are compared with image::compare over the pixels where both have geometry; the case
@@ -24,11 +24,11 @@
 
 #include "MaterialOverrides.h"
 
-#include "renderer/image/HeatMap.h"
-#include "renderer/image/Metrics.h"
-#include "renderer/reference/GroundTruth.h"
-#include "renderer/reference/ReferenceRenderer.h"
-#include "renderer/scene/BuiltinScenes.h"
+#include "image/HeatMap.h"
+#include "image/Metrics.h"
+#include "reference/GroundTruth.h"
+#include "reference/ReferenceRenderer.h"
+#include "scene/BuiltinScenes.h"
 
 #include "profiles/Profile.h"
 
@@ -226,13 +226,13 @@ void write_report(const fs::path& path, const std::vector<Row>& rows, const nloh
   md << "# Real-time frames against the CPU reference\n\n"
         "Written by `ReferenceSuiteTest` (tests/renderer/ReferenceSuiteTest.cpp); refresh with\n"
         "`tests/golden/bless.sh`. Each row renders one scene with one real-time mode on lavapipe\n"
-        "and compares it with the CPU reference (renderer/reference: Embree rays, irradiance\n"
+        "and compares it with the CPU reference (reference: Embree rays, irradiance\n"
         "points "
      << kReferenceSpacingMfp
      << " reduced mean free path apart, the Jensen–Buhler octree, the exact profile of\n"
         "the model, no Gaussian fit), pixel for pixel, over the pixels where both images have\n"
         "geometry, silhouette pixels left out. Linear radiance; SSIM on the tonemapped images.\n\n"
-        "Metrics (renderer/image/Metrics.h): relative RMSE = √(Σ(a−b)²/Σb²), PSNR against the\n"
+        "Metrics (image/Metrics.h): relative RMSE = √(Σ(a−b)²/Σb²), PSNR against the\n"
         "reference's peak, max abs error in radiance units, `>5%` = fraction of pixels whose\n"
         "error exceeds 5% of the peak, SSIM (Wang et al. 2004). *limit* is the test's bound on\n"
         "the relative RMSE, derived from the error budget (\"How each limit is derived\" below;\n"
@@ -242,7 +242,7 @@ void write_report(const fs::path& path, const std::vector<Row>& rows, const nloh
         "of the scene (`sss-reference --method random-walk`, a volumetric random walk through the\n"
         "scene's own meshes with the materials' real σa, σs, g and η behind a smooth dielectric;\n"
         "tests/golden/ground-truth, made by its render.sh), as relative RMSE with the ground\n"
-        "truth's own noise subtracted (renderer/image/Metrics.h; the ground truth's noise is in\n"
+        "truth's own noise subtracted (image/Metrics.h; the ground truth's noise is in\n"
         "the table below). *reference vs truth* is the diffusion reference's distance from it (the\n"
         "flat semi-infinite diffusion profile applied to this geometry, the Lambertian exit, the\n"
         "missing Fresnel factors); *GPU vs truth* the real-time frame's. Every image renders with the\n"

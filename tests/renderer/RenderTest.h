@@ -6,8 +6,8 @@
 #include "vk/VulkanTest.h"
 
 #include "renderer/Renderer.h"
-#include "renderer/image/Image.h"
-#include "renderer/scene/Scene.h"
+#include "image/Image.h"
+#include "scene/Scene.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>

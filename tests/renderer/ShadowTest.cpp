@@ -4,8 +4,8 @@
 // panning beyond a shadow-map texel or two), and lights without shadows must not darken.
 #include "RenderTest.h"
 
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Shapes.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Shapes.h"
 
 #include <gtest/gtest.h>
 

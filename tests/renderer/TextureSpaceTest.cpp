@@ -21,9 +21,9 @@
 #include "profiles/EdgeResponse.h"
 #include "profiles/Profile.h"
 #include "renderer/SssTexturePass.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Shapes.h"
-#include "renderer/scene/UvAtlas.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Shapes.h"
+#include "scene/UvAtlas.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // builtin:edge slab, fully lit at normal incidence, seen straight down (x, z in +-20 mm).
 #include "RenderTest.h"
 
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include <gtest/gtest.h>
 

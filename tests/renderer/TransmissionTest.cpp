@@ -25,9 +25,9 @@
 #include "RenderTest.h"
 
 #include "renderer/MaterialTable.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Camera.h"
-#include "renderer/scene/SssExtras.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Camera.h"
+#include "scene/SssExtras.h"
 
 #include "profiles/Fresnel.h"
 #include "profiles/Profile.h"

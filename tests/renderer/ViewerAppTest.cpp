@@ -1,7 +1,7 @@
 // sss-viewer: every documented command and error (DESIGN.md §4, §7 "apps").
 #include <gtest/gtest.h>
 
-#include "renderer/image/Image.h"
+#include "image/Image.h"
 
 #include <sys/wait.h>
 

@@ -5,7 +5,7 @@
 
 #include "common/CliRun.h"
 
-#include "renderer/image/Image.h"
+#include "image/Image.h"
 
 #include <cstdlib>
 #include <filesystem>

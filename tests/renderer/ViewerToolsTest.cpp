@@ -10,12 +10,12 @@
 #include "Tools.h"
 #include "Ui.h"
 
-#include "renderer/image/HeatMap.h"
-#include "renderer/image/Image.h"
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/GltfExport.h"
-#include "renderer/scene/GltfFile.h"
-#include "renderer/scene/SssExtras.h"
+#include "image/HeatMap.h"
+#include "image/Image.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/GltfExport.h"
+#include "scene/GltfFile.h"
+#include "scene/SssExtras.h"
 
 #include "HeadlessImGui.h"
 

@@ -21,11 +21,11 @@
 #include "profiles/Presets.h"
 #include "profiles/SeparableKernel.h"
 #include "renderer/CameraSetup.h"
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include "ViewerRun.h"
 
-#include "renderer/scene/SssExtras.h"
+#include "scene/SssExtras.h"
 #include "common/TwoBoxesGltf.h"
 #include "scene/GltfTestWriter.h"
 

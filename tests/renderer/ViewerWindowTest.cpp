@@ -3,7 +3,7 @@
 // no message allowed. Without a display the viewer says so and exits 1.
 #include <gtest/gtest.h>
 
-#include "renderer/image/Image.h"
+#include "image/Image.h"
 
 #include <sys/wait.h>
 

@@ -2,7 +2,7 @@
 // text), and a small PNG to embed in a test file.
 #pragma once
 
-#include "renderer/scene/GltfLoader.h"
+#include "scene/GltfLoader.h"
 
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>

@@ -2,7 +2,7 @@
 // medium, bit for bit (what a written extras.sss block must read back as).
 #pragma once
 
-#include "renderer/scene/Material.h"
+#include "scene/Material.h"
 
 #include <gtest/gtest.h>
 

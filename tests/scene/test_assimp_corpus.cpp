@@ -1,6 +1,6 @@
 // Debian's assimp-testmodels: every glTF file loads or returns a LoadError, never
 // crashes (valid and deliberately broken files). Known cases are pinned.
-#include "renderer/scene/GltfLoader.h"
+#include "scene/GltfLoader.h"
 
 #include <gtest/gtest.h>
 

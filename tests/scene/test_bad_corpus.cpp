@@ -1,7 +1,7 @@
 // tests/data/bad/: one malformed file per failure class (made by make_corpus.mjs). Each
 // must fail with a LoadError whose message names the file, the object/field given in
 // expected.json, and the phrase given there.
-#include "renderer/scene/GltfLoader.h"
+#include "scene/GltfLoader.h"
 #include "tests/common/CliRun.h"
 
 #include <gtest/gtest.h>

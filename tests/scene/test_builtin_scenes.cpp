@@ -1,5 +1,5 @@
 // The built-in scenes have what issue 3 specifies.
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>

@@ -1,6 +1,6 @@
 // scene::Environment (issue 20 part 3, environment light): the spherical-harmonic
 // irradiance against closed forms, the equirectangular convention, and bad input.
-#include "renderer/scene/Environment.h"
+#include "scene/Environment.h"
 
 #include <gtest/gtest.h>
 

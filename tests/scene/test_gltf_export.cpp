@@ -1,8 +1,8 @@
 // gltf_with_sss_materials (the viewer's "export material"): the written copy loads back
 // with the edited SSS materials and everything else unchanged; GLB keeps its BIN chunk;
 // the input is never the target; relative URIs pin the copy to the input's folder.
-#include "renderer/scene/GltfExport.h"
-#include "renderer/scene/GltfLoader.h"
+#include "scene/GltfExport.h"
+#include "scene/GltfLoader.h"
 
 #include "GltfTestWriter.h"
 #include "LoadExpect.h"

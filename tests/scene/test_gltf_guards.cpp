@@ -1,9 +1,9 @@
 // The loader's guards, unit by unit: GLB container, URIs, base64, the file sandbox, JSON
 // depth, and the size caps of LoadOptions.
-#include "renderer/scene/GltfFile.h"
-#include "renderer/scene/GltfJson.h"
-#include "renderer/scene/GltfLoader.h"
-#include "renderer/scene/GltfUri.h"
+#include "scene/GltfFile.h"
+#include "scene/GltfJson.h"
+#include "scene/GltfLoader.h"
+#include "scene/GltfUri.h"
 
 #include "GltfTestWriter.h"
 

@@ -1,7 +1,7 @@
 // load_gltf on valid files written by the test: node hierarchy, indexed and non-indexed
 // primitives, strips, textures, cameras, lights, extras.sss; .gltf (embedded and
 // external buffer) and .glb give the same scene.
-#include "renderer/scene/GltfLoader.h"
+#include "scene/GltfLoader.h"
 
 #include "GltfTestWriter.h"
 #include "LoadExpect.h"

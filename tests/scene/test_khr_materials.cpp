@@ -5,9 +5,9 @@
 #include "GltfTestWriter.h"
 #include "tests/common/CliRun.h"
 
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/GltfExport.h"
-#include "renderer/scene/KhrMaterials.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/GltfExport.h"
+#include "scene/KhrMaterials.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,7 +1,7 @@
 // Mesh helpers (normals, bounds, checks) and the shapes of the built-in scenes.
-#include "renderer/scene/Mesh.h"
-#include "renderer/scene/Shapes.h"
-#include "renderer/scene/Camera.h"
+#include "scene/Mesh.h"
+#include "scene/Shapes.h"
+#include "scene/Camera.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

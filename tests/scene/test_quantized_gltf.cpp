@@ -5,7 +5,7 @@
 // (Debian's gltfpack; glTF-Transform from npm, tools/node/variants.mjs) load as the
 // originals within the quantization's own step, or bit for bit where the compression is
 // lossless.
-#include "renderer/scene/GltfLoader.h"
+#include "scene/GltfLoader.h"
 
 #include "GltfTestWriter.h"
 #include "LoadExpect.h"

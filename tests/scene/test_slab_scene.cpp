@@ -1,6 +1,6 @@
 // builtin:slab, the transmission scene: a thin multipole slab whose thickness is the
 // geometry's, lit only from behind, seen from the front (SlabScene.cpp).
-#include "renderer/scene/BuiltinScenes.h"
+#include "scene/BuiltinScenes.h"
 
 #include "profiles/Presets.h"
 #include "profiles/Profile.h"

@@ -1,9 +1,9 @@
-// The split sum's two tables (renderer/scene/SplitSum.h), each against an independent
+// The split sum's two tables (scene/SplitSum.h), each against an independent
 // computation: the DFG table against a midpoint rule over the hemisphere
 // (tests/common/GgxQuadrature.h) and the mirror's closed form; the prefiltered levels
 // against a uniform sky (exact) and a linear sky, whose lobe average has a 1-D closed form.
-#include "renderer/scene/Environment.h"
-#include "renderer/scene/SplitSum.h"
+#include "scene/Environment.h"
+#include "scene/SplitSum.h"
 #include "tests/common/GgxQuadrature.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // materials[i].extras.sss: every source, every option, and an error naming the field
 // for every bad value.
-#include "renderer/scene/SssExtras.h"
+#include "scene/SssExtras.h"
 
 #include "profiles/Presets.h"
 

@@ -1,7 +1,7 @@
 // extras.sss.layers and `sss-fit --layers FILE.json` (issue 19): a stack of layers, top
 // first, read back value for value, and an error naming the layer and the field as the
 // user wrote them for every bad input.
-#include "renderer/scene/SssLayers.h"
+#include "scene/SssLayers.h"
 
 #include "profiles/Presets.h"
 

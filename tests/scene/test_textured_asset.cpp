@@ -1,7 +1,7 @@
 // assets/textured_tile.glb (written by assets/make_textured_tile.py) loads cleanly and has
 // what a textured SSS test scene needs: UVs and tangents on a closed mesh, a base-colour
 // texture and a normal map, an SSS material, its own camera and KHR_lights_punctual light.
-#include "renderer/scene/GltfLoader.h"
+#include "scene/GltfLoader.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

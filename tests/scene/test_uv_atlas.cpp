@@ -1,10 +1,10 @@
 // check_uvs and the generated box-projection atlas (UvAtlas.h): the bunny (no UVs), a UV
 // sphere and a box (whose faces all share [0,1]^2) get atlases that pass check_uvs, keep
 // every triangle's vertices, and stretch every edge by a factor in [s/√3, s].
-#include "renderer/scene/BuiltinScenes.h"
-#include "renderer/scene/Material.h"
-#include "renderer/scene/Shapes.h"
-#include "renderer/scene/UvAtlas.h"
+#include "scene/BuiltinScenes.h"
+#include "scene/Material.h"
+#include "scene/Shapes.h"
+#include "scene/UvAtlas.h"
 #include "profiles/GaussianSumProfile.h"
 
 #include <glm/geometric.hpp>
