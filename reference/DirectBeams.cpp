@@ -176,6 +176,95 @@ struct LightBeams {
   ChunkGrid grid;
 };
 
+// A light's beams before any face: which light, where it is, and the frame the chunk
+// boxes are aligned in (its direction of travel; towards the centre of `bounds` for
+// point and spot lights).
+LightBeams light_beams(const scene::Scene& s, std::uint32_t li, const Box& bounds) {
+  const scene::Light& light = s.lights[li];
+  LightBeams lb;
+  lb.light = li;
+  lb.type = light.type;
+  glm::dvec3 axis;
+  if (light.type == scene::LightType::Directional) {
+    lb.to_light = -glm::normalize(glm::dvec3(light.direction()));
+    axis = -lb.to_light;
+  } else {
+    lb.position = glm::dvec3(light.position()) * s.mm_per_unit;
+    axis = 0.5 * (bounds.lo + bounds.hi) - lb.position;
+    axis = glm::length(axis) > 0.0 ? glm::normalize(axis) : glm::dvec3(0.0, 0.0, 1.0);
+  }
+  glm::dvec3 t, b;
+  walk::basis(axis, t, b);
+  lb.frame = glm::transpose(glm::dmat3(t, b, axis));  // rows t, b, axis
+  return lb;
+}
+
+// How a face's refracted beam runs: d0 the refracted direction at its first corner,
+// theta a bound on the angle between refracted directions over the face, t_max how far
+// it runs inside the medium's bounds.
+struct BeamExtent {
+  glm::dvec3 d0{0.0};
+  double theta = 0.0;
+  double t_max = 0.0;
+};
+
+// The beam a light sends into the medium through face f (corners `corner`): for a
+// directional light, f's refracted direction, cosine and entry factor, and the longest
+// corner distance to the bounds' exit; for a point or spot light, the refracted direction
+// at the first corner and the spread of the incident directions over the corners. False
+// where no light enters (the face turned away, total internal reflection).
+bool refract_beam(const LightBeams& lb, scene::LightType type, double eta, const std::array<glm::dvec3, 3>& corner,
+                  const Box& bounds, Face& f, BeamExtent& e) {
+  if (type == scene::LightType::Directional) {
+    const double cos_i = glm::dot(lb.to_light, f.n);
+    if (!(cos_i > 0.0)) return false;
+    if (!walk::refract(-lb.to_light, f.n, 1.0, eta, f.d)) return false;
+    f.cos_t = -glm::dot(f.d, f.n);
+    if (!(f.cos_t > 0.0)) return false;
+    f.factor = cos_i * (1.0 - walk::fresnel(cos_i, 1.0, eta)) / f.cos_t;
+    e.d0 = f.d;
+    // The prism leaves the medium's box within the longest corner exit distance.
+    e.t_max = 0.0;
+    for (const glm::dvec3& c : corner) {
+      double exit = std::numeric_limits<double>::infinity();
+      for (int a = 0; a < 3; ++a) {
+        if (f.d[a] > 0.0) exit = std::min(exit, (bounds.hi[a] - c[a]) / f.d[a]);
+        if (f.d[a] < 0.0) exit = std::min(exit, (bounds.lo[a] - c[a]) / f.d[a]);
+      }
+      e.t_max = std::max(e.t_max, std::max(exit, 0.0));
+    }
+    return true;
+  }
+  if (!(glm::dot(lb.position - f.c0, f.n) > 0.0)) return false;  // the light is behind the face
+  std::array<glm::dvec3, 3> in;
+  for (int k = 0; k < 3; ++k) in[std::size_t(k)] = glm::normalize(corner[std::size_t(k)] - lb.position);
+  if (!walk::refract(in[0], f.n, 1.0, eta, e.d0)) return false;
+  for (int k = 1; k < 3; ++k)
+    e.theta = std::max(e.theta, std::acos(std::clamp(glm::dot(in[0], in[std::size_t(k)]), -1.0, 1.0)));
+  e.theta = e.theta * (1.0 + 1e-9) + 1e-12;
+  return true;
+}
+
+// The face's beam cut into chunks about `length` long (a face diameter, at most 64 per
+// face), each boxed in the light's frame and widened by the beam's spread and `grow`.
+void add_chunks(LightBeams& lb, std::uint32_t face_index, const std::array<glm::dvec3, 3>& corner, double length,
+                const BeamExtent& e, double grow) {
+  const int count = std::max(1, int(std::ceil(e.t_max / length)));
+  for (int k = 0; k < count; ++k) {
+    Chunk c;
+    c.face = face_index;
+    const double t0 = e.t_max * k / count, t1 = e.t_max * (k + 1) / count;
+    for (const glm::dvec3& p : corner) {
+      c.box.add(lb.frame * (p + t0 * e.d0));
+      c.box.add(lb.frame * (p + t1 * e.d0));
+    }
+    const double widen = t1 * e.theta + grow;
+    c.box.lo -= widen;
+    c.box.hi += widen;
+    lb.chunks.push_back(c);
+  }
+}
+
 double smoothstep01(double t) {
   t = std::clamp(t, 0.0, 1.0);
   return t * t * (3.0 - 2.0 * t);
@@ -245,25 +334,9 @@ void DirectBeams::Impl::build(const scene::Scene& s) {
 
   for (std::uint32_t li = 0; li < s.lights.size(); ++li) {
     const scene::Light& light = s.lights[li];
-    LightBeams lb;
-    lb.light = li;
-    lb.type = light.type;
     const glm::dvec3 colour = glm::dvec3(light.color) * double(light.intensity);
     if (!(colour.x > 0.0 || colour.y > 0.0 || colour.z > 0.0)) continue;
-    glm::dvec3 axis;
-    if (light.type == scene::LightType::Directional) {
-      lb.to_light = -glm::normalize(glm::dvec3(light.direction()));
-      axis = -lb.to_light;
-    } else {
-      lb.position = glm::dvec3(light.position()) * s.mm_per_unit;
-      axis = 0.5 * (bounds.lo + bounds.hi) - lb.position;
-      axis = glm::length(axis) > 0.0 ? glm::normalize(axis) : glm::dvec3(0.0, 0.0, 1.0);
-    }
-    {
-      glm::dvec3 t, b;
-      walk::basis(axis, t, b);
-      lb.frame = glm::transpose(glm::dmat3(t, b, axis));  // rows t, b, axis
-    }
+    LightBeams lb = light_beams(s, li, bounds);
     for (std::uint32_t inst : surface->instances) {
       const scene::Mesh& mesh = s.meshes[s.instances[inst].mesh];
       const std::vector<glm::vec3>& w = rays->world_positions(inst);
@@ -282,55 +355,12 @@ void DirectBeams::Impl::build(const scene::Scene& s) {
         f.dv = glm::cross(N, f.e1) / n2;
         const std::array<glm::dvec3, 3> corner = {f.c0, f.c0 + f.e1, f.c0 + f.e2};
         const double diameter = std::max({glm::length(f.e1), glm::length(f.e2), glm::length(f.e2 - f.e1)});
-        glm::dvec3 d0;
-        double theta = 0.0;  // bound on the angle between refracted directions over the face
-        double t_max = diag;
-        if (light.type == scene::LightType::Directional) {
-          const double cos_i = glm::dot(lb.to_light, f.n);
-          if (!(cos_i > 0.0)) continue;
-          if (!walk::refract(-lb.to_light, f.n, 1.0, eta, f.d)) continue;
-          f.cos_t = -glm::dot(f.d, f.n);
-          if (!(f.cos_t > 0.0)) continue;
-          f.factor = cos_i * (1.0 - walk::fresnel(cos_i, 1.0, eta)) / f.cos_t;
-          d0 = f.d;
-          // The prism leaves the medium's box within the longest corner exit distance.
-          t_max = 0.0;
-          for (const glm::dvec3& c : corner) {
-            double exit = std::numeric_limits<double>::infinity();
-            for (int a = 0; a < 3; ++a) {
-              if (f.d[a] > 0.0) exit = std::min(exit, (bounds.hi[a] - c[a]) / f.d[a]);
-              if (f.d[a] < 0.0) exit = std::min(exit, (bounds.lo[a] - c[a]) / f.d[a]);
-            }
-            t_max = std::max(t_max, std::max(exit, 0.0));
-          }
-        } else {
-          if (!(glm::dot(lb.position - f.c0, f.n) > 0.0)) continue;  // the light is behind the face
-          std::array<glm::dvec3, 3> in;
-          for (int k = 0; k < 3; ++k) in[std::size_t(k)] = glm::normalize(corner[std::size_t(k)] - lb.position);
-          if (!walk::refract(in[0], f.n, 1.0, eta, d0)) continue;
-          for (int k = 1; k < 3; ++k)
-            theta = std::max(theta, std::acos(std::clamp(glm::dot(in[0], in[std::size_t(k)]), -1.0, 1.0)));
-          theta = theta * (1.0 + 1e-9) + 1e-12;
-        }
-        if (!(t_max > 0.0)) continue;
+        BeamExtent extent;
+        extent.t_max = diag;
+        if (!refract_beam(lb, light.type, eta, corner, bounds, f, extent) || !(extent.t_max > 0.0)) continue;
         const std::uint32_t face_index = std::uint32_t(lb.faces.size());
         lb.faces.push_back(f);
-        // Chunks about a face diameter long, at most 64 per face.
-        const double length = std::max(diameter, t_max / 64.0);
-        const int count = std::max(1, int(std::ceil(t_max / length)));
-        for (int k = 0; k < count; ++k) {
-          Chunk c;
-          c.face = face_index;
-          const double t0 = t_max * k / count, t1 = t_max * (k + 1) / count;
-          for (const glm::dvec3& p : corner) {
-            c.box.add(lb.frame * (p + t0 * d0));
-            c.box.add(lb.frame * (p + t1 * d0));
-          }
-          const double widen = t1 * theta + grow;
-          c.box.lo -= widen;
-          c.box.hi += widen;
-          lb.chunks.push_back(c);
-        }
+        add_chunks(lb, face_index, corner, std::max(diameter, extent.t_max / 64.0), extent, grow);
       }
     }
     lb.grid.build(lb.chunks);

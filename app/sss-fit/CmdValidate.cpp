@@ -65,89 +65,85 @@ profiles::ValidationReport validate_stack(const profiles::LayerStack& stack,
   return report;
 }
 
-}  // namespace
-
-int run_validate(const CommonArgs& a) {
-  const auto opt = model_options(a);
-  const auto src = resolve_source(a, opt, /*with_model=*/false);
-  if (!src) return kExitUsage;
-
-  profiles::ValidationOptions vo;
-  vo.photons = a.photons;
-  vo.seed = a.seed;
-  vo.threads = a.threads;
-  vo.model_options = opt;
-  vo.progress = [](double f) { progress_bar("Monte Carlo", f); };
-  const bool stack = src->layers.has_value();
-  const auto rep = stack ? validate_stack(*src->layers, vo)
-                         : profiles::validate_against_monte_carlo(src->medium, vo);
-  // The walk has a far face: a slab, or a stack whose last layer is finite.
-  const bool far_face = stack ? src->has_transmittance() : src->medium.is_slab();
-
-  Rgb mc_total, mc_se, noise, mc_t, mc_t_se;
-  for (int c = 0; c < 3; ++c) {
-    mc_total[c] = rep.monte_carlo[c].reflectance.total;
-    mc_se[c] = rep.monte_carlo[c].reflectance.total_stderr;
-    mc_t[c] = rep.monte_carlo[c].transmittance.total;
-    mc_t_se[c] = rep.monte_carlo[c].transmittance.total_stderr;
-    noise[c] = rep.median_bin_rel_stderr[c];
-  }
-  if (a.json) {
-    nlohmann::json models = nlohmann::json::array();
-    for (const auto& m : rep.models) {
-      Rgb tot, terr, rms, mx, t, t_err;
-      for (int c = 0; c < 3; ++c) {
-        tot[c] = m.channels[c].total;
-        terr[c] = m.channels[c].total_rel_error;
-        rms[c] = m.channels[c].rms_rel_error;
-        mx[c] = m.channels[c].max_rel_error;
-        t[c] = m.channels[c].total_transmittance;
-        t_err[c] = m.channels[c].total_transmittance_rel_error;
-      }
-      nlohmann::json entry = {{"model", profiles::model_name(m.model)},
-                              {"total_reflectance", to_json(tot)},
-                              {"total_relative_error", to_json(terr)},
-                              {"rms_relative_error", to_json(rms)},
-                              {"max_relative_error", to_json(mx)}};
-      if (far_face) {
-        entry["total_transmittance"] = to_json(t);
-        entry["total_transmittance_relative_error"] = to_json(t_err);
-      }
-      models.push_back(std::move(entry));
+// The walk's totals and noise, per channel, as both outputs print them.
+struct WalkTotals {
+  Rgb total, total_se, noise, t, t_se;
+  explicit WalkTotals(const profiles::ValidationReport& rep) {
+    for (int c = 0; c < 3; ++c) {
+      total[c] = rep.monte_carlo[c].reflectance.total;
+      total_se[c] = rep.monte_carlo[c].reflectance.total_stderr;
+      t[c] = rep.monte_carlo[c].transmittance.total;
+      t_se[c] = rep.monte_carlo[c].transmittance.total_stderr;
+      noise[c] = rep.median_bin_rel_stderr[c];
     }
-    nlohmann::json out = {
-        {"medium", src->description},
-        {stack ? "range_mm" : "range_mfp", {vo.r_lo_mfp, vo.r_hi_mfp}},
-        {"monte_carlo",
-         {{"photons", a.photons},
-          {"seed", a.seed},
-          {"seconds", rep.seconds},
-          {"total_reflectance", to_json(mc_total)},
-          {"total_reflectance_stderr", to_json(mc_se)},
-          {"median_bin_relative_stderr", to_json(noise)}}},
-        {"models", models}};
+  }
+};
+
+// `--json`: the walk and every model's errors; transmittance where the walk has a far face.
+nlohmann::json validation_json(const CommonArgs& a, const ProfileSource& src, const profiles::ValidationOptions& vo,
+                               const profiles::ValidationReport& rep, bool far_face) {
+  const bool stack = src.layers.has_value();
+  const WalkTotals mc(rep);
+  nlohmann::json models = nlohmann::json::array();
+  for (const auto& m : rep.models) {
+    Rgb tot, terr, rms, mx, t, t_err;
+    for (int c = 0; c < 3; ++c) {
+      tot[c] = m.channels[c].total;
+      terr[c] = m.channels[c].total_rel_error;
+      rms[c] = m.channels[c].rms_rel_error;
+      mx[c] = m.channels[c].max_rel_error;
+      t[c] = m.channels[c].total_transmittance;
+      t_err[c] = m.channels[c].total_transmittance_rel_error;
+    }
+    nlohmann::json entry = {{"model", profiles::model_name(m.model)},
+                            {"total_reflectance", to_json(tot)},
+                            {"total_relative_error", to_json(terr)},
+                            {"rms_relative_error", to_json(rms)},
+                            {"max_relative_error", to_json(mx)}};
     if (far_face) {
-      out["monte_carlo"]["total_transmittance"] = to_json(mc_t);
-      out["monte_carlo"]["total_transmittance_stderr"] = to_json(mc_t_se);
+      entry["total_transmittance"] = to_json(t);
+      entry["total_transmittance_relative_error"] = to_json(t_err);
     }
-    if (stack) out["layers"] = layers_json(*src->layers);
-    std::cout << out.dump(2) << '\n';
-    return kExitOk;
+    models.push_back(std::move(entry));
   }
+  nlohmann::json out = {
+      {"medium", src.description},
+      {stack ? "range_mm" : "range_mfp", {vo.r_lo_mfp, vo.r_hi_mfp}},
+      {"monte_carlo",
+       {{"photons", a.photons},
+        {"seed", a.seed},
+        {"seconds", rep.seconds},
+        {"total_reflectance", to_json(mc.total)},
+        {"total_reflectance_stderr", to_json(mc.total_se)},
+        {"median_bin_relative_stderr", to_json(mc.noise)}}},
+      {"models", models}};
+  if (far_face) {
+    out["monte_carlo"]["total_transmittance"] = to_json(mc.t);
+    out["monte_carlo"]["total_transmittance_stderr"] = to_json(mc.t_se);
+  }
+  if (stack) out["layers"] = layers_json(*src.layers);
+  return out;
+}
+
+// The text report: the walk, then a row per model and channel, then the transmittances.
+void print_validation(const CommonArgs& a, const ProfileSource& src, const profiles::ValidationOptions& vo,
+                      const profiles::ValidationReport& rep, bool far_face) {
+  const bool stack = src.layers.has_value();
+  const WalkTotals mc(rep);
   std::printf("%s against Monte Carlo for %s\n", stack ? "Model layered" : "Models",
-              src->description.c_str());
+              src.description.c_str());
   std::printf("Monte Carlo: %llu photons per channel, seed %llu, %.1f s\n",
               static_cast<unsigned long long>(a.photons), static_cast<unsigned long long>(a.seed),
               rep.seconds);
-  std::printf("MC total reflectance   %.5f±%.5f  %.5f±%.5f  %.5f±%.5f\n", mc_total[0], mc_se[0],
-              mc_total[1], mc_se[1], mc_total[2], mc_se[2]);
+  std::printf("MC total reflectance   %.5f±%.5f  %.5f±%.5f  %.5f±%.5f\n", mc.total[0], mc.total_se[0],
+              mc.total[1], mc.total_se[1], mc.total[2], mc.total_se[2]);
   if (far_face)
-    std::printf("MC total transmittance %.5f±%.5f  %.5f±%.5f  %.5f±%.5f\n", mc_t[0], mc_t_se[0],
-                mc_t[1], mc_t_se[1], mc_t[2], mc_t_se[2]);
+    std::printf("MC total transmittance %.5f±%.5f  %.5f±%.5f  %.5f±%.5f\n", mc.t[0], mc.t_se[0],
+                mc.t[1], mc.t_se[1], mc.t[2], mc.t_se[2]);
   std::printf("R(r) compared on %d annuli over r = %.2g..%.2g %s "
               "(MC noise per annulus: %.2f%% %.2f%% %.2f%%)\n\n",
               vo.bins, vo.r_lo_mfp, vo.r_hi_mfp, stack ? "mm" : "reduced mean free paths",
-              100 * noise[0], 100 * noise[1], 100 * noise[2]);
+              100 * mc.noise[0], 100 * mc.noise[1], 100 * mc.noise[2]);
   std::printf("%-14s %-3s %9s %10s %10s %10s\n", "model", "ch", "total", "total err", "RMS err",
               "max err");
   for (const auto& m : rep.models) {
@@ -168,6 +164,30 @@ int run_validate(const CommonArgs& a) {
                     kChannelNames[c], m.channels[c].total_transmittance,
                     100 * m.channels[c].total_transmittance_rel_error);
   }
+}
+
+}  // namespace
+
+int run_validate(const CommonArgs& a) {
+  const auto opt = model_options(a);
+  const auto src = resolve_source(a, opt, /*with_model=*/false);
+  if (!src) return kExitUsage;
+
+  profiles::ValidationOptions vo;
+  vo.photons = a.photons;
+  vo.seed = a.seed;
+  vo.threads = a.threads;
+  vo.model_options = opt;
+  vo.progress = [](double f) { progress_bar("Monte Carlo", f); };
+  const bool stack = src->layers.has_value();
+  const auto rep = stack ? validate_stack(*src->layers, vo)
+                         : profiles::validate_against_monte_carlo(src->medium, vo);
+  // The walk has a far face: a slab, or a stack whose last layer is finite.
+  const bool far_face = stack ? src->has_transmittance() : src->medium.is_slab();
+  if (a.json)
+    std::cout << validation_json(a, *src, vo, rep, far_face).dump(2) << '\n';
+  else
+    print_validation(a, *src, vo, rep, far_face);
   return kExitOk;
 }
 

@@ -52,9 +52,9 @@ struct Axes {
   bool inside_y(double y) const { return std::log10(y) >= y0 - 1e-9; }
 };
 
-}  // namespace
-
-std::string render_svg(const LogLogPlot& plot) {
+// The plot's decades: the bounds of every positive point, y down to y_floor_ratio of its
+// top (ymin), widened to whole decades, at least one each way.
+Axes axes_for(const LogLogPlot& plot, double& ymin) {
   double xmin = std::numeric_limits<double>::infinity(), xmax = 0, ymax = 0;
   for (const auto& s : plot.series)
     for (std::size_t i = 0; i < s.x.size(); ++i)
@@ -64,21 +64,19 @@ std::string render_svg(const LogLogPlot& plot) {
         ymax = std::max(ymax, s.y[i]);
       }
   if (!(xmax > 0)) xmin = 0.1, xmax = 10, ymax = 1;
-  const double ymin = ymax * plot.y_floor_ratio;
+  ymin = ymax * plot.y_floor_ratio;
   Axes ax{std::floor(std::log10(xmin)), std::ceil(std::log10(xmax)),
           std::floor(std::log10(ymin)), std::ceil(std::log10(ymax))};
   if (ax.x1 <= ax.x0) ax.x1 = ax.x0 + 1;
   if (ax.y1 <= ax.y0) ax.y1 = ax.y0 + 1;
+  return ax;
+}
 
-  std::ostringstream o;
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\""
-    << kHeight << "\" viewBox=\"0 0 " << kWidth << ' ' << kHeight
-    << "\" font-family=\"sans-serif\" font-size=\"13\">\n";
-  o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  o << "<text x=\"" << kWidth / 2 << "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">"
-    << escape(plot.title) << "</text>\n";
-  const double left = kLeft, right = kWidth - kRight, top = kTop, bottom = kHeight - kBottom;
-  // Grid and ticks: decades labelled, 2..9 as minor ticks.
+constexpr double kPlotLeft = kLeft, kPlotRight = kWidth - kRight, kPlotTop = kTop, kPlotBottom = kHeight - kBottom;
+
+// Grid and ticks: decades labelled, 2..9 as minor ticks.
+void write_grid(std::ostringstream& o, const Axes& ax) {
+  const double left = kPlotLeft, right = kPlotRight, top = kPlotTop, bottom = kPlotBottom;
   for (int e = static_cast<int>(ax.x0); e <= static_cast<int>(ax.x1); ++e) {
     for (int m = 1; m <= 9; ++m) {
       const double v = m * std::pow(10.0, e);
@@ -103,14 +101,12 @@ std::string render_svg(const LogLogPlot& plot) {
           << "\" text-anchor=\"end\">" << decade_label(e) << "</text>\n";
     }
   }
-  o << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left
-    << "\" height=\"" << bottom - top << "\" fill=\"none\" stroke=\"black\"/>\n";
-  o << "<text x=\"" << (left + right) / 2 << "\" y=\"" << kHeight - 20
-    << "\" text-anchor=\"middle\">" << escape(plot.x_label) << "</text>\n";
-  o << "<text transform=\"translate(24," << (top + bottom) / 2
-    << ") rotate(-90)\" text-anchor=\"middle\">" << escape(plot.y_label) << "</text>\n";
+}
 
-  // Data, clipped to the plot area.
+// The series, clipped to the plot area: markers (with error bars) or polylines, values
+// below ymin drawn at ymin / 1000.
+void write_series(std::ostringstream& o, const Axes& ax, const LogLogPlot& plot, double ymin) {
+  const double left = kPlotLeft, right = kPlotRight, top = kPlotTop, bottom = kPlotBottom;
   o << "<clipPath id=\"area\"><rect x=\"" << left << "\" y=\"" << top << "\" width=\""
     << right - left << "\" height=\"" << bottom - top << "\"/></clipPath>\n";
   o << "<g clip-path=\"url(#area)\">\n";
@@ -139,7 +135,11 @@ std::string render_svg(const LogLogPlot& plot) {
   }
   o << "</g>\n";
 
-  // Legend and notes to the right of the plot.
+}
+
+// Legend and notes to the right of the plot.
+void write_legend(std::ostringstream& o, const LogLogPlot& plot) {
+  const double right = kPlotRight, top = kPlotTop;
   double ly = top + 10;
   for (const auto& s : plot.series) {
     const double lx = right + 16;
@@ -160,6 +160,31 @@ std::string render_svg(const LogLogPlot& plot) {
       << "</text>\n";
     ly += 17;
   }
+}
+
+}  // namespace
+
+std::string render_svg(const LogLogPlot& plot) {
+  double ymin = 0.0;
+  const Axes ax = axes_for(plot, ymin);
+  std::ostringstream o;
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\""
+    << kHeight << "\" viewBox=\"0 0 " << kWidth << ' ' << kHeight
+    << "\" font-family=\"sans-serif\" font-size=\"13\">\n";
+  o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  o << "<text x=\"" << kWidth / 2 << "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">"
+    << escape(plot.title) << "</text>\n";
+  write_grid(o, ax);
+  const double left = kPlotLeft, right = kPlotRight, top = kPlotTop, bottom = kPlotBottom;
+  o << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left
+    << "\" height=\"" << bottom - top << "\" fill=\"none\" stroke=\"black\"/>\n";
+  o << "<text x=\"" << (left + right) / 2 << "\" y=\"" << kHeight - 20
+    << "\" text-anchor=\"middle\">" << escape(plot.x_label) << "</text>\n";
+  o << "<text transform=\"translate(24," << (top + bottom) / 2
+    << ") rotate(-90)\" text-anchor=\"middle\">" << escape(plot.y_label) << "</text>\n";
+
+  write_series(o, ax, plot, ymin);
+  write_legend(o, plot);
   o << "</svg>\n";
   return o.str();
 }
