@@ -197,6 +197,108 @@ void unpremultiply(Image& image) {
   }
 }
 
+namespace {
+
+// The image of a PNG file's bytes (8-bit RGBA, scaled to [0, 1]), or why not.
+std::variant<Image, ImageError> decode_png(const std::vector<unsigned char>& bytes, const std::string& path) {
+  if (std::string why = check_png_chunks(bytes); !why.empty()) return ImageError{path, why};
+  int w = 0, h = 0, comp = 0;
+  const int len = static_cast<int>(bytes.size());
+  if (!stbi_info_from_memory(bytes.data(), len, &w, &h, &comp) || !check_size(w, h))
+    return ImageError{path, "unsupported or corrupt PNG header"};
+  std::unique_ptr<stbi_uc, void (*)(void*)> data(
+      stbi_load_from_memory(bytes.data(), len, &w, &h, &comp, 4), stbi_image_free);
+  if (!data) return ImageError{path, std::string("corrupt PNG: ") + stbi_failure_reason()};
+  Image img(w, h);
+  for (std::size_t i = 0; i < img.rgba.size(); ++i) img.rgba[i] = data.get()[i] / 255.0f;
+  return img;
+}
+
+// The image of an OpenEXR file's bytes (scanline, HALF/FLOAT/UINT channels; R, G, B and
+// optionally A, or one gray channel) with its string attributes, or why not.
+std::variant<Image, ImageError> decode_exr(const std::vector<unsigned char>& bytes, const std::string& path) {
+  // dataWindow's max - min + 1 of hostile 32-bit corners overflows an int: in 64 bits
+  // (found by fuzzing, fuzz/regressions/image/exr_data_window_int_overflow.exr).
+  std::int64_t w64 = 0, h64 = 0;
+  if (std::string why = check_exr_header(bytes, w64, h64); !why.empty())
+    return ImageError{path, why};
+  if (w64 <= 0 || h64 <= 0 || w64 > kMaxImageSide || h64 > kMaxImageSide ||
+      !check_size(static_cast<int>(w64), static_cast<int>(h64)))
+    return ImageError{path, "EXR size out of range"};
+  // Not LoadEXRFromMemory: tinyexr 1.0.1's convenience loader leaks the header and the
+  // image whenever decoding fails or a channel is missing (found by fuzzing,
+  // fuzz/regressions/image/exr_load_image_failure_leak.exr) and reads a UINT channel's
+  // bits as floats. The header and image are owned here and freed on every path.
+  EXRVersion version;
+  if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS)
+    return ImageError{path, "corrupt EXR version field"};
+  EXRHeader header;
+  InitEXRHeader(&header);
+  std::unique_ptr<EXRHeader, int (*)(EXRHeader*)> header_owner(&header, FreeEXRHeader);
+  const char* err = nullptr;
+  auto fail = [&](const char* fallback) {
+    std::string msg = err ? err : fallback;
+    if (err) FreeEXRErrorMessage(err);
+    return ImageError{path, msg};
+  };
+  // A failed parse may have filled part of the header: the owner frees it (fuzzing).
+  if (ParseEXRHeaderFromMemory(&header, &version, bytes.data(), bytes.size(), &err) !=
+      TINYEXR_SUCCESS)
+    return fail("corrupt EXR header");
+  int idx[4] = {-1, -1, -1, -1};  // R, G, B, A
+  static const char* const kNames[4] = {"R", "G", "B", "A"};
+  for (int c = 0; c < header.num_channels; ++c) {
+    for (int k = 0; k < 4; ++k)
+      if (std::strcmp(header.channels[c].name, kNames[k]) == 0) idx[k] = c;
+    if (header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
+      header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+  }
+  const bool gray = header.num_channels == 1;
+  if (!gray && (idx[0] < 0 || idx[1] < 0 || idx[2] < 0))
+    return ImageError{path, "EXR has no R, G and B channels (and is not one-channel)"};
+  EXRImage exr;
+  InitEXRImage(&exr);
+  std::unique_ptr<EXRImage, int (*)(EXRImage*)> image_owner(&exr, FreeEXRImage);
+  // tinyexr frees a failed decode's image itself (DecodeEXRImage calls FreeEXRImage,
+  // without clearing the pointers: freeing it again here was a double free), but it sets
+  // num_channels only on success, so its FreeEXRImage would free the channel array and
+  // lose the channel buffers (both found by fuzzing,
+  // fuzz/regressions/image/exr_decode_failure_double_free.exr). Set beforehand, it frees
+  // them all.
+  exr.num_channels = header.num_channels;
+  if (LoadEXRImageFromMemory(&exr, &header, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
+    image_owner.release();
+    return fail("corrupt EXR");
+  }
+  if (exr.width != w64 || exr.height != h64 || exr.num_channels != header.num_channels)
+    return ImageError{path, "EXR decoded to a size other than its dataWindow"};
+  Image img(exr.width, exr.height);
+  if (header.tiled || exr.images == nullptr) return ImageError{path, "corrupt EXR"};  // refused above
+  // One sample of channel c (tinyexr allocates every channel at full size, whatever its
+  // sampling) at pixel i; HALF was decoded as FLOAT, UINT is converted.
+  auto sample = [&](int c, std::size_t i) -> float {
+    if (header.requested_pixel_types[c] == TINYEXR_PIXELTYPE_UINT)
+      return static_cast<float>(reinterpret_cast<const std::uint32_t*>(exr.images[c])[i]);
+    return reinterpret_cast<const float*>(exr.images[c])[i];
+  };
+  const std::size_t n = std::size_t(exr.width) * std::size_t(exr.height);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) img.rgba[4 * i + k] = sample(gray ? 0 : idx[k], i);
+    img.rgba[4 * i + 3] = gray || idx[3] < 0 ? 1.0f : sample(idx[3], i);  // no alpha: opaque
+  }
+  for (int a = 0; a < header.num_custom_attributes; ++a) {
+    const EXRAttribute& attr = header.custom_attributes[a];
+    if (std::strcmp(attr.type, "string") != 0 || attr.size < 0 || !attr.value) continue;
+    // A string attribute is its bytes (OpenEXR writes no terminator; some writers do).
+    std::string value(reinterpret_cast<const char*>(attr.value), std::size_t(attr.size));
+    if (const auto nul = value.find('\0'); nul != std::string::npos) value.resize(nul);
+    img.attributes.emplace_back(attr.name, value);
+  }
+  return img;
+}
+
+}  // namespace
+
 std::variant<Image, ImageError> read_image(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   if (!f) return ImageError{path, "cannot open the file"};
@@ -205,99 +307,8 @@ std::variant<Image, ImageError> read_image(const std::string& path) {
   if (bytes.size() > (std::size_t{1} << 31)) return ImageError{path, "file larger than 2 GiB"};
   static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
   static const unsigned char kExr[4] = {0x76, 0x2f, 0x31, 0x01};
-  if (std::memcmp(bytes.data(), kPng, 8) == 0) {
-    if (std::string why = check_png_chunks(bytes); !why.empty()) return ImageError{path, why};
-    int w = 0, h = 0, comp = 0;
-    const int len = static_cast<int>(bytes.size());
-    if (!stbi_info_from_memory(bytes.data(), len, &w, &h, &comp) || !check_size(w, h))
-      return ImageError{path, "unsupported or corrupt PNG header"};
-    std::unique_ptr<stbi_uc, void (*)(void*)> data(
-        stbi_load_from_memory(bytes.data(), len, &w, &h, &comp, 4), stbi_image_free);
-    if (!data) return ImageError{path, std::string("corrupt PNG: ") + stbi_failure_reason()};
-    Image img(w, h);
-    for (std::size_t i = 0; i < img.rgba.size(); ++i) img.rgba[i] = data.get()[i] / 255.0f;
-    return img;
-  }
-  if (std::memcmp(bytes.data(), kExr, 4) == 0) {
-    // dataWindow's max - min + 1 of hostile 32-bit corners overflows an int: in 64 bits
-    // (found by fuzzing, fuzz/regressions/image/exr_data_window_int_overflow.exr).
-    std::int64_t w64 = 0, h64 = 0;
-    if (std::string why = check_exr_header(bytes, w64, h64); !why.empty())
-      return ImageError{path, why};
-    if (w64 <= 0 || h64 <= 0 || w64 > kMaxImageSide || h64 > kMaxImageSide ||
-        !check_size(static_cast<int>(w64), static_cast<int>(h64)))
-      return ImageError{path, "EXR size out of range"};
-    // Not LoadEXRFromMemory: tinyexr 1.0.1's convenience loader leaks the header and the
-    // image whenever decoding fails or a channel is missing (found by fuzzing,
-    // fuzz/regressions/image/exr_load_image_failure_leak.exr) and reads a UINT channel's
-    // bits as floats. The header and image are owned here and freed on every path.
-    EXRVersion version;
-    if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS)
-      return ImageError{path, "corrupt EXR version field"};
-    EXRHeader header;
-    InitEXRHeader(&header);
-    std::unique_ptr<EXRHeader, int (*)(EXRHeader*)> header_owner(&header, FreeEXRHeader);
-    const char* err = nullptr;
-    auto fail = [&](const char* fallback) {
-      std::string msg = err ? err : fallback;
-      if (err) FreeEXRErrorMessage(err);
-      return ImageError{path, msg};
-    };
-    // A failed parse may have filled part of the header: the owner frees it (fuzzing).
-    if (ParseEXRHeaderFromMemory(&header, &version, bytes.data(), bytes.size(), &err) !=
-        TINYEXR_SUCCESS)
-      return fail("corrupt EXR header");
-    int idx[4] = {-1, -1, -1, -1};  // R, G, B, A
-    static const char* const kNames[4] = {"R", "G", "B", "A"};
-    for (int c = 0; c < header.num_channels; ++c) {
-      for (int k = 0; k < 4; ++k)
-        if (std::strcmp(header.channels[c].name, kNames[k]) == 0) idx[k] = c;
-      if (header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
-        header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
-    }
-    const bool gray = header.num_channels == 1;
-    if (!gray && (idx[0] < 0 || idx[1] < 0 || idx[2] < 0))
-      return ImageError{path, "EXR has no R, G and B channels (and is not one-channel)"};
-    EXRImage exr;
-    InitEXRImage(&exr);
-    std::unique_ptr<EXRImage, int (*)(EXRImage*)> image_owner(&exr, FreeEXRImage);
-    // tinyexr frees a failed decode's image itself (DecodeEXRImage calls FreeEXRImage,
-    // without clearing the pointers: freeing it again here was a double free), but it sets
-    // num_channels only on success, so its FreeEXRImage would free the channel array and
-    // lose the channel buffers (both found by fuzzing,
-    // fuzz/regressions/image/exr_decode_failure_double_free.exr). Set beforehand, it frees
-    // them all.
-    exr.num_channels = header.num_channels;
-    if (LoadEXRImageFromMemory(&exr, &header, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
-      image_owner.release();
-      return fail("corrupt EXR");
-    }
-    if (exr.width != w64 || exr.height != h64 || exr.num_channels != header.num_channels)
-      return ImageError{path, "EXR decoded to a size other than its dataWindow"};
-    Image img(exr.width, exr.height);
-    if (header.tiled || exr.images == nullptr) return ImageError{path, "corrupt EXR"};  // refused above
-    // One sample of channel c (tinyexr allocates every channel at full size, whatever its
-    // sampling) at pixel i; HALF was decoded as FLOAT, UINT is converted.
-    auto sample = [&](int c, std::size_t i) -> float {
-      if (header.requested_pixel_types[c] == TINYEXR_PIXELTYPE_UINT)
-        return static_cast<float>(reinterpret_cast<const std::uint32_t*>(exr.images[c])[i]);
-      return reinterpret_cast<const float*>(exr.images[c])[i];
-    };
-    const std::size_t n = std::size_t(exr.width) * std::size_t(exr.height);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int k = 0; k < 3; ++k) img.rgba[4 * i + k] = sample(gray ? 0 : idx[k], i);
-      img.rgba[4 * i + 3] = gray || idx[3] < 0 ? 1.0f : sample(idx[3], i);  // no alpha: opaque
-    }
-    for (int a = 0; a < header.num_custom_attributes; ++a) {
-      const EXRAttribute& attr = header.custom_attributes[a];
-      if (std::strcmp(attr.type, "string") != 0 || attr.size < 0 || !attr.value) continue;
-      // A string attribute is its bytes (OpenEXR writes no terminator; some writers do).
-      std::string value(reinterpret_cast<const char*>(attr.value), std::size_t(attr.size));
-      if (const auto nul = value.find('\0'); nul != std::string::npos) value.resize(nul);
-      img.attributes.emplace_back(attr.name, value);
-    }
-    return img;
-  }
+  if (std::memcmp(bytes.data(), kPng, 8) == 0) return decode_png(bytes, path);
+  if (std::memcmp(bytes.data(), kExr, 4) == 0) return decode_exr(bytes, path);
   return ImageError{path, "not a PNG or OpenEXR file"};
 }
 

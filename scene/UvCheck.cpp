@@ -27,19 +27,10 @@ UvCheck check_uvs(const Mesh& mesh, const UvCheckOptions& options) {
   return check_uvs(mesh, mesh.uv0, options);
 }
 
-UvCheck check_uvs(const Mesh& mesh, const std::vector<glm::vec2>& uv,
-                  const UvCheckOptions& options) {
-  UvCheck r;
-  if (uv.empty()) {
-    r.reason = "no UVs";
-    return r;
-  }
-  if (uv.size() != mesh.positions.size()) {
-    r.reason = "UV count (" + std::to_string(uv.size()) + ") differs from positions (" +
-               std::to_string(mesh.positions.size()) + ")";
-    return r;
-  }
-  const std::size_t n = mesh.triangle_count();
+namespace {
+
+// The squared diagonal of the mesh's bounds, measured here when they were not computed.
+double diagonal2(const Mesh& mesh) {
   const glm::vec3 ext = mesh.bounds.empty() ? glm::vec3(0.0f) : mesh.bounds.max - mesh.bounds.min;
   double diag2 = glm::dot(glm::dvec3(ext), glm::dvec3(ext));
   if (!(diag2 > 0.0)) {  // bounds not computed: measure them here
@@ -47,9 +38,17 @@ UvCheck check_uvs(const Mesh& mesh, const std::vector<glm::vec2>& uv,
     for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
     diag2 = mesh.positions.empty() ? 0.0 : glm::dot(hi - lo, hi - lo);
   }
-  const double min_area3 = 1e-12 * diag2;
+  return diag2;
+}
 
-  std::vector<Tri2> tri(n);
+// Each triangle's UV corners (tri), and the triangles worth testing for overlaps: inside
+// [0,1]^2 (within the tolerance) and finite, with 3-D area, and with a UV area not below
+// min_relative_area of the mesh's mean UV density. Counts the others into r.
+std::vector<std::uint32_t> live_triangles(const Mesh& mesh, const std::vector<glm::vec2>& uv,
+                                          const UvCheckOptions& options, std::vector<Tri2>& tri, UvCheck& r) {
+  const std::size_t n = mesh.triangle_count();
+  const double min_area3 = 1e-12 * diagonal2(mesh);
+  tri.assign(n, Tri2{});
   std::vector<double> a3(n), auv(n);
   std::vector<std::uint8_t> skip(n, 0);  // 1 outside/non-finite, 2 no 3D area
   double total3 = 0.0, total_uv = 0.0;
@@ -86,31 +85,55 @@ UvCheck check_uvs(const Mesh& mesh, const std::vector<glm::vec2>& uv,
     }
     live.push_back(std::uint32_t(t));
   }
+  return live;
+}
 
-  // Overlaps: insert the triangles one by one into a grid over [0,1]^2 and test each
-  // against the earlier ones sharing a cell (each pair once, thanks to the stamps).
-  if (!live.empty()) {
-    const double cells = std::clamp(std::ceil(std::sqrt(double(live.size()))), 1.0, 2048.0);
-    TriGrid grid(1.0 / cells);
-    std::vector<std::uint32_t> stamp(n, std::numeric_limits<std::uint32_t>::max());
-    std::vector<std::uint8_t> flagged(n, 0);
-    const std::size_t budget = 256 * live.size() + 1000000;
-    std::size_t work = 0;
-    for (std::uint32_t t : live) {
-      work += grid.visit(tri[t], [&](std::uint32_t o) {
-        if (stamp[o] == t) return;
-        stamp[o] = t;
-        ++work;
-        if (overlaps(tri[t], tri[o], options.overlap_tolerance)) flagged[t] = flagged[o] = 1;
-      });
-      grid.insert(tri[t], t);
-      if (work > budget) {
-        r.overlap_count_is_lower_bound = true;
-        break;
-      }
+// Overlaps: insert the triangles one by one into a grid over [0,1]^2 and test each against
+// the earlier ones sharing a cell (each pair once, thanks to the stamps). Past a work
+// budget the count is a lower bound.
+void count_overlaps(const std::vector<Tri2>& tri, const std::vector<std::uint32_t>& live,
+                    const UvCheckOptions& options, UvCheck& r) {
+  if (live.empty()) return;
+  const std::size_t n = tri.size();
+  const double cells = std::clamp(std::ceil(std::sqrt(double(live.size()))), 1.0, 2048.0);
+  TriGrid grid(1.0 / cells);
+  std::vector<std::uint32_t> stamp(n, std::numeric_limits<std::uint32_t>::max());
+  std::vector<std::uint8_t> flagged(n, 0);
+  const std::size_t budget = 256 * live.size() + 1000000;
+  std::size_t work = 0;
+  for (std::uint32_t t : live) {
+    work += grid.visit(tri[t], [&](std::uint32_t o) {
+      if (stamp[o] == t) return;
+      stamp[o] = t;
+      ++work;
+      if (overlaps(tri[t], tri[o], options.overlap_tolerance)) flagged[t] = flagged[o] = 1;
+    });
+    grid.insert(tri[t], t);
+    if (work > budget) {
+      r.overlap_count_is_lower_bound = true;
+      break;
     }
-    for (std::uint8_t f : flagged) r.overlapping += f;
   }
+  for (std::uint8_t f : flagged) r.overlapping += f;
+}
+
+}  // namespace
+
+UvCheck check_uvs(const Mesh& mesh, const std::vector<glm::vec2>& uv,
+                  const UvCheckOptions& options) {
+  UvCheck r;
+  if (uv.empty()) {
+    r.reason = "no UVs";
+    return r;
+  }
+  if (uv.size() != mesh.positions.size()) {
+    r.reason = "UV count (" + std::to_string(uv.size()) + ") differs from positions (" +
+               std::to_string(mesh.positions.size()) + ")";
+    return r;
+  }
+  std::vector<Tri2> tri;
+  const std::vector<std::uint32_t> live = live_triangles(mesh, uv, options, tri, r);
+  count_overlaps(tri, live, options, r);
 
   std::string reason;
   auto add = [&](const std::string& s) { reason += (reason.empty() ? "" : "; ") + s; };
