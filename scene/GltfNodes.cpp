@@ -62,13 +62,12 @@ Status local_matrix(GltfContext& ctx, std::size_t i, glm::dmat4& out) {
 
 }  // namespace
 
-Status convert_nodes(GltfContext& ctx) {
+namespace {
+
+// One parent per node: parent[c] is the node that lists c as a child, -1 for none.
+Status find_parents(GltfContext& ctx, std::vector<long long>& parent) {
   const auto& nodes = ctx.model.nodes;
-  if (nodes.size() > ctx.options.max_nodes)
-    return ctx.fail("nodes", "", std::to_string(nodes.size()) + " nodes, more than the limit of " +
-                                     std::to_string(ctx.options.max_nodes));
-  // One parent per node.
-  std::vector<long long> parent(nodes.size(), -1);
+  parent.assign(nodes.size(), -1);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     for (std::size_t k = 0; k < nodes[i].children.size(); ++k) {
       const int c = nodes[i].children[k];
@@ -82,7 +81,12 @@ Status convert_nodes(GltfContext& ctx) {
       parent[std::size_t(c)] = static_cast<long long>(i);
     }
   }
-  // No cycles: follow each parent chain once (0 unseen, 1 on the current chain, 2 done).
+  return std::nullopt;
+}
+
+// No cycles: follow each parent chain once (0 unseen, 1 on the current chain, 2 done).
+Status check_no_cycles(GltfContext& ctx, const std::vector<long long>& parent) {
+  const auto& nodes = ctx.model.nodes;
   std::vector<unsigned char> state(nodes.size(), 0);
   std::vector<std::size_t> chain;
   for (std::size_t start = 0; start < nodes.size(); ++start) {
@@ -97,8 +101,13 @@ Status convert_nodes(GltfContext& ctx) {
       return ctx.fail(indexed("nodes", std::size_t(x)), "children", "the node is its own ancestor (a cycle)");
     for (std::size_t c : chain) state[c] = 2;
   }
-  // Roots of the default scene.
-  std::vector<std::size_t> roots;
+  return std::nullopt;
+}
+
+// The roots of the default scene (every parentless node, with a warning, when the file has
+// no scenes), each listed once and none a child.
+Status scene_roots(GltfContext& ctx, const std::vector<long long>& parent, std::vector<std::size_t>& roots) {
+  const auto& nodes = ctx.model.nodes;
   if (ctx.model.scenes.empty()) {
     for (std::size_t i = 0; i < nodes.size(); ++i)
       if (parent[i] < 0) roots.push_back(i);
@@ -121,6 +130,50 @@ Status convert_nodes(GltfContext& ctx) {
       roots.push_back(r);
     }
   }
+  return std::nullopt;
+}
+
+// Node i, at `world`: its instances, camera and light; a skin is warned about once.
+Status add_node(GltfContext& ctx, std::size_t i, const glm::dmat4& world, bool& warned_skin) {
+  const tinygltf::Node& n = ctx.model.nodes[i];
+  const std::string object = indexed("nodes", i);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!(std::fabs(world[c][r]) <= kFloatMax))
+        return ctx.fail(object, "", "its world transform is not finite in float precision");
+  if (n.mesh >= 0) {
+    if (auto e = out_of_range("meshes", n.mesh, ctx.model.meshes.size())) return ctx.fail(object, "mesh", *e);
+    // Instances multiply: many nodes may each show a mesh of many primitives.
+    const auto& prims = ctx.mesh_primitives[std::size_t(n.mesh)];
+    if (auto e = ctx.charge(prims.size() * (sizeof(Instance) + n.name.size()), object)) return e;
+    for (std::uint32_t m : prims)
+      ctx.scene.instances.push_back({m, glm::mat4(world), n.name.empty() ? object : n.name});
+  } else if (n.mesh < -1) {
+    return ctx.fail(object, "mesh", "must be a mesh index, got " + std::to_string(n.mesh));
+  }
+  if (n.skin >= 0 && !warned_skin) {
+    ctx.scene.warnings.push_back(ctx.file + ": skins are not supported; meshes shown in bind pose");
+    warned_skin = true;
+  }
+  if (n.camera >= 0 || n.camera < -1)
+    if (auto e = add_camera(ctx, n.camera, world, object)) return e;
+  if (const auto ext = n.extensions.find("KHR_lights_punctual"); ext != n.extensions.end())
+    if (auto e = add_light(ctx, ext->second, world, object)) return e;
+  return std::nullopt;
+}
+
+}  // namespace
+
+Status convert_nodes(GltfContext& ctx) {
+  const auto& nodes = ctx.model.nodes;
+  if (nodes.size() > ctx.options.max_nodes)
+    return ctx.fail("nodes", "", std::to_string(nodes.size()) + " nodes, more than the limit of " +
+                                     std::to_string(ctx.options.max_nodes));
+  std::vector<long long> parent;
+  if (auto e = find_parents(ctx, parent)) return e;
+  if (auto e = check_no_cycles(ctx, parent)) return e;
+  std::vector<std::size_t> roots;
+  if (auto e = scene_roots(ctx, parent, roots)) return e;
   // Walk down from the roots.
   bool warned_skin = false;
   std::vector<std::pair<std::size_t, glm::dmat4>> stack;
@@ -128,34 +181,11 @@ Status convert_nodes(GltfContext& ctx) {
   while (!stack.empty()) {
     const auto [i, parent_world] = stack.back();
     stack.pop_back();
-    const tinygltf::Node& n = nodes[i];
-    const std::string object = indexed("nodes", i);
     glm::dmat4 local;
     if (auto e = local_matrix(ctx, i, local)) return e;
     const glm::dmat4 world = parent_world * local;
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r)
-        if (!(std::fabs(world[c][r]) <= kFloatMax))
-          return ctx.fail(object, "", "its world transform is not finite in float precision");
-    if (n.mesh >= 0) {
-      if (auto e = out_of_range("meshes", n.mesh, ctx.model.meshes.size())) return ctx.fail(object, "mesh", *e);
-      // Instances multiply: many nodes may each show a mesh of many primitives.
-      const auto& prims = ctx.mesh_primitives[std::size_t(n.mesh)];
-      if (auto e = ctx.charge(prims.size() * (sizeof(Instance) + n.name.size()), object)) return e;
-      for (std::uint32_t m : prims)
-        ctx.scene.instances.push_back({m, glm::mat4(world), n.name.empty() ? object : n.name});
-    } else if (n.mesh < -1) {
-      return ctx.fail(object, "mesh", "must be a mesh index, got " + std::to_string(n.mesh));
-    }
-    if (n.skin >= 0 && !warned_skin) {
-      ctx.scene.warnings.push_back(ctx.file + ": skins are not supported; meshes shown in bind pose");
-      warned_skin = true;
-    }
-    if (n.camera >= 0 || n.camera < -1)
-      if (auto e = add_camera(ctx, n.camera, world, object)) return e;
-    if (const auto ext = n.extensions.find("KHR_lights_punctual"); ext != n.extensions.end())
-      if (auto e = add_light(ctx, ext->second, world, object)) return e;
-    for (auto c = n.children.rbegin(); c != n.children.rend(); ++c)
+    if (auto e = add_node(ctx, i, world, warned_skin)) return e;
+    for (auto c = nodes[i].children.rbegin(); c != nodes[i].children.rend(); ++c)
       stack.emplace_back(std::size_t(*c), world);
   }
   return std::nullopt;
