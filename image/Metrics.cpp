@@ -181,32 +181,17 @@ double ssim(const Image& a_display, const Image& b_display, const std::vector<st
   return total / static_cast<double>(compared);
 }
 
-Metrics compare(const Image& a, const Image& b, const CompareOptions& options) {
-  require_same_size(a, b);
-  if (!(options.threshold >= 0.0) || !std::isfinite(options.threshold))
-    throw std::invalid_argument("threshold must be a finite number >= 0");
-  const std::vector<std::uint8_t> mask = geometry_mask(a, b);
-  Metrics m;
-  m.total_pixels = mask.size();
-  m.compared_pixels = count_compared(mask);
-  m.threshold = options.threshold;
-  if (m.compared_pixels == 0)
-    throw std::invalid_argument("no pixel has geometry (alpha > 0.5) in both images");
-  for (const Image* img : {&a, &b})
-    if (auto bad = first_non_finite(*img, mask))
-      throw std::invalid_argument("non-finite value at pixel (" + std::to_string(bad->first) +
-                                  ", " + std::to_string(bad->second) + ")");
+namespace {
 
+// Σ (a − b)² and Σ b² over the compared pixels' channels.
+struct ErrorSums {
+  double se = 0.0, sb = 0.0;
+};
+
+// The per-pixel pass: the sums, the largest absolute error and where, the pixels whose
+// largest channel error is over `limit`, and the per-channel sum ratios a / b.
+ErrorSums sum_errors(const Image& a, const Image& b, const std::vector<std::uint8_t>& mask, double limit, Metrics& m) {
   const int w = a.width;
-  m.peak = 1.0;
-  if (options.encoding == Encoding::Linear) {
-    m.peak = 0.0;
-    for (std::size_t i = 0; i < mask.size(); ++i)
-      if (mask[i])
-        for (int c = 0; c < 3; ++c) m.peak = std::max(m.peak, double(b.rgba[i * 4 + c]));
-  }
-  const double limit = options.threshold * std::max(m.peak, 0.0);
-
   double se = 0.0, sb = 0.0;
   std::array<double, 3> sum_a{}, sum_b{};
   for (std::size_t i = 0; i < mask.size(); ++i) {
@@ -231,26 +216,65 @@ Metrics compare(const Image& a, const Image& b, const CompareOptions& options) {
     m.sum_ratio[c] = sum_b[c] != 0.0 ? sum_a[c] / sum_b[c]
                      : sum_a[c] == 0.0 ? 1.0
                                        : std::numeric_limits<double>::infinity();
-  if (const Image* v = options.reference_variance) {
-    if (options.encoding != Encoding::Linear)
-      throw std::invalid_argument("a reference variance applies to linear (EXR) images only");
-    require_same_size(b, *v);
-    double sv = 0.0;
+  return {se, sb};
+}
+
+// The reference's own noise from its variance image v (linear images only): its relative
+// size and the relative RMSE with it subtracted.
+void subtract_reference_noise(const Image& b, const Image& v, const std::vector<std::uint8_t>& mask,
+                              const CompareOptions& options, const ErrorSums& sums, Metrics& m) {
+  const int w = b.width;
+  const double se = sums.se, sb = sums.sb;
+  if (options.encoding != Encoding::Linear)
+    throw std::invalid_argument("a reference variance applies to linear (EXR) images only");
+  require_same_size(b, v);
+  double sv = 0.0;
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    if (mask[i])
+      for (int c = 0; c < 3; ++c) {
+        const double var = v.rgba[i * 4 + c];
+        if (!(std::isfinite(var) && var >= 0.0))
+          throw std::invalid_argument("reference variance at pixel (" + std::to_string(i % w) + ", " +
+                                      std::to_string(i / w) + ") is not a finite number >= 0");
+        sv += var;
+      }
+  m.has_reference_noise = true;
+  const double signal = sb - sv;
+  m.reference_noise = signal > 0.0 ? std::sqrt(sv / signal) : std::numeric_limits<double>::infinity();
+  m.relative_rmse_noise_subtracted =
+      signal > 0.0 ? std::sqrt(std::max(0.0, se - sv) / signal) : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+Metrics compare(const Image& a, const Image& b, const CompareOptions& options) {
+  require_same_size(a, b);
+  if (!(options.threshold >= 0.0) || !std::isfinite(options.threshold))
+    throw std::invalid_argument("threshold must be a finite number >= 0");
+  const std::vector<std::uint8_t> mask = geometry_mask(a, b);
+  Metrics m;
+  m.total_pixels = mask.size();
+  m.compared_pixels = count_compared(mask);
+  m.threshold = options.threshold;
+  if (m.compared_pixels == 0)
+    throw std::invalid_argument("no pixel has geometry (alpha > 0.5) in both images");
+  for (const Image* img : {&a, &b})
+    if (auto bad = first_non_finite(*img, mask))
+      throw std::invalid_argument("non-finite value at pixel (" + std::to_string(bad->first) +
+                                  ", " + std::to_string(bad->second) + ")");
+
+  m.peak = 1.0;
+  if (options.encoding == Encoding::Linear) {
+    m.peak = 0.0;
     for (std::size_t i = 0; i < mask.size(); ++i)
       if (mask[i])
-        for (int c = 0; c < 3; ++c) {
-          const double var = v->rgba[i * 4 + c];
-          if (!(std::isfinite(var) && var >= 0.0))
-            throw std::invalid_argument("reference variance at pixel (" + std::to_string(i % w) + ", " +
-                                        std::to_string(i / w) + ") is not a finite number >= 0");
-          sv += var;
-        }
-    m.has_reference_noise = true;
-    const double signal = sb - sv;
-    m.reference_noise = signal > 0.0 ? std::sqrt(sv / signal) : std::numeric_limits<double>::infinity();
-    m.relative_rmse_noise_subtracted =
-        signal > 0.0 ? std::sqrt(std::max(0.0, se - sv) / signal) : std::numeric_limits<double>::infinity();
+        for (int c = 0; c < 3; ++c) m.peak = std::max(m.peak, double(b.rgba[i * 4 + c]));
   }
+  const double limit = options.threshold * std::max(m.peak, 0.0);
+
+  const ErrorSums sums = sum_errors(a, b, mask, limit, m);
+  const double se = sums.se, sb = sums.sb;
+  if (const Image* v = options.reference_variance) subtract_reference_noise(b, *v, mask, options, sums, m);
   const double n3 = 3.0 * static_cast<double>(m.compared_pixels);
   const double mse = se / n3;
   m.rmse = std::sqrt(mse);
