@@ -155,6 +155,99 @@ Status texture_ref(GltfContext& ctx, int index, int tex_coord, const std::string
 
 }  // namespace
 
+namespace {
+
+// The metallic-roughness factors: base colour, metallic, roughness, each in [0, 1].
+Status read_factors(GltfContext& ctx, const tinygltf::Material& gm, const std::string& object, Material& m) {
+  const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
+  if (pbr.baseColorFactor.size() != 4)
+    return ctx.fail(object, "pbrMetallicRoughness.baseColorFactor", "must have 4 numbers");
+  for (int c = 0; c < 4; ++c) {
+    if (auto e = check_unit_interval(ctx, object,
+                                     "pbrMetallicRoughness.baseColorFactor[" + std::to_string(c) + "]",
+                                     pbr.baseColorFactor[std::size_t(c)]))
+      return e;
+    m.base_color[c] = static_cast<float>(pbr.baseColorFactor[std::size_t(c)]);
+  }
+  if (auto e = check_unit_interval(ctx, object, "pbrMetallicRoughness.metallicFactor", pbr.metallicFactor))
+    return e;
+  if (auto e = check_unit_interval(ctx, object, "pbrMetallicRoughness.roughnessFactor", pbr.roughnessFactor))
+    return e;
+  m.metallic = static_cast<float>(pbr.metallicFactor);
+  m.roughness = static_cast<float>(pbr.roughnessFactor);
+  return std::nullopt;
+}
+
+// The base colour and normal textures of material i, their KHR_texture_transform (one per
+// material, ctx.uv_transforms[i]) and the normal scale.
+Status read_textures(GltfContext& ctx, const tinygltf::Material& gm, std::size_t i, const std::string& object,
+                     Material& m) {
+  const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
+  // KHR_texture_transform: the renderer reads both textures through one TEXCOORD_0, so
+  // the transform is applied to the material's UVs (convert_meshes); where the two
+  // textures' transforms differ, the base colour's is used and a warning says so.
+  int base_coord = pbr.baseColorTexture.texCoord, normal_coord = gm.normalTexture.texCoord;
+  std::optional<UvTransform> base_tf, normal_tf;
+  if (pbr.baseColorTexture.index >= 0)
+    if (auto e = texture_transform(ctx, pbr.baseColorTexture.extensions, object,
+                                   "pbrMetallicRoughness.baseColorTexture", base_coord, base_tf))
+      return e;
+  if (gm.normalTexture.index >= 0)
+    if (auto e = texture_transform(ctx, gm.normalTexture.extensions, object, "normalTexture",
+                                   normal_coord, normal_tf))
+      return e;
+  if (auto e = texture_ref(ctx, pbr.baseColorTexture.index, base_coord, object,
+                           "pbrMetallicRoughness.baseColorTexture", m.base_color_texture))
+    return e;
+  if (auto e = texture_ref(ctx, gm.normalTexture.index, normal_coord, object,
+                           "normalTexture", m.normal_texture))
+    return e;
+  if (!m.base_color_texture) base_tf.reset();
+  if (!m.normal_texture) normal_tf.reset();
+  const UvTransform identity{1, 0, 0, 0, 1, 0};
+  const UvTransform tb = base_tf.value_or(identity), tn = normal_tf.value_or(identity);
+  bool same = true;
+  for (int k = 0; k < 6; ++k) same = same && std::fabs(tb[k] - tn[k]) <= 1e-6f * (1.0f + std::fabs(tb[k]));
+  if (m.base_color_texture && m.normal_texture && !same)
+    ctx.scene.warnings.push_back(ctx.file + ": " + object +
+                                 ": the base colour and normal textures have different "
+                                 "KHR_texture_transform; both are drawn with the base colour's");
+  ctx.uv_transforms[i] = m.base_color_texture ? base_tf : normal_tf;
+  if (!std::isfinite(gm.normalTexture.scale) || std::fabs(gm.normalTexture.scale) > 1e6)
+    return ctx.fail(object, "normalTexture.scale",
+                    "must be a finite number, got " + number_text(gm.normalTexture.scale));
+  m.normal_scale = static_cast<float>(gm.normalTexture.scale);
+  return std::nullopt;
+}
+
+// Material i's medium: extras.sss, else the KHR volume and scatter extensions' (with their
+// notes), the KHR ior's specular, and what of KHR was not read. `both` collects materials
+// that have extras.sss and a KHR scatter extension.
+void read_medium(GltfContext& ctx, const GltfJsonFacts& facts, std::size_t i, const std::string& object, Material& m,
+                 std::vector<std::string>& both) {
+  const std::optional<KhrMedium>& khr = facts.material_khr[i];
+  if (facts.material_sss[i]) {
+    m.sss = *facts.material_sss[i];
+    if (khr && khr->scatter != KhrMedium::Scatter::None) both.push_back(object);
+  } else if (khr) {
+    std::string why_not;
+    if (auto sss = khr_sss_material(*khr, ctx.options.mm_per_unit, why_not)) {
+      m.sss = std::move(*sss);
+      for (const std::string& note : khr_transmission_notes(*khr))
+        ctx.scene.warnings.push_back(ctx.file + ": " + object + ": " + note);
+    }
+    if (!why_not.empty()) ctx.scene.warnings.push_back(ctx.file + ": " + object + ": " + why_not);
+  }
+  if (khr && khr->ior && *khr->ior >= 1.0) m.specular = float(ior_f0(*khr->ior) / 0.04);  // F0 = 0.04 specular
+  if (khr && !khr->ignored.empty()) {
+    std::string list;
+    for (const std::string& f : khr->ignored) list += (list.empty() ? "" : ", ") + f;
+    ctx.scene.warnings.push_back(ctx.file + ": " + object + ": not read (the medium is one per material): " + list);
+  }
+}
+
+}  // namespace
+
 Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts) {
   const auto& materials = ctx.model.materials;
   if (facts.material_count != materials.size())
@@ -167,79 +260,13 @@ Status convert_materials(GltfContext& ctx, const GltfJsonFacts& facts) {
   std::vector<std::string> both;  // materials with extras.sss and a KHR scatter extension
   for (std::size_t i = 0; i < materials.size(); ++i) {
     const tinygltf::Material& gm = materials[i];
-    const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
     const std::string object = indexed("materials", i);
     Material m;
     m.name = gm.name.empty() ? object : gm.name;
-    if (pbr.baseColorFactor.size() != 4)
-      return ctx.fail(object, "pbrMetallicRoughness.baseColorFactor", "must have 4 numbers");
-    for (int c = 0; c < 4; ++c) {
-      if (auto e = check_unit_interval(ctx, object,
-                                       "pbrMetallicRoughness.baseColorFactor[" + std::to_string(c) + "]",
-                                       pbr.baseColorFactor[std::size_t(c)]))
-        return e;
-      m.base_color[c] = static_cast<float>(pbr.baseColorFactor[std::size_t(c)]);
-    }
-    if (auto e = check_unit_interval(ctx, object, "pbrMetallicRoughness.metallicFactor", pbr.metallicFactor))
-      return e;
-    if (auto e = check_unit_interval(ctx, object, "pbrMetallicRoughness.roughnessFactor", pbr.roughnessFactor))
-      return e;
-    m.metallic = static_cast<float>(pbr.metallicFactor);
-    m.roughness = static_cast<float>(pbr.roughnessFactor);
-    // KHR_texture_transform: the renderer reads both textures through one TEXCOORD_0, so
-    // the transform is applied to the material's UVs (convert_meshes); where the two
-    // textures' transforms differ, the base colour's is used and a warning says so.
-    int base_coord = pbr.baseColorTexture.texCoord, normal_coord = gm.normalTexture.texCoord;
-    std::optional<UvTransform> base_tf, normal_tf;
-    if (pbr.baseColorTexture.index >= 0)
-      if (auto e = texture_transform(ctx, pbr.baseColorTexture.extensions, object,
-                                     "pbrMetallicRoughness.baseColorTexture", base_coord, base_tf))
-        return e;
-    if (gm.normalTexture.index >= 0)
-      if (auto e = texture_transform(ctx, gm.normalTexture.extensions, object, "normalTexture",
-                                     normal_coord, normal_tf))
-        return e;
-    if (auto e = texture_ref(ctx, pbr.baseColorTexture.index, base_coord, object,
-                             "pbrMetallicRoughness.baseColorTexture", m.base_color_texture))
-      return e;
-    if (auto e = texture_ref(ctx, gm.normalTexture.index, normal_coord, object,
-                             "normalTexture", m.normal_texture))
-      return e;
-    if (!m.base_color_texture) base_tf.reset();
-    if (!m.normal_texture) normal_tf.reset();
-    const UvTransform identity{1, 0, 0, 0, 1, 0};
-    const UvTransform tb = base_tf.value_or(identity), tn = normal_tf.value_or(identity);
-    bool same = true;
-    for (int k = 0; k < 6; ++k) same = same && std::fabs(tb[k] - tn[k]) <= 1e-6f * (1.0f + std::fabs(tb[k]));
-    if (m.base_color_texture && m.normal_texture && !same)
-      ctx.scene.warnings.push_back(ctx.file + ": " + object +
-                                   ": the base colour and normal textures have different "
-                                   "KHR_texture_transform; both are drawn with the base colour's");
-    ctx.uv_transforms[i] = m.base_color_texture ? base_tf : normal_tf;
-    if (!std::isfinite(gm.normalTexture.scale) || std::fabs(gm.normalTexture.scale) > 1e6)
-      return ctx.fail(object, "normalTexture.scale",
-                      "must be a finite number, got " + number_text(gm.normalTexture.scale));
-    m.normal_scale = static_cast<float>(gm.normalTexture.scale);
+    if (auto e = read_factors(ctx, gm, object, m)) return e;
+    if (auto e = read_textures(ctx, gm, i, object, m)) return e;
     m.double_sided = gm.doubleSided;
-    const std::optional<KhrMedium>& khr = facts.material_khr[i];
-    if (facts.material_sss[i]) {
-      m.sss = *facts.material_sss[i];
-      if (khr && khr->scatter != KhrMedium::Scatter::None) both.push_back(object);
-    } else if (khr) {
-      std::string why_not;
-      if (auto sss = khr_sss_material(*khr, ctx.options.mm_per_unit, why_not)) {
-        m.sss = std::move(*sss);
-        for (const std::string& note : khr_transmission_notes(*khr))
-          ctx.scene.warnings.push_back(ctx.file + ": " + object + ": " + note);
-      }
-      if (!why_not.empty()) ctx.scene.warnings.push_back(ctx.file + ": " + object + ": " + why_not);
-    }
-    if (khr && khr->ior && *khr->ior >= 1.0) m.specular = float(ior_f0(*khr->ior) / 0.04);  // F0 = 0.04 specular
-    if (khr && !khr->ignored.empty()) {
-      std::string list;
-      for (const std::string& f : khr->ignored) list += (list.empty() ? "" : ", ") + f;
-      ctx.scene.warnings.push_back(ctx.file + ": " + object + ": not read (the medium is one per material): " + list);
-    }
+    read_medium(ctx, facts, i, object, m, both);
     ctx.scene.materials.push_back(std::move(m));
   }
   if (!both.empty()) {
