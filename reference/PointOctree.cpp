@@ -156,71 +156,64 @@ PointOctree::PointOctree(std::vector<IrradiancePoint> points, double point_area_
 
 // Builds the node for points_[first, first + count) in the cube (centre, half side);
 // returns its index. Children split the cube at its centre (octant bit 0: x, 1: y, 2: z).
-std::int32_t PointOctree::build(std::uint32_t first, std::uint32_t count, glm::dvec3 centre,
-                                double half, int depth, std::vector<IrradiancePoint>& scratch) {
-  const std::int32_t index = std::int32_t(nodes_.size());
-  nodes_.emplace_back();
-  stats_.depth = std::max(stats_.depth, depth);
-  {
-    glm::dvec3 sum_p(0.0), sum_n(0.0), sum_e(0.0), sum_ep(0.0);
-    double sum_w = 0.0;
-    glm::vec3 lo = points_[first].position_mm, hi = lo;
-    for (std::uint32_t i = first; i < first + count; ++i) {
-      const IrradiancePoint& p = points_[i];
-      sum_p += glm::dvec3(p.position_mm);
-      const double w = double(p.irradiance.x) + p.irradiance.y + p.irradiance.z;
-      sum_ep += w * glm::dvec3(p.position_mm);
-      sum_w += w;
-      sum_n += glm::dvec3(p.normal);
-      sum_e += glm::dvec3(p.irradiance);
-      lo = glm::min(lo, p.position_mm);
-      hi = glm::max(hi, p.position_mm);
-    }
-    // Every point has the same area, so the area-weighted means are plain means.
-    const glm::dvec3 axis = glm::length(sum_n) > 0.0 ? glm::normalize(sum_n) : glm::dvec3(0.0);
-    // The representative position is weighted by irradiance, as in pbrt-v2's octree for
-    // Jensen & Buhler's method (which weights by luminance; here the channel sum, so no
-    // colour space is assumed): then the first-order term of
-    // Σ_i K(|x − x_i|) E_i about it, ∇K · Σ (x_i − c) E_i, vanishes (for each channel
-    // when the irradiance has one spectral shape across the node). The second-order term
-    // uses the spread M = Σ w_i (x_i − c)(x_i − c)ᵀ / Σ w_i with the same weights.
-    // Unlit nodes fall back to equal weights.
-    const bool lit = sum_w > 0.0;
-    const glm::dvec3 c = lit ? sum_ep / sum_w : sum_p / double(count);
-    double cone = 1.0;
-    std::array<double, 6> m{};  // xx, yy, zz, xy, xz, yz
-    for (std::uint32_t i = first; i < first + count; ++i) {
-      const IrradiancePoint& p = points_[i];
-      const glm::dvec3 n(p.normal);
-      const double len = glm::length(n);
-      cone = std::min(cone, len > 0.0 ? glm::dot(n, axis) / len : -1.0);
-      const double w = lit ? double(p.irradiance.x) + p.irradiance.y + p.irradiance.z : 1.0;
-      const glm::dvec3 v = glm::dvec3(p.position_mm) - c;
-      m[0] += w * v.x * v.x;
-      m[1] += w * v.y * v.y;
-      m[2] += w * v.z * v.z;
-      m[3] += w * v.x * v.y;
-      m[4] += w * v.x * v.z;
-      m[5] += w * v.y * v.z;
-    }
-    const double norm = lit ? sum_w : double(count);
-    Node& node = nodes_[std::size_t(index)];
-    node.lo = lo;
-    node.hi = hi;
-    node.centroid = glm::vec3(c);
-    for (int k = 0; k < 6; ++k) node.spread[k] = float(m[std::size_t(k)] / norm);
-    node.normal_sum = glm::vec3(sum_n);
-    node.mean_irradiance = glm::vec3(sum_e / double(count));
-    node.area = float(point_area_ * count);
-    node.first = first;
-    node.count = count;
-    node.normal_cone_cos = glm::length(sum_n) > 0.0 ? float(std::max(-1.0, cone)) : -1.0f;
+void PointOctree::summarize(Node& node, std::uint32_t first, std::uint32_t count) const {
+  glm::dvec3 sum_p(0.0), sum_n(0.0), sum_e(0.0), sum_ep(0.0);
+  double sum_w = 0.0;
+  glm::vec3 lo = points_[first].position_mm, hi = lo;
+  for (std::uint32_t i = first; i < first + count; ++i) {
+    const IrradiancePoint& p = points_[i];
+    sum_p += glm::dvec3(p.position_mm);
+    const double w = double(p.irradiance.x) + p.irradiance.y + p.irradiance.z;
+    sum_ep += w * glm::dvec3(p.position_mm);
+    sum_w += w;
+    sum_n += glm::dvec3(p.normal);
+    sum_e += glm::dvec3(p.irradiance);
+    lo = glm::min(lo, p.position_mm);
+    hi = glm::max(hi, p.position_mm);
   }
-  if (count <= std::uint32_t(options_.leaf_points) || depth >= options_.max_depth) {
-    ++stats_.leaves;
-    return index;
+  // Every point has the same area, so the area-weighted means are plain means.
+  const glm::dvec3 axis = glm::length(sum_n) > 0.0 ? glm::normalize(sum_n) : glm::dvec3(0.0);
+  // The representative position is weighted by irradiance, as in pbrt-v2's octree for
+  // Jensen & Buhler's method (which weights by luminance; here the channel sum, so no
+  // colour space is assumed): then the first-order term of
+  // Σ_i K(|x − x_i|) E_i about it, ∇K · Σ (x_i − c) E_i, vanishes (for each channel
+  // when the irradiance has one spectral shape across the node). The second-order term
+  // uses the spread M = Σ w_i (x_i − c)(x_i − c)ᵀ / Σ w_i with the same weights.
+  // Unlit nodes fall back to equal weights.
+  const bool lit = sum_w > 0.0;
+  const glm::dvec3 c = lit ? sum_ep / sum_w : sum_p / double(count);
+  double cone = 1.0;
+  std::array<double, 6> m{};  // xx, yy, zz, xy, xz, yz
+  for (std::uint32_t i = first; i < first + count; ++i) {
+    const IrradiancePoint& p = points_[i];
+    const glm::dvec3 n(p.normal);
+    const double len = glm::length(n);
+    cone = std::min(cone, len > 0.0 ? glm::dot(n, axis) / len : -1.0);
+    const double w = lit ? double(p.irradiance.x) + p.irradiance.y + p.irradiance.z : 1.0;
+    const glm::dvec3 v = glm::dvec3(p.position_mm) - c;
+    m[0] += w * v.x * v.x;
+    m[1] += w * v.y * v.y;
+    m[2] += w * v.z * v.z;
+    m[3] += w * v.x * v.y;
+    m[4] += w * v.x * v.z;
+    m[5] += w * v.y * v.z;
   }
-  // Counting sort of the points by octant, through the scratch buffer.
+  const double norm = lit ? sum_w : double(count);
+  node.lo = lo;
+  node.hi = hi;
+  node.centroid = glm::vec3(c);
+  for (int k = 0; k < 6; ++k) node.spread[k] = float(m[std::size_t(k)] / norm);
+  node.normal_sum = glm::vec3(sum_n);
+  node.mean_irradiance = glm::vec3(sum_e / double(count));
+  node.area = float(point_area_ * count);
+  node.first = first;
+  node.count = count;
+  node.normal_cone_cos = glm::length(sum_n) > 0.0 ? float(std::max(-1.0, cone)) : -1.0f;
+}
+
+std::array<std::uint32_t, 9> PointOctree::sort_by_octant(std::uint32_t first, std::uint32_t count,
+                                                         const glm::dvec3& centre,
+                                                         std::vector<IrradiancePoint>& scratch) {
   std::array<std::uint32_t, 9> start{};
   const auto octant = [&](const glm::vec3& p) {
     return (double(p.x) >= centre.x ? 1 : 0) | (double(p.y) >= centre.y ? 2 : 0) |
@@ -234,6 +227,20 @@ std::int32_t PointOctree::build(std::uint32_t first, std::uint32_t count, glm::d
     scratch[first + start[o] + fill[o]++] = points_[i];
   }
   std::copy(scratch.begin() + first, scratch.begin() + first + count, points_.begin() + first);
+  return start;
+}
+
+std::int32_t PointOctree::build(std::uint32_t first, std::uint32_t count, glm::dvec3 centre,
+                                double half, int depth, std::vector<IrradiancePoint>& scratch) {
+  const std::int32_t index = std::int32_t(nodes_.size());
+  nodes_.emplace_back();
+  stats_.depth = std::max(stats_.depth, depth);
+  summarize(nodes_[std::size_t(index)], first, count);
+  if (count <= std::uint32_t(options_.leaf_points) || depth >= options_.max_depth) {
+    ++stats_.leaves;
+    return index;
+  }
+  const std::array<std::uint32_t, 9> start = sort_by_octant(first, count, centre, scratch);
   nodes_[std::size_t(index)].leaf = false;
   for (int o = 0; o < 8; ++o) {
     const std::uint32_t n = start[o + 1] - start[o];

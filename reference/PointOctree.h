@@ -48,6 +48,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <array>
 #include <vector>
 
 namespace sss::reference {
@@ -104,6 +105,13 @@ class PointOctree {
   };
   std::int32_t build(std::uint32_t first, std::uint32_t count, glm::dvec3 centre, double half,
                      int depth, std::vector<IrradiancePoint>& scratch);
+  // The node over points_[first, first + count): its box, centroid, spread, normals,
+  // irradiance and area (build's first stage).
+  void summarize(Node& node, std::uint32_t first, std::uint32_t count) const;
+  // Reorders points_[first, first + count) by octant about `centre` (a counting sort
+  // through scratch); returns where each octant starts, relative to first, and the end.
+  std::array<std::uint32_t, 9> sort_by_octant(std::uint32_t first, std::uint32_t count, const glm::dvec3& centre,
+                                              std::vector<IrradiancePoint>& scratch);
   static bool one_side(const Node& node, const glm::dvec3& n_o);
   glm::dvec3 node_contribution(const Node& node, const glm::dvec3& x, const glm::dvec3& n_o,
                                bool through, const ScatterKernel& k) const;
