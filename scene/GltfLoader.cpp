@@ -55,6 +55,47 @@ Status check_extensions(const GltfContext& ctx) {
   return std::nullopt;
 }
 
+namespace {
+
+// Every file a URI names exists inside the folder, said here with the object and field;
+// tinygltf would only say "File not found" (and only warn for an image).
+std::optional<LoadError> check_file_uris(const std::string& path, const GltfJsonFacts& facts,
+                                         const FileSandbox& sandbox) {
+  std::error_code ec;
+  for (const auto& [object, uri] : facts.file_uris) {
+    const std::string file = (sandbox.root / decode_file_uri(uri)).string();  // tinygltf's JoinPath
+    if (!std::filesystem::exists(file, ec))
+      return LoadError{path, object, "uri", "\"" + uri + "\": no such file in " + sandbox.root.string()};
+    if (!std::filesystem::is_regular_file(file, ec))
+      return LoadError{path, object, "uri", "\"" + uri + "\" is not a regular file"};
+    if (!sandbox.resolves_inside(file))
+      return LoadError{path, object, "uri", "\"" + uri + "\" leads out of the glTF file's folder (a link)"};
+  }
+  return std::nullopt;
+}
+
+// tinygltf's parse of the checked JSON (or GLB), its files read through the sandbox and its
+// images captured undecoded into uri_images; "" on success, else the message (any error
+// or warning of tinygltf's fails the load).
+std::string parse_model(FileSandbox& sandbox, bool glb, const std::vector<unsigned char>& glb_bytes,
+                        std::string_view json, tinygltf::Model& model,
+                        std::vector<std::vector<unsigned char>>& uri_images) {
+  tinygltf::TinyGLTF parser;
+  parser.SetFsCallbacks(sandbox_callbacks(&sandbox));
+  parser.SetImageLoader(&capture_image, &uri_images);
+  std::string err, warn;
+  const std::string base = sandbox.root.string();
+  const bool ok = glb ? parser.LoadBinaryFromMemory(&model, &err, &warn, glb_bytes.data(),
+                                                    static_cast<unsigned>(glb_bytes.size()), base)
+                      : parser.LoadASCIIFromString(&model, &err, &warn, json.data(),
+                                                   static_cast<unsigned>(json.size()), base);
+  if (ok && err.empty() && warn.empty()) return "";
+  const std::string what = summarize(err, warn);
+  return "tinygltf: " + (what.empty() ? std::string("failed without a message") : what);
+}
+
+}  // namespace
+
 std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& options) {
   const auto fail = [&](std::string field, std::string message) {
     return LoadError{path, "", std::move(field), std::move(message)};
@@ -100,32 +141,11 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   if (ec) return fail("", "cannot resolve its folder: " + ec.message());
   sandbox.max_file_bytes = max_bytes;
   sandbox.bytes_left = options.max_external_bytes;
-  // Every file a URI names exists inside the folder, said here with the object and
-  // field; tinygltf would only say "File not found" (and only warn for an image).
-  for (const auto& [object, uri] : std::get<GltfJsonFacts>(facts).file_uris) {
-    const std::string file = (sandbox.root / decode_file_uri(uri)).string();  // tinygltf's JoinPath
-    if (!std::filesystem::exists(file, ec))
-      return LoadError{path, object, "uri", "\"" + uri + "\": no such file in " + sandbox.root.string()};
-    if (!std::filesystem::is_regular_file(file, ec))
-      return LoadError{path, object, "uri", "\"" + uri + "\" is not a regular file"};
-    if (!sandbox.resolves_inside(file))
-      return LoadError{path, object, "uri", "\"" + uri + "\" leads out of the glTF file's folder (a link)"};
-  }
+  if (auto e = check_file_uris(path, std::get<GltfJsonFacts>(facts), sandbox)) return *e;
   std::vector<std::vector<unsigned char>> uri_images;
-  tinygltf::TinyGLTF parser;
-  parser.SetFsCallbacks(sandbox_callbacks(&sandbox));
-  parser.SetImageLoader(&capture_image, &uri_images);
   tinygltf::Model model;
-  std::string err, warn;
-  const std::string base = sandbox.root.string();
-  const bool ok = glb ? parser.LoadBinaryFromMemory(&model, &err, &warn, glb_bytes.data(),
-                                                    static_cast<unsigned>(glb_bytes.size()), base)
-                      : parser.LoadASCIIFromString(&model, &err, &warn, json.data(),
-                                                   static_cast<unsigned>(json.size()), base);
-  if (!ok || !err.empty() || !warn.empty()) {
-    const std::string what = summarize(err, warn);
-    return fail("", "tinygltf: " + (what.empty() ? std::string("failed without a message") : what));
-  }
+  if (std::string why = parse_model(sandbox, glb, glb_bytes, json, model, uri_images); !why.empty())
+    return fail("", why);
 
   Scene scene;
   scene.name = std::filesystem::path(path).stem().string();
