@@ -61,6 +61,68 @@ double NnlsSolver::solve_passive(const Eigen::Ref<const Eigen::MatrixXd>& A,
   return independence;
 }
 
+Eigen::Index NnlsSolver::entering_variable(const Eigen::Ref<const Eigen::MatrixXd>& A, double b_norm,
+                                           double tolerance) {
+  dual_.noalias() = A.transpose() * residual_;
+  Eigen::Index t = -1;
+  double best = 0.0;
+  for (Eigen::Index j = 0; j < A.cols(); ++j) {
+    if (is_passive_[j] || excluded_[j]) continue;
+    const double col_norm = A.col(j).norm();
+    if (col_norm == 0.0) continue;
+    const double score = dual_(j) / col_norm;
+    if (score > tolerance * b_norm && score > best) {
+      best = score;
+      t = j;
+    }
+  }
+  return t;
+}
+
+void NnlsSolver::remove_passive(Eigen::Index j) {
+  Eigen::Index out = 0;
+  for (Eigen::Index i = 0; i < n_passive_; ++i)
+    if (passive_[i] != j) passive_[out++] = passive_[i];
+  n_passive_ = out;
+  is_passive_[j] = false;
+}
+
+bool NnlsSolver::step_to_feasibility(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                     const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::Ref<Eigen::VectorXd> x,
+                                     int cap, NnlsResult& result) {
+  while (true) {
+    Eigen::Index blocking = -1;
+    double alpha = 1.0;
+    for (Eigen::Index i = 0; i < n_passive_; ++i) {
+      const Eigen::Index j = passive_[i];
+      if (z_(j) <= 0.0) {
+        const double a = x(j) / (x(j) - z_(j));
+        if (blocking < 0 || a < alpha) {
+          alpha = a;
+          blocking = j;
+        }
+      }
+    }
+    if (blocking < 0) break;
+    for (Eigen::Index i = 0; i < n_passive_; ++i) {
+      const Eigen::Index j = passive_[i];
+      x(j) += alpha * (z_(j) - x(j));
+    }
+    x(blocking) = 0.0;
+    for (Eigen::Index i = n_passive_ - 1; i >= 0; --i) {
+      const Eigen::Index j = passive_[i];
+      if (x(j) <= 0.0) {
+        x(j) = 0.0;
+        remove_passive(j);
+      }
+    }
+    if (result.iterations >= cap) return false;
+    ++result.iterations;
+    solve_passive(A, b);
+  }
+  return true;
+}
+
 NnlsResult NnlsSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& A,
                              const Eigen::Ref<const Eigen::VectorXd>& b,
                              Eigen::Ref<Eigen::VectorXd> x, const NnlsOptions& opt) {
@@ -79,30 +141,8 @@ NnlsResult NnlsSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                          : 3 * static_cast<int>((n + 1) * (n + 1));
   residual_ = b;
 
-  auto remove_passive = [&](Eigen::Index j) {
-    Eigen::Index out = 0;
-    for (Eigen::Index i = 0; i < n_passive_; ++i)
-      if (passive_[i] != j) passive_[out++] = passive_[i];
-    n_passive_ = out;
-    is_passive_[j] = false;
-  };
-
   while (true) {
-    // Dual vector (the negative gradient); pick the zero variable that helps most per
-    // unit column norm.
-    dual_.noalias() = A.transpose() * residual_;
-    Eigen::Index t = -1;
-    double best = 0.0;
-    for (Eigen::Index j = 0; j < n; ++j) {
-      if (is_passive_[j] || excluded_[j]) continue;
-      const double col_norm = A.col(j).norm();
-      if (col_norm == 0.0) continue;
-      const double score = dual_(j) / col_norm;
-      if (score > opt.tolerance * b_norm && score > best) {
-        best = score;
-        t = j;
-      }
-    }
+    const Eigen::Index t = entering_variable(A, b_norm, opt.tolerance);
     if (t < 0) {
       result.converged = true;
       break;
@@ -118,41 +158,7 @@ NnlsResult NnlsSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& A,
       excluded_[t] = true;
       continue;
     }
-    // Inner loop: step back towards feasibility while some passive z_j <= 0.
-    bool capped = false;
-    while (true) {
-      Eigen::Index blocking = -1;
-      double alpha = 1.0;
-      for (Eigen::Index i = 0; i < n_passive_; ++i) {
-        const Eigen::Index j = passive_[i];
-        if (z_(j) <= 0.0) {
-          const double a = x(j) / (x(j) - z_(j));
-          if (blocking < 0 || a < alpha) {
-            alpha = a;
-            blocking = j;
-          }
-        }
-      }
-      if (blocking < 0) break;
-      for (Eigen::Index i = 0; i < n_passive_; ++i) {
-        const Eigen::Index j = passive_[i];
-        x(j) += alpha * (z_(j) - x(j));
-      }
-      x(blocking) = 0.0;
-      for (Eigen::Index i = n_passive_ - 1; i >= 0; --i) {
-        const Eigen::Index j = passive_[i];
-        if (x(j) <= 0.0) {
-          x(j) = 0.0;
-          remove_passive(j);
-        }
-      }
-      if (result.iterations >= cap) {
-        capped = true;
-        break;
-      }
-      ++result.iterations;
-      solve_passive(A, b);
-    }
+    const bool capped = !step_to_feasibility(A, b, x, cap, result);
     if (!capped)
       for (Eigen::Index i = 0; i < n_passive_; ++i) x(passive_[i]) = z_(passive_[i]);
     excluded_.setConstant(false);

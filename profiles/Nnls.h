@@ -51,6 +51,14 @@ class NnlsSolver {
   // Returns min_i |R_ii| / ‖A_i‖ of their QR (0: numerically dependent).
   double solve_passive(const Eigen::Ref<const Eigen::MatrixXd>& A,
                        const Eigen::Ref<const Eigen::VectorXd>& b);
+  // The zero variable whose dual (the negative gradient, from the residual) per unit column
+  // norm is largest and above tolerance x ‖b‖; -1 when none is (the solution is optimal).
+  Eigen::Index entering_variable(const Eigen::Ref<const Eigen::MatrixXd>& A, double b_norm, double tolerance);
+  void remove_passive(Eigen::Index j);
+  // The inner loop: steps x back towards z while some passive z_j <= 0, dropping the
+  // variables that reach zero and solving again. False when the iteration cap stopped it.
+  bool step_to_feasibility(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::VectorXd>& b,
+                           Eigen::Ref<Eigen::VectorXd> x, int cap, NnlsResult& result);
 
   Eigen::MatrixXd qr_;        // rows × cols: the passive columns, factorised in place
   Eigen::VectorXd rhs_, z_, dual_, residual_, work_;

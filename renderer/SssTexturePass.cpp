@@ -154,9 +154,9 @@ void SssTexturePass::write_lighting(Textures& t) {
       .update(r_.context);
 }
 
-void SssTexturePass::configure(const RenderOptions& options) {
+std::vector<SssTexturePass::Object> SssTexturePass::select_objects(const RenderOptions& options,
+                                                                   std::vector<std::string>& warnings) const {
   std::vector<Object> objects;
-  std::vector<std::string> warnings;
   const std::vector<scene::Instance>& instances = r_.scene.instances();
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const std::uint32_t mesh = instances[i].mesh;
@@ -182,6 +182,42 @@ void SssTexturePass::configure(const RenderOptions& options) {
                      [&](const Object& o) { return o.options.name == t.name; }))
       warnings.push_back("texture object '" + t.name +
                          "' names no subsurface instance with usable UVs: ignored");
+  return objects;
+}
+
+void SssTexturePass::allocate_object_sets() {
+  lighting_.pool.reset();
+  dilate_.pool.reset();
+  blur_.pool.reset();
+  const VkSampler nearest = r_.samplers.nearest.get();
+  const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL;
+  for (Textures& t : textures_) {
+    t.lighting = lighting_.allocate();
+    write_lighting(t);
+    t.dilate = dilate_.allocate();
+    vk::DescriptorWriter(t.dilate)
+        .combined_image(0, t.temp, nearest, general)
+        .combined_image(1, t.b, nearest, general)
+        .storage_image(2, t.irradiance)
+        .storage_image(3, t.stretch)
+        .update(r_.context);
+    t.blur.allocate(blur_);
+    const auto write = [&](VkDescriptorSet set, const vk::Image& in, const vk::Image& out) {
+      vk::DescriptorWriter(set)
+          .storage_buffer(0, r_.materials)
+          .combined_image(1, t.stretch, nearest, general)
+          .combined_image(2, in, nearest, general)
+          .storage_image(3, out)
+          .storage_image(4, t.scattered)
+          .update(r_.context);
+    };
+    t.blur.write(t.irradiance, t.a, t.b, t.temp, write);
+  }
+}
+
+void SssTexturePass::configure(const RenderOptions& options) {
+  std::vector<std::string> warnings;
+  std::vector<Object> objects = select_objects(options, warnings);
 
   // Keep the textures of an object that stays at the same size; the GPU is idle between
   // frames (Renderer calls this between render_frame calls), so sets can be rewritten.
@@ -217,33 +253,7 @@ void SssTexturePass::configure(const RenderOptions& options) {
   warnings_ = std::move(warnings);
   if (depth) depth_ = std::move(depth);
 
-  lighting_.pool.reset();
-  dilate_.pool.reset();
-  blur_.pool.reset();
-  const VkSampler nearest = r_.samplers.nearest.get();
-  const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL;
-  for (Textures& t : textures_) {
-    t.lighting = lighting_.allocate();
-    write_lighting(t);
-    t.dilate = dilate_.allocate();
-    vk::DescriptorWriter(t.dilate)
-        .combined_image(0, t.temp, nearest, general)
-        .combined_image(1, t.b, nearest, general)
-        .storage_image(2, t.irradiance)
-        .storage_image(3, t.stretch)
-        .update(r_.context);
-    t.blur.allocate(blur_);
-    const auto write = [&](VkDescriptorSet set, const vk::Image& in, const vk::Image& out) {
-      vk::DescriptorWriter(set)
-          .storage_buffer(0, r_.materials)
-          .combined_image(1, t.stretch, nearest, general)
-          .combined_image(2, in, nearest, general)
-          .storage_image(3, out)
-          .storage_image(4, t.scattered)
-          .update(r_.context);
-    };
-    t.blur.write(t.irradiance, t.a, t.b, t.temp, write);
-  }
+  allocate_object_sets();
 }
 
 void SssTexturePass::invalidate() {

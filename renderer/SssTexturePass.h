@@ -74,6 +74,11 @@ class SssTexturePass {
   struct Textures;
   void update(VkCommandBuffer cmd, Textures& t, const Object& object, int gaussians);
   void write_lighting(Textures& t);  // t's lighting set: the frame's buffers and shadow maps
+  // configure's stages: the scattering instances with usable UVs, within the object limit
+  // (the others, and --texture-object names that match none, go to warnings); then every
+  // object's descriptor sets, from fresh pools.
+  std::vector<Object> select_objects(const RenderOptions& options, std::vector<std::string>& warnings) const;
+  void allocate_object_sets();
 
   const FrameResources& r_;
   vk::DescriptorSetLayoutHandle raster_set_layout_;

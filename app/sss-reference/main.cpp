@@ -133,23 +133,9 @@ struct Args {
   std::string ext;            // --out's, lower case
 };
 
-void add_options(CLI::App& app, Args& a) {
-  app.add_option("scene", a.scene_name, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
-  app.add_option("--out", a.out, "Output: FILE.exr (linear radiance) or FILE.png (tonemapped)")->required();
-  app.add_option("--png", a.png, "Also write the tonemapped image to this PNG");
-  app.add_option("--width", a.width, "Image width (default 640)")->check(CLI::Range(1, 16384));
-  app.add_option("--height", a.height, "Image height (default 360)")->check(CLI::Range(1, 16384));
-  app.add_option("--method", a.method,
-                 "diffusion (default): the exact diffusion profile over irradiance points; random-walk: the ground "
-                 "truth, true transport through the meshes");
-  app.add_option("--estimator", a.estimator,
-                 "diffusion: auto (default): the octree, its points made as dense as the pixels where these are "
-                 "finer (the median footprint over the frame), or the probe where that many points would exceed "
-                 "--max-points; an option of one estimator picks it (--spacing... octree, --spp... probe); octree: irradiance points summed through the Jensen-Buhler octree, its "
-                 "error set by --spacing and --error-bound; probe: per-pixel profile importance sampling with probe "
-                 "rays, unbiased, with a standard error per pixel (--spp, --target-error, --variance)");
-  add_material_override_options(app, a.material);
-  add_environment_options(app, a.environment);
+// The diffusion reference's own options: the octree's points, the profile summed, and
+// the error budget's lighting, transmission and thickness links.
+void add_diffusion_options(CLI::App& app, Args& a) {
   app.add_option("--spacing", a.spacing,
                  "diffusion: irradiance point spacing in reduced mean free paths (default 0.5; lower it for "
                  "more points and a more accurate sum)");
@@ -181,6 +167,11 @@ void add_options(CLI::App& app, Args& a) {
                  "diffusion --shadows shadow-map or --thickness-from shadow-map: texels a side (default 1024, as sss-viewer's)")
       ->check(CLI::Range(1, 16384));
   app.add_flag("--brute-force", a.brute, "diffusion: sum every irradiance point at every pixel (no octree)");
+}
+
+// The per-pixel Monte Carlo options (the random walk, the probe estimator): samples, the
+// target error, the variance, tiles and the summary.
+void add_sampling_options(CLI::App& app, Args& a) {
   app.add_option("--spp", a.spp,
                  "random-walk: samples per pixel; --estimator probe: batches of probes per pixel (default 24); with "
                  "--target-error: the most a pixel gets");
@@ -198,6 +189,27 @@ void add_options(CLI::App& app, Args& a) {
   app.add_flag("--exitance", a.exitance,
                "random-walk: write M/pi, the cosine-weighted mean radiance leaving each visible point (the "
                "quantity --diffuse-only writes with --method diffusion), instead of the radiance towards the eye");
+}
+
+void add_options(CLI::App& app, Args& a) {
+  app.add_option("scene", a.scene_name, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
+  app.add_option("--out", a.out, "Output: FILE.exr (linear radiance) or FILE.png (tonemapped)")->required();
+  app.add_option("--png", a.png, "Also write the tonemapped image to this PNG");
+  app.add_option("--width", a.width, "Image width (default 640)")->check(CLI::Range(1, 16384));
+  app.add_option("--height", a.height, "Image height (default 360)")->check(CLI::Range(1, 16384));
+  app.add_option("--method", a.method,
+                 "diffusion (default): the exact diffusion profile over irradiance points; random-walk: the ground "
+                 "truth, true transport through the meshes");
+  app.add_option("--estimator", a.estimator,
+                 "diffusion: auto (default): the octree, its points made as dense as the pixels where these are "
+                 "finer (the median footprint over the frame), or the probe where that many points would exceed "
+                 "--max-points; an option of one estimator picks it (--spacing... octree, --spp... probe); octree: irradiance points summed through the Jensen-Buhler octree, its "
+                 "error set by --spacing and --error-bound; probe: per-pixel profile importance sampling with probe "
+                 "rays, unbiased, with a standard error per pixel (--spp, --target-error, --variance)");
+  add_material_override_options(app, a.material);
+  add_environment_options(app, a.environment);
+  add_diffusion_options(app, a);
+  add_sampling_options(app, a);
   app.add_flag("--diffuse-only", a.diffuse_only,
                "Write only the light that crossed a medium, before the albedo (diffusion: M/pi; no specular, "
                "opaque surfaces black)");

@@ -52,6 +52,55 @@ VkPipelineShaderStageCreateInfo stage(VkShaderStageFlagBits which, VkShaderModul
   return s;
 }
 
+// Filled triangles, culled and wound as asked, with the depth bias set per draw when it is
+// dynamic.
+VkPipelineRasterizationStateCreateInfo rasterization(VkCullModeFlags cull, VkFrontFace front, bool dynamic_depth_bias) {
+  VkPipelineRasterizationStateCreateInfo raster{};
+  raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = cull;
+  raster.frontFace = front;
+  raster.depthBiasEnable = dynamic_depth_bias ? VK_TRUE : VK_FALSE;
+  raster.lineWidth = 1.0f;
+  return raster;
+}
+
+VkPipelineDepthStencilStateCreateInfo depth_stencil(DepthTest test, VkCompareOp compare) {
+  VkPipelineDepthStencilStateCreateInfo depth{};
+  depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+  depth.depthTestEnable = test != DepthTest::Off ? VK_TRUE : VK_FALSE;
+  depth.depthWriteEnable = test == DepthTest::Write ? VK_TRUE : VK_FALSE;
+  depth.depthCompareOp = compare;
+  depth.minDepthBounds = 0.0f;
+  depth.maxDepthBounds = 1.0f;
+  return depth;
+}
+
+// The vertex layout; it points into the vectors, which must outlive the pipeline's creation.
+VkPipelineVertexInputStateCreateInfo vertex_input_state(
+    const std::vector<VkVertexInputBindingDescription>& bindings,
+    const std::vector<VkVertexInputAttributeDescription>& attributes) {
+  VkPipelineVertexInputStateCreateInfo vertex_input{};
+  vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+  vertex_input.vertexBindingDescriptionCount = static_cast<uint32_t>(bindings.size());
+  vertex_input.pVertexBindingDescriptions = bindings.data();
+  vertex_input.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size());
+  vertex_input.pVertexAttributeDescriptions = attributes.data();
+  return vertex_input;
+}
+
+// Dynamic rendering's attachment formats (a depth format with stencil names it for both);
+// it points into `colors`, which must outlive the pipeline's creation.
+VkPipelineRenderingCreateInfo rendering_formats(const std::vector<VkFormat>& colors, VkFormat depth) {
+  VkPipelineRenderingCreateInfo rendering{};
+  rendering.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO;
+  rendering.colorAttachmentCount = static_cast<uint32_t>(colors.size());
+  rendering.pColorAttachmentFormats = colors.data();
+  rendering.depthAttachmentFormat = depth;
+  rendering.stencilAttachmentFormat = has_stencil(depth) ? depth : VK_FORMAT_UNDEFINED;
+  return rendering;
+}
+
 }  // namespace
 
 GraphicsPipelineBuilder& GraphicsPipelineBuilder::vertex_shader(std::span<const uint32_t> spirv) {
@@ -115,12 +164,7 @@ PipelineHandle GraphicsPipelineBuilder::build(const Context& context, VkPipeline
     stages.push_back(stage(VK_SHADER_STAGE_FRAGMENT_BIT, fs.get()));
   }
 
-  VkPipelineVertexInputStateCreateInfo vertex_input{};
-  vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-  vertex_input.vertexBindingDescriptionCount = static_cast<uint32_t>(bindings_.size());
-  vertex_input.pVertexBindingDescriptions = bindings_.data();
-  vertex_input.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes_.size());
-  vertex_input.pVertexAttributeDescriptions = attributes_.data();
+  const VkPipelineVertexInputStateCreateInfo vertex_input = vertex_input_state(bindings_, attributes_);
 
   VkPipelineInputAssemblyStateCreateInfo assembly{};
   assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
@@ -131,25 +175,13 @@ PipelineHandle GraphicsPipelineBuilder::build(const Context& context, VkPipeline
   viewport.viewportCount = 1;  // dynamic
   viewport.scissorCount = 1;
 
-  VkPipelineRasterizationStateCreateInfo raster{};
-  raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-  raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = cull_;
-  raster.frontFace = front_;
-  raster.depthBiasEnable = dynamic_depth_bias_ ? VK_TRUE : VK_FALSE;
-  raster.lineWidth = 1.0f;
+  const VkPipelineRasterizationStateCreateInfo raster = rasterization(cull_, front_, dynamic_depth_bias_);
 
   VkPipelineMultisampleStateCreateInfo multisample{};
   multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
   multisample.rasterizationSamples = samples_;
 
-  VkPipelineDepthStencilStateCreateInfo depth{};
-  depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
-  depth.depthTestEnable = depth_test_ != DepthTest::Off ? VK_TRUE : VK_FALSE;
-  depth.depthWriteEnable = depth_test_ == DepthTest::Write ? VK_TRUE : VK_FALSE;
-  depth.depthCompareOp = depth_compare_;
-  depth.minDepthBounds = 0.0f;
-  depth.maxDepthBounds = 1.0f;
+  const VkPipelineDepthStencilStateCreateInfo depth = depth_stencil(depth_test_, depth_compare_);
 
   std::vector<VkPipelineColorBlendAttachmentState> attachments;
   for (Blend b : blends_) attachments.push_back(blend_state(b));
@@ -165,13 +197,7 @@ PipelineHandle GraphicsPipelineBuilder::build(const Context& context, VkPipeline
   dynamic_state.dynamicStateCount = static_cast<uint32_t>(dynamic.size());
   dynamic_state.pDynamicStates = dynamic.data();
 
-  VkPipelineRenderingCreateInfo rendering{};
-  rendering.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO;
-  rendering.colorAttachmentCount = static_cast<uint32_t>(color_formats_.size());
-  rendering.pColorAttachmentFormats = color_formats_.data();
-  rendering.depthAttachmentFormat = depth_format_;
-  rendering.stencilAttachmentFormat =
-      has_stencil(depth_format_) ? depth_format_ : VK_FORMAT_UNDEFINED;
+  const VkPipelineRenderingCreateInfo rendering = rendering_formats(color_formats_, depth_format_);
 
   VkGraphicsPipelineCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
