@@ -1,6 +1,5 @@
 #include "renderer/AntialiasPass.h"
 
-#include "renderer/vk/Barrier.h"
 #include "shaders/antialias.comp.h"
 
 namespace sss::renderer {
@@ -28,32 +27,26 @@ void AntialiasPass::write_descriptors() {
       .update(r_.context);
 }
 
-void AntialiasPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
-  auto scope = timer.scope(cmd, kName);
+void AntialiasPass::add_to(graph::FrameGraph& graph) const {
   const FrameTargets& t = r_.targets;
-  // Composite's (or the separable pass's) writes to display before the copy reads it;
-  // the source's last frame's reads before the copy overwrites it (UNDEFINED: its old
-  // contents are not needed).
-  const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL, src = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      dst = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                      read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  const vk::Scope sampled{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
-  const vk::Scope copy_write{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
-  vk::pipeline_barrier(
-      cmd, {vk::image_barrier(t.display, general, src, vk::kComputeWrite, vk::kTransferRead),
-            vk::image_barrier(t.display_source, VK_IMAGE_LAYOUT_UNDEFINED, dst, sampled, copy_write)});
-  VkImageCopy region{};
-  region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.extent = {t.width, t.height, 1};
-  vkCmdCopyImage(cmd, t.display.handle(), src, t.display_source.handle(), dst, 1, &region);
-  // The copy's write before the pass samples the source; its read of display before the
-  // pass overwrites display.
-  vk::pipeline_barrier(
-      cmd, {vk::image_barrier(t.display, src, general, vk::kTransferRead, vk::kComputeWrite),
-            vk::image_barrier(t.display_source, dst, read, copy_write, sampled)});
-  program_.bind(cmd, set_);
-  ComputeProgram::dispatch(cmd, t.width, t.height);
+  using namespace graph::use;
+  // The display image as composite left it is copied, so that no pixel reads a
+  // neighbour the filter already wrote.
+  graph.add_pass(kName)
+      .step({{&t.display, kCopySource}, {&t.display_source, kCopyDestination}},
+            [this, &t](VkCommandBuffer cmd) {
+              VkImageCopy region{};
+              region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+              region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+              region.extent = {t.width, t.height, 1};
+              vkCmdCopyImage(cmd, t.display.handle(), kCopySource.layout,
+                             t.display_source.handle(), kCopyDestination.layout, 1, &region);
+            })
+      .step({{&t.display_source, kSampled}, {&t.display, kComputeWrite}},
+            [this, &t](VkCommandBuffer cmd) {
+              program_.bind(cmd, set_);
+              ComputeProgram::dispatch(cmd, r_.targets.width, r_.targets.height);
+            });
 }
 
 }  // namespace sss::renderer

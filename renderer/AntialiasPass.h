@@ -8,7 +8,7 @@
 
 #include "renderer/ComputeProgram.h"
 #include "renderer/FrameResources.h"
-#include "renderer/vk/GpuTimer.h"
+#include "renderer/graph/FrameGraph.h"
 
 namespace sss::renderer {
 
@@ -17,7 +17,7 @@ class AntialiasPass {
   static constexpr const char* kName = "antialias";
 
   explicit AntialiasPass(const FrameResources& resources);
-  void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  void add_to(graph::FrameGraph& graph) const;
   void write_descriptors();
 
  private:

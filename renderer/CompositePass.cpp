@@ -39,13 +39,23 @@ void CompositePass::write_descriptors() {
       .update(r_.context);
 }
 
-void CompositePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
-  auto scope = timer.scope(cmd, kName);
-  program_.bind(cmd, set_);
-  if (full_frame_)  // the environment behind the geometry: every pixel
-    ComputeProgram::dispatch(cmd, r_.targets.display.width(), r_.targets.display.height());
-  else
-    ComputeProgram::dispatch(cmd, r_.rect);
+void CompositePass::add_to(graph::FrameGraph& graph) const {
+  const FrameTargets& t = r_.targets;
+  using namespace graph::use;
+  graph.add_pass(kName).step({{&t.albedo, kSampled},
+                              {&t.irradiance, kComputeRead},
+                              {&t.specular, kComputeRead},
+                              {&t.accum, kComputeRead},
+                              {&t.hdr, kComputeWrite},
+                              {&t.display, kComputeWrite}},
+                             [this](VkCommandBuffer cmd) {
+                               program_.bind(cmd, set_);
+                               if (full_frame_)  // the environment behind the geometry
+                                 ComputeProgram::dispatch(cmd, r_.targets.display.width(),
+                                                          r_.targets.display.height());
+                               else
+                                 ComputeProgram::dispatch(cmd, r_.rect);
+                             });
 }
 
 }  // namespace sss::renderer

@@ -7,7 +7,7 @@
 
 #include "renderer/ComputeProgram.h"
 #include "renderer/FrameResources.h"
-#include "renderer/vk/GpuTimer.h"
+#include "renderer/graph/FrameGraph.h"
 
 namespace sss::renderer {
 
@@ -16,7 +16,7 @@ class CompositePass {
   static constexpr const char* kName = "composite";
 
   explicit CompositePass(const FrameResources& resources);
-  void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  void add_to(graph::FrameGraph& graph) const;
   // Points the sets at the current targets (after FrameTargets were recreated; none of
   // them may be in use by the GPU).
   void write_descriptors();

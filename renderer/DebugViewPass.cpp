@@ -56,15 +56,31 @@ void DebugViewPass::set_view(DebugView view, const std::array<float, 2>& range) 
   range_ = range;
 }
 
-void DebugViewPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
-  auto scope = timer.scope(cmd, kName);
-  compute_barrier(cmd);  // after composite's writes to display
-  shader::DebugPush push;
-  push.view = {float(static_cast<int>(view_)), range_[0], range_[1], 0.0f};
-  program_.bind(cmd, set_);
-  vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
-                     &push);
-  ComputeProgram::dispatch(cmd, r_.targets.width, r_.targets.height);
+void DebugViewPass::add_to(graph::FrameGraph& graph) const {
+  const FrameTargets& t = r_.targets;
+  using namespace graph::use;
+  graph.add_pass(kName).step({{&t.albedo, kSampled},
+                              {&t.depth, kSampledDepth},
+                              {&t.irradiance, kComputeRead},
+                              {&t.specular, kComputeRead},
+                              {&t.blur_a, kComputeRead},
+                              {&t.accum, kComputeRead},
+                              {&t.light_depth, kSampled},
+                              {&t.uv_stretch, kSampled},
+                              {&t.normal, kSampled},
+                              {&t.shadow, kSampled},
+                              {&t.display, kComputeWrite}},
+                             [this](VkCommandBuffer cmd) {
+                               shader::DebugPush push;
+                               push.view = {float(static_cast<int>(view_)), range_[0],
+                                            range_[1], 0.0f};
+                               program_.bind(cmd, set_);
+                               vkCmdPushConstants(cmd, program_.layout.get(),
+                                                  VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
+                                                  &push);
+                               ComputeProgram::dispatch(cmd, r_.targets.width,
+                                                        r_.targets.height);
+                             });
 }
 
 }  // namespace sss::renderer

@@ -7,7 +7,7 @@
 #include "renderer/ComputeProgram.h"
 #include "renderer/FrameResources.h"
 #include "renderer/RenderOptions.h"
-#include "renderer/vk/GpuTimer.h"
+#include "renderer/graph/FrameGraph.h"
 
 #include <array>
 
@@ -17,7 +17,7 @@ class DebugViewPass {
  public:
   static constexpr const char* kName = "debug view";
   explicit DebugViewPass(const FrameResources& resources);
-  void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  void add_to(graph::FrameGraph& graph) const;
   void write_descriptors();
   // The view and its heat map's [lo, hi] (Renderer::debug_range()), set before each frame.
   void set_view(DebugView view, const std::array<float, 2>& range);

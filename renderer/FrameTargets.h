@@ -1,8 +1,9 @@
 // FrameTargets: every image one frame writes, at the output size, with the formats of
 // DESIGN.md §5. Layouts: the G-buffer and the shadow maps are attachments while drawn
 // and SHADER_READ_ONLY_OPTIMAL afterwards; every compute target stays in GENERAL (read
-// through samplers or storage loads, written as storage images). Renderer::record moves
-// each image from UNDEFINED to its first layout at the start of the frame.
+// through samplers or storage loads, written as storage images). The frame graph
+// (renderer/graph) moves each image from UNDEFINED to its first use's layout at the start
+// of the frame and derives every barrier after that from the passes' declarations.
 #pragma once
 
 #include "renderer/RenderOptions.h"
@@ -79,7 +80,7 @@ struct FrameTargets {
   // takes it from UNDEFINED to TRANSFER_DST_OPTIMAL to SHADER_READ_ONLY_OPTIMAL.
   vk::Image display_source;
 
-  // The compute targets (GENERAL layout), for the frame's initial transition.
+  // The compute targets (GENERAL layout).
   std::vector<const vk::Image*> compute_targets() const;
   // The device memory of every target, shadow maps included.
   VkDeviceSize memory_bytes() const;

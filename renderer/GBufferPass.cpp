@@ -1,6 +1,5 @@
 #include "renderer/GBufferPass.h"
 
-#include "renderer/vk/Barrier.h"
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Pipeline.h"
 #include "renderer/vk/Rendering.h"
@@ -69,42 +68,27 @@ void GBufferPass::set_uv_stretch(bool on) {
   uv_stretch_ = on;
 }
 
-void GBufferPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
-  auto scope = timer.scope(cmd, kName);
+void GBufferPass::add_to(graph::FrameGraph& graph) const {
   const FrameTargets& t = r_.targets;
-  const std::array<vk::ColorTarget, 3> colors = {vk::ColorTarget(t.normal.view()),
-                                                 vk::ColorTarget(t.albedo.view()),
-                                                 vk::ColorTarget(t.uv_stretch.view())};
-  const vk::DepthTarget depth(t.depth.view(), 0.0f);  // reversed depth: 0 is the far plane
-  vk::begin_rendering(cmd, t.depth.extent(),
-                      std::span<const vk::ColorTarget>(colors.data(), uv_stretch_ ? 3 : 2), &depth);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                    uv_stretch_ ? uv_stretch_pipeline_.get() : pipeline_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_, 0,
-                          nullptr);
-  r_.scene.draw(cmd, layout_.get());
-  vk::end_rendering(cmd);
-  const vk::Scope color_write{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  const vk::Scope depth_write{
-      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
-  const vk::Scope sampled{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
-  const vk::Scope depth_read{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
-                                 VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
-                                 VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT |
-                                 VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT};
-  vk::pipeline_barrier(
-      cmd, {vk::image_barrier(t.normal, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
-            vk::image_barrier(t.albedo, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
-            vk::image_barrier(t.uv_stretch, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_write, sampled),
-            vk::image_barrier(t.depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthReadLayout,
-                              depth_write, depth_read)});
+  std::vector<graph::ImageUse> uses{{&t.depth, graph::use::kDepthAttachment},
+                                    {&t.normal, graph::use::kColorAttachment},
+                                    {&t.albedo, graph::use::kColorAttachment}};
+  if (uv_stretch_) uses.push_back({&t.uv_stretch, graph::use::kColorAttachment});
+  graph.add_pass(kName).step(std::move(uses), [this, &t](VkCommandBuffer cmd) {
+    const std::array<vk::ColorTarget, 3> colors = {vk::ColorTarget(t.normal.view()),
+                                                   vk::ColorTarget(t.albedo.view()),
+                                                   vk::ColorTarget(t.uv_stretch.view())};
+    const vk::DepthTarget depth(t.depth.view(), 0.0f);  // reversed depth: 0 is the far plane
+    vk::begin_rendering(cmd, t.depth.extent(),
+                        std::span<const vk::ColorTarget>(colors.data(), uv_stretch_ ? 3 : 2),
+                        &depth);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                      uv_stretch_ ? uv_stretch_pipeline_.get() : pipeline_.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_, 0,
+                            nullptr);
+    r_.scene.draw(cmd, layout_.get());
+    vk::end_rendering(cmd);
+  });
 }
 
 }  // namespace sss::renderer

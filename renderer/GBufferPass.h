@@ -5,7 +5,7 @@
 
 #include "renderer/FrameResources.h"
 #include "renderer/vk/Descriptors.h"
-#include "renderer/vk/GpuTimer.h"
+#include "renderer/graph/FrameGraph.h"
 
 namespace sss::renderer {
 
@@ -20,7 +20,7 @@ class GBufferPass {
 
   explicit GBufferPass(const FrameResources& resources);
   // Expects the colour targets in COLOR_ATTACHMENT_OPTIMAL, depth in DEPTH_ATTACHMENT_OPTIMAL.
-  void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  void add_to(graph::FrameGraph& graph) const;
   // The uv-stretch debug view: draw with gbuffer_uv_stretch.frag, which also writes
   // targets.uv_stretch (its pipeline is built on first use). Off: the frame's pipeline,
   // uv_stretch is only moved to SHADER_READ_ONLY_OPTIMAL.

@@ -11,22 +11,30 @@ void GaussianPingPong::allocate(ComputeProgram& program) {
   for (VkDescriptorSet* set : {&h_source, &h_a, &h_b, &v_a, &v_b}) *set = program.allocate();
 }
 
+GaussianPingPong::Dispatch GaussianPingPong::dispatch(int g, int pass, float w) const {
+  const bool into_a = g % 2 == 0;
+  if (pass == 0)
+    return {g == 0 ? h_source : (into_a ? h_b : h_a), shader::vec4{1, 0, float(g), w},
+            g == 0 ? Role::Source : (into_a ? Role::B : Role::A), Role::Temp};
+  return {into_a ? v_a : v_b, shader::vec4{0, 1, float(g), w}, Role::Temp,
+          into_a ? Role::A : Role::B};
+}
+
+void GaussianPingPong::run(VkCommandBuffer cmd, const ComputeProgram& program, const Dispatch& d,
+                           std::uint32_t width, std::uint32_t height) {
+  program.bind(cmd, d.set);
+  vkCmdPushConstants(cmd, program.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(d.push),
+                     &d.push);
+  ComputeProgram::dispatch(cmd, width, height);
+}
+
 void GaussianPingPong::record(VkCommandBuffer cmd, const ComputeProgram& program, int count,
                               float w, std::uint32_t width, std::uint32_t height) const {
-  for (int g = 0; g < count; ++g) {
-    const bool into_a = g % 2 == 0;
-    const VkDescriptorSet horizontal = g == 0 ? h_source : (into_a ? h_b : h_a);
-    const VkDescriptorSet vertical = into_a ? v_a : v_b;
+  for (int g = 0; g < count; ++g)
     for (int pass = 0; pass < 2; ++pass) {
-      const shader::vec4 push = pass == 0 ? shader::vec4{1, 0, float(g), w}
-                                          : shader::vec4{0, 1, float(g), w};
-      program.bind(cmd, pass == 0 ? horizontal : vertical);
-      vkCmdPushConstants(cmd, program.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
-                         &push);
-      ComputeProgram::dispatch(cmd, width, height);
+      run(cmd, program, dispatch(g, pass, w), width, height);
       compute_barrier(cmd);
     }
-  }
 }
 
 }  // namespace sss::renderer

@@ -8,6 +8,7 @@
 
 #include "renderer/ComputeProgram.h"
 #include "renderer/vk/Image.h"
+#include "shaders/shared/frame.h"
 
 #include <vulkan/vulkan.h>
 
@@ -30,9 +31,20 @@ struct GaussianPingPong {
     write(v_a, temp, a);
     write(v_b, temp, b);
   }
-  // Gaussians 0 .. count - 1, each a horizontal then a vertical dispatch over width x height
-  // with a compute barrier after it. The push constant is one vec4 (BlurPush, TexturePush):
-  // the direction (1, 0) or (0, 1), the Gaussian's index, and `w`.
+  // The images of write(): which one a dispatch reads and which it writes.
+  enum class Role { Source, A, B, Temp };
+  struct Dispatch {
+    VkDescriptorSet set;
+    shader::vec4 push;  // BlurPush, TexturePush: the direction (1, 0) or (0, 1), g, `w`
+    Role input, output;
+  };
+  // Gaussian g's horizontal (pass 0) or vertical (pass 1) dispatch.
+  Dispatch dispatch(int g, int pass, float w) const;
+  // Binds its set and push constant and dispatches over width x height.
+  static void run(VkCommandBuffer cmd, const ComputeProgram& program, const Dispatch& d,
+                  std::uint32_t width, std::uint32_t height);
+  // Gaussians 0 .. count - 1, each a horizontal then a vertical dispatch, with a compute
+  // barrier after each (the texture path's atlases, which the frame graph does not track).
   void record(VkCommandBuffer cmd, const ComputeProgram& program, int count, float w,
               std::uint32_t width, std::uint32_t height) const;
 };

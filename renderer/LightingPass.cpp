@@ -46,11 +46,21 @@ void LightingPass::write_descriptors() {
       .update(r_.context);
 }
 
-void LightingPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
-  auto scope = timer.scope(cmd, kName);
-  program_.bind(cmd, set_);
-  ComputeProgram::dispatch(cmd, r_.rect);
-  compute_barrier(cmd);
+void LightingPass::add_to(graph::FrameGraph& graph) const {
+  const FrameTargets& t = r_.targets;
+  using namespace graph::use;
+  graph.add_pass(kName).step({{&t.depth, kSampledDepth},
+                              {&t.normal, kSampled},
+                              {&t.albedo, kSampled},
+                              {&t.shadow, kSampled},
+                              {&t.light_depth, kSampled},
+                              {&t.irradiance, kComputeWrite},
+                              {&t.specular, kComputeWrite},
+                              {&t.surface, kComputeWrite}},
+                             [this](VkCommandBuffer cmd) {
+                               program_.bind(cmd, set_);
+                               ComputeProgram::dispatch(cmd, r_.rect);
+                             });
 }
 
 }  // namespace sss::renderer

@@ -45,17 +45,25 @@ void LinePrefix::write_descriptors(std::span<const vk::Image* const> inputs) {
         .update(r_.context);
 }
 
-void LinePrefix::record(VkCommandBuffer cmd, const vk::Image& input, bool vertical) const {
+void LinePrefix::add_step(graph::FrameGraph::PassBuilder& pass, const vk::Image& input,
+                          bool vertical) const {
   const auto it = std::find(inputs_.begin(), inputs_.end(), &input);
   if (it == inputs_.end()) throw std::logic_error("LinePrefix: an input without a descriptor set");
-  program_.bind(cmd, sets_[std::size_t(it - inputs_.begin())]);
-  shader::BlurPush push;
-  push.direction = vertical ? shader::vec4{0, 1, 0, 0} : shader::vec4{1, 0, 0, 0};
-  vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-  // One workgroup per row (horizontal) or column (vertical) of the rect (sss_prefix.comp).
-  const uint32_t lines = vertical ? r_.rect.width() : r_.rect.height();
-  vkCmdDispatch(cmd, std::max(lines, 1u), 1, 1);
-  compute_barrier(cmd);
+  const VkDescriptorSet set = sets_[std::size_t(it - inputs_.begin())];
+  pass.step({{&input, graph::use::kComputeRead},
+             {&r_.targets.surface, graph::use::kComputeRead},
+             {&r_.targets.sss_prefix, graph::use::kComputeWrite}},
+            [this, set, vertical](VkCommandBuffer cmd) {
+              program_.bind(cmd, set);
+              shader::BlurPush push;
+              push.direction = vertical ? shader::vec4{0, 1, 0, 0} : shader::vec4{1, 0, 0, 0};
+              vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                                 sizeof(push), &push);
+              // One workgroup per row (horizontal) or column (vertical) of the rect
+              // (sss_prefix.comp).
+              const uint32_t lines = vertical ? r_.rect.width() : r_.rect.height();
+              vkCmdDispatch(cmd, std::max(lines, 1u), 1, 1);
+            });
 }
 
 }  // namespace sss::renderer

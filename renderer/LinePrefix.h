@@ -9,6 +9,7 @@
 
 #include "renderer/ComputeProgram.h"
 #include "renderer/FrameResources.h"
+#include "renderer/graph/FrameGraph.h"
 
 #include <span>
 #include <vector>
@@ -23,9 +24,9 @@ class LinePrefix {
   LinePrefix(const FrameResources& resources, int max_inputs);
   // One descriptor set per input image (after FrameTargets were recreated: the new ones).
   void write_descriptors(std::span<const vk::Image* const> inputs);
-  // The sums of `input` (one of write_descriptors' images) along rows (vertical false)
-  // or columns, then a compute barrier.
-  void record(VkCommandBuffer cmd, const vk::Image& input, bool vertical) const;
+  // The step that sums `input` (one of write_descriptors' images) along rows (vertical
+  // false) or columns.
+  void add_step(graph::FrameGraph::PassBuilder& pass, const vk::Image& input, bool vertical) const;
 
  private:
   const FrameResources& r_;

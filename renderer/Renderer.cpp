@@ -11,7 +11,6 @@
 #include "renderer/SssSeparablePass.h"
 #include "renderer/SssTexturePass.h"
 #include "renderer/TextureGatherPass.h"
-#include "renderer/vk/Barrier.h"
 #include "renderer/vk/Check.h"
 #include "renderer/vk/Commands.h"
 #include "renderer/vk/Context.h"
@@ -381,66 +380,45 @@ void Renderer::resize(std::uint32_t width, std::uint32_t height) {
   set_options(options);
 }
 
-void Renderer::record(VkCommandBuffer cmd) {
-  timer_.reset(cmd);
-  // Every target from UNDEFINED (last frame's contents are not needed) to its first
-  // layout, after everything the previous frame did with it.
-  const vk::Scope before{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT};
-  const vk::Scope depth_access{
-      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
-          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
-  const vk::Scope color_access{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  const vk::Scope compute_access{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
-                                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT |
-                                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-                                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                                     VK_ACCESS_2_TRANSFER_WRITE_BIT};
-  std::vector<VkImageMemoryBarrier2> barriers = {
-      vk::image_barrier(targets_.shadow, VK_IMAGE_LAYOUT_UNDEFINED,
-                        VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, before, depth_access),
-      vk::image_barrier(targets_.light_depth, VK_IMAGE_LAYOUT_UNDEFINED,
-                        VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, before, depth_access),
-      vk::image_barrier(targets_.depth, VK_IMAGE_LAYOUT_UNDEFINED,
-                        VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, before, depth_access),
-      vk::image_barrier(targets_.normal, VK_IMAGE_LAYOUT_UNDEFINED,
-                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, before, color_access),
-      vk::image_barrier(targets_.albedo, VK_IMAGE_LAYOUT_UNDEFINED,
-                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, before, color_access),
-      vk::image_barrier(targets_.uv_stretch, VK_IMAGE_LAYOUT_UNDEFINED,
-                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, before, color_access)};
-  for (const vk::Image* image : targets_.compute_targets())
-    barriers.push_back(vk::image_barrier(*image, VK_IMAGE_LAYOUT_UNDEFINED,
-                                         VK_IMAGE_LAYOUT_GENERAL, before, compute_access));
-  vk::pipeline_barrier(cmd, barriers);
+graph::FrameGraph Renderer::build_graph() {
+  graph::FrameGraph graph;
   // The screen passes write only rect_: the rest of the output is background (zero, or
   // the display's opaque background colour, given as sRGB codes).
-  const VkClearColorValue zero{};
-  VkClearColorValue background{};
-  if (const auto& c = options_.background) background = {{(*c)[0], (*c)[1], (*c)[2], 1.0f}};
-  const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdClearColorImage(cmd, targets_.hdr.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
-  vkCmdClearColorImage(cmd, targets_.display.handle(), VK_IMAGE_LAYOUT_GENERAL, &background, 1, &all);
-  const VkMemoryBarrier2 cleared = vk::memory_barrier(
-      {VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT},
-      {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT});
-  vk::pipeline_barrier(cmd, {}, {}, {&cleared, 1});
-
-  shadow_->record(cmd, timer_,
-                  options_.transmission || options_.debug_view == DebugView::Thickness);
-  if (texture_) texture_->record(cmd, timer_, materials_.data());
-  gbuffer_->record(cmd, timer_);
-  if (gather_) gather_->record(cmd, timer_);
-  lighting_->record(cmd, timer_);
-  if (separable_) separable_->record(cmd, timer_);
-  if (gaussians_) gaussians_->record(cmd, timer_);
-  composite_->record(cmd, timer_);
-  if (antialias_) antialias_->record(cmd, timer_);
+  graph.add_pass("clear", false).step(
+      {{&targets_.hdr, graph::use::kClear}, {&targets_.display, graph::use::kClear}},
+      [this](VkCommandBuffer cmd) {
+        const VkClearColorValue zero{};
+        VkClearColorValue background{};
+        if (const auto& c = options_.background) background = {{(*c)[0], (*c)[1], (*c)[2], 1.0f}};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, targets_.hdr.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+        vkCmdClearColorImage(cmd, targets_.display.handle(), VK_IMAGE_LAYOUT_GENERAL, &background,
+                             1, &all);
+      });
+  shadow_->add_to(graph, options_.transmission || options_.debug_view == DebugView::Thickness);
+  if (texture_) texture_->add_to(graph, materials_.data());
+  gbuffer_->add_to(graph);
+  if (gather_) gather_->add_to(graph);
+  lighting_->add_to(graph);
+  if (separable_) separable_->add_to(graph);
+  if (gaussians_) gaussians_->add_to(graph);
+  composite_->add_to(graph);
+  if (antialias_) antialias_->add_to(graph);
   if (debug_) {
     debug_->set_view(options_.debug_view, debug_range());  // follows the camera and the fits
-    debug_->record(cmd, timer_);
+    debug_->add_to(graph);
   }
+  // Read back (read_hdr, read_display, read_specular) and blitted by the window in GENERAL.
+  for (const vk::Image* image : {&targets_.hdr, &targets_.display, &targets_.specular})
+    graph.keep(*image, display_layout());
+  return graph;
+}
+
+std::string Renderer::describe_frame() { return build_graph().describe(); }
+
+void Renderer::record(VkCommandBuffer cmd) {
+  timer_.reset(cmd);
+  build_graph().record(cmd, timer_);
 }
 
 void Renderer::render_frame() {

@@ -28,6 +28,7 @@
 #include "renderer/LightSetup.h"
 #include "renderer/MaterialTable.h"
 #include "renderer/RenderOptions.h"
+#include "renderer/graph/FrameGraph.h"
 #include "image/Image.h"
 #include "scene/Scene.h"
 #include "renderer/vk/Buffer.h"
@@ -105,6 +106,9 @@ class Renderer {
   // leave it in that layout. Recreated by resize(): take the reference again afterwards.
   const vk::Image& display_image() const { return targets_.display; }
   static constexpr VkImageLayout display_layout() { return VK_IMAGE_LAYOUT_GENERAL; }
+  // The frame's passes, in order, with the images each step reads and writes
+  // (graph::FrameGraph::describe; docs/ARCHITECTURE.md's frame table).
+  std::string describe_frame();
   const FrameStats& stats() const { return stats_; }
   // The device memory of the frame's targets (FrameTargets: the technique's and the view's
   // images, the shadow maps), without the scene's buffers and the texture path's atlases.
@@ -143,6 +147,8 @@ class Renderer {
   const scene::Camera& camera() const { return camera_; }
 
  private:
+  // The frame as passes that declare their images; record() records it.
+  graph::FrameGraph build_graph();
   void record(VkCommandBuffer cmd);
   // rgba8 (codes / 255), rgba16f or rgba32f images read back as float RGBA.
   image::Image read(const vk::Image& image) const;

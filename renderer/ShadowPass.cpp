@@ -1,7 +1,6 @@
 #include "renderer/ShadowPass.h"
 
 #include "scene/ShadowFrustum.h"
-#include "renderer/vk/Barrier.h"
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Pipeline.h"
 #include "renderer/vk/Rendering.h"
@@ -41,38 +40,31 @@ ShadowPass::ShadowPass(const FrameResources& resources, std::vector<bool> shadow
   vk::DescriptorWriter(set_).uniform_buffer(0, r_.lights).update(r_.context);
 }
 
-void ShadowPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer, bool light_depth) const {
-  auto scope = timer.scope(cmd, kName);
+void ShadowPass::add_to(graph::FrameGraph& graph, bool light_depth) const {
   // Each light with the slope-scaled bias for the shadow test and, when something reads
   // thickness, again without it (the bias pushes grazing surfaces up to ~20 texels of
   // depth behind themselves, which read as a too-thin object: issue 20's transmission
   // speckle).
-  const float biases[2] = {scene::kShadowSlopeBias, 0.0f};
-  const std::vector<vk::ImageViewHandle>* layers[2] = {&r_.targets.shadow_layers,
-                                                       &r_.targets.light_depth_layers};
-  for (int map = 0; map < (light_depth ? 2 : 1); ++map)
-    for (std::size_t layer = 0; layer < layers[map]->size(); ++layer) {
-      const vk::DepthTarget target((*layers[map])[layer].get());
-      vk::begin_rendering(cmd, r_.targets.shadow.extent(), {}, &target);
-      if (layer < shadowed_.size() && shadowed_[layer]) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_,
-                                0, nullptr);
-        vkCmdSetDepthBias(cmd, 0.0f, 0.0f, biases[map]);
-        r_.scene.draw(cmd, layout_.get(), static_cast<int>(layer));
+  std::vector<graph::ImageUse> uses{{&r_.targets.shadow, graph::use::kDepthAttachment}};
+  if (light_depth) uses.push_back({&r_.targets.light_depth, graph::use::kDepthAttachment});
+  graph.add_pass(kName).step(std::move(uses), [this, light_depth](VkCommandBuffer cmd) {
+    const float biases[2] = {scene::kShadowSlopeBias, 0.0f};
+    const std::vector<vk::ImageViewHandle>* layers[2] = {&r_.targets.shadow_layers,
+                                                         &r_.targets.light_depth_layers};
+    for (int map = 0; map < (light_depth ? 2 : 1); ++map)
+      for (std::size_t layer = 0; layer < layers[map]->size(); ++layer) {
+        const vk::DepthTarget target((*layers[map])[layer].get());
+        vk::begin_rendering(cmd, r_.targets.shadow.extent(), {}, &target);
+        if (layer < shadowed_.size() && shadowed_[layer]) {
+          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+          vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1,
+                                  &set_, 0, nullptr);
+          vkCmdSetDepthBias(cmd, 0.0f, 0.0f, biases[map]);
+          r_.scene.draw(cmd, layout_.get(), static_cast<int>(layer));
+        }
+        vk::end_rendering(cmd);
       }
-      vk::end_rendering(cmd);
-    }
-  std::vector<VkImageMemoryBarrier2> barriers;
-  for (const vk::Image* image : {&r_.targets.shadow, &r_.targets.light_depth})
-    barriers.push_back(vk::image_barrier(*image, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                         {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
-                                              VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT},
-                                         {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT}));
-  vk::pipeline_barrier(cmd, barriers);
+  });
 }
 
 }  // namespace sss::renderer

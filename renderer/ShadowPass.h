@@ -6,7 +6,7 @@
 
 #include "renderer/FrameResources.h"
 #include "renderer/vk/Descriptors.h"
-#include "renderer/vk/GpuTimer.h"
+#include "renderer/graph/FrameGraph.h"
 
 #include <utility>
 #include <vector>
@@ -21,7 +21,7 @@ class ShadowPass {
   // Expects targets.shadow and targets.light_depth in DEPTH_ATTACHMENT_OPTIMAL. Draws
   // light_depth only when `light_depth` (transmission or the thickness view reads it);
   // otherwise it is left undefined, unread.
-  void record(VkCommandBuffer cmd, vk::GpuTimer& timer, bool light_depth) const;
+  void add_to(graph::FrameGraph& graph, bool light_depth) const;
   // Which layers to draw from now on (LightSetup::shadowed, after the lights changed).
   void set_shadowed(std::vector<bool> shadowed) { shadowed_ = std::move(shadowed); }
 

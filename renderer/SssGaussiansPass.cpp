@@ -44,9 +44,30 @@ void SssGaussiansPass::write_descriptors() {
   blur_.write(t.irradiance, t.blur_a, t.blur_b, t.blur_temp, write);
 }
 
-void SssGaussiansPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
-  auto scope = timer.scope(cmd, kName);
-  blur_.record(cmd, program_, gaussians_, 0.0f, r_.rect.width(), r_.rect.height());
+void SssGaussiansPass::add_to(graph::FrameGraph& graph) const {
+  const FrameTargets& t = r_.targets;
+  using Role = GaussianPingPong::Role;
+  const auto image = [&t](Role role) {
+    return role == Role::Source ? &t.irradiance
+           : role == Role::A    ? &t.blur_a
+           : role == Role::B    ? &t.blur_b
+                                : &t.blur_temp;
+  };
+  graph::FrameGraph::PassBuilder pass = graph.add_pass(kName);
+  for (int g = 0; g < gaussians_; ++g)
+    for (int k = 0; k < 2; ++k) {
+      const GaussianPingPong::Dispatch d = blur_.dispatch(g, k, 0.0f);
+      // The vertical dispatch adds its weight x its result to accum (read and written);
+      // the horizontal one's set holds accum too, which counts as a write (synchronization
+      // validation counts a bound storage image as written).
+      pass.step({{&t.surface, graph::use::kComputeRead},
+                 {image(d.input), graph::use::kComputeRead},
+                 {image(d.output), graph::use::kComputeWrite},
+                 {&t.accum, graph::use::kComputeWrite}},
+                [this, d](VkCommandBuffer cmd) {
+                  GaussianPingPong::run(cmd, program_, d, r_.rect.width(), r_.rect.height());
+                });
+    }
 }
 
 }  // namespace sss::renderer

@@ -8,7 +8,7 @@
 #include "renderer/ComputeProgram.h"
 #include "renderer/FrameResources.h"
 #include "renderer/GaussianPingPong.h"
-#include "renderer/vk/GpuTimer.h"
+#include "renderer/graph/FrameGraph.h"
 
 namespace sss::renderer {
 
@@ -18,7 +18,7 @@ class SssGaussiansPass {
 
   // gaussians: the most Gaussians of any material (passes to run).
   SssGaussiansPass(const FrameResources& resources, int gaussians);
-  void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  void add_to(graph::FrameGraph& graph) const;
   // Points the sets at the current targets (after FrameTargets were recreated; none of
   // them may be in use by the GPU).
   void write_descriptors();

@@ -57,19 +57,35 @@ void SssSeparablePass::write_descriptors() {
   prefix_.write_descriptors(inputs);
 }
 
-void SssSeparablePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
-  auto scope = timer.scope(cmd, kName);
-  for (int pass = 0; pass < 2; ++pass) {
-    shader::BlurPush push;
-    push.direction = pass == 0 ? shader::vec4{1, 0, 0, 1}
-                               : shader::vec4{0, 1, write_scattered_ ? 1.0f : 0.0f, 0};
-    // The running sums along this pass's lines, then the blur that reads them.
-    prefix_.record(cmd, pass == 0 ? r_.targets.irradiance : r_.targets.sss_line, pass == 1);
-    program_.bind(cmd, pass == 0 ? horizontal_ : vertical_);
-    vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
-                       &push);
-    ComputeProgram::dispatch(cmd, r_.rect);
-    compute_barrier(cmd);
+void SssSeparablePass::add_to(graph::FrameGraph& graph) const {
+  const FrameTargets& t = r_.targets;
+  using namespace graph::use;
+  graph::FrameGraph::PassBuilder pass = graph.add_pass(kName);
+  for (int k = 0; k < 2; ++k) {
+    const vk::Image& input = k == 0 ? t.irradiance : t.sss_line;
+    // The running sums along this pass's lines, then the blur that reads them. The
+    // horizontal blur writes sss_line; the vertical one composites into hdr and display,
+    // and writes R * E to blur_a for the scattered view. Both halves' sets hold every
+    // storage image, so both declare every write (synchronization validation counts a
+    // bound storage image as written).
+    prefix_.add_step(pass, input, k == 1);
+    pass.step({{&t.albedo, kSampled},
+               {&t.specular, kComputeRead},
+               {&input, kComputeRead},
+               {&t.sss_prefix, kComputeRead},
+               {&t.sss_line, kComputeWrite},
+               {&t.hdr, kComputeWrite},
+               {&t.display, kComputeWrite},
+               {&t.blur_a, kComputeWrite}},
+              [this, k](VkCommandBuffer cmd) {
+      shader::BlurPush push;
+      push.direction = k == 0 ? shader::vec4{1, 0, 0, 1}
+                              : shader::vec4{0, 1, write_scattered_ ? 1.0f : 0.0f, 0};
+      program_.bind(cmd, k == 0 ? horizontal_ : vertical_);
+      vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                         sizeof(push), &push);
+      ComputeProgram::dispatch(cmd, r_.rect);
+    });
   }
 }
 

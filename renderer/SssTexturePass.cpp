@@ -329,23 +329,28 @@ void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& obje
   t.blur.record(cmd, blur_, count, float(object.material), t.size, t.size);
 }
 
-void SssTexturePass::record(VkCommandBuffer cmd, vk::GpuTimer& timer,
-                            const MaterialData& materials) {
-  auto scope = timer.scope(cmd, kName);
-  for (std::size_t i = 0; i < objects_.size(); ++i) {
-    Textures& t = textures_[i];
-    if (!t.dirty && objects_[i].options.update == TextureUpdate::OnChange) continue;
-    const std::uint32_t m = objects_[i].material;
-    update(cmd, t, objects_[i], materials.gaussian_count(m));
-    t.dirty = false;
-    ++objects_[i].updates;
-  }
-  // The lookups (TextureGatherPass, fragment shader) after this frame's updates, and after
-  // earlier frames' for objects not updated now.
-  const VkMemoryBarrier2 done = vk::memory_barrier(
-      {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT},
-      {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT});
-  vk::pipeline_barrier(cmd, {}, {}, {&done, 1});
+void SssTexturePass::add_to(graph::FrameGraph& graph, const MaterialData& materials) {
+  // The frame's images it reads: the shadow maps (texture_lighting.comp). Its atlases
+  // persist from frame to frame and keep their own barriers (update()).
+  const FrameTargets& f = r_.targets;
+  graph.add_pass(kName).step(
+      {{&f.shadow, graph::use::kSampled}, {&f.light_depth, graph::use::kSampled}},
+      [this, &materials](VkCommandBuffer cmd) {
+        for (std::size_t i = 0; i < objects_.size(); ++i) {
+          Textures& t = textures_[i];
+          if (!t.dirty && objects_[i].options.update == TextureUpdate::OnChange) continue;
+          const std::uint32_t m = objects_[i].material;
+          update(cmd, t, objects_[i], materials.gaussian_count(m));
+          t.dirty = false;
+          ++objects_[i].updates;
+        }
+        // The lookups (TextureGatherPass, fragment shader) after this frame's updates, and
+        // after earlier frames' for objects not updated now.
+        const VkMemoryBarrier2 done = vk::memory_barrier(
+            {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT},
+            {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT});
+        vk::pipeline_barrier(cmd, {}, {}, {&done, 1});
+      });
 }
 
 }  // namespace sss::renderer

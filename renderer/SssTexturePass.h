@@ -20,7 +20,7 @@
 #include "renderer/ComputeProgram.h"
 #include "renderer/FrameResources.h"
 #include "renderer/RenderOptions.h"
-#include "renderer/vk/GpuTimer.h"
+#include "renderer/graph/FrameGraph.h"
 #include "renderer/vk/Image.h"
 
 #include <cstddef>
@@ -55,7 +55,7 @@ class SssTexturePass {
   // Points the lighting sets at the current shadow maps (after FrameTargets were recreated).
   void write_descriptors();
   // Updates the objects that need it; `materials` gives each one's Gaussian count.
-  void record(VkCommandBuffer cmd, vk::GpuTimer& timer, const MaterialData& materials);
+  void add_to(graph::FrameGraph& graph, const MaterialData& materials);
 
   const std::vector<Object>& objects() const { return objects_; }
   // Whether object i's textures hold a result (it was updated since they were made).

@@ -1,7 +1,6 @@
 #include "renderer/TextureGatherPass.h"
 
 #include "renderer/SssTexturePass.h"
-#include "renderer/vk/Barrier.h"
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Pipeline.h"
 #include "renderer/vk/Rendering.h"
@@ -65,43 +64,37 @@ void TextureGatherPass::set_objects(const SssTexturePass& texture) {
   writer.update(r_.context);
 }
 
-void TextureGatherPass::record(VkCommandBuffer cmd, vk::GpuTimer& timer) const {
-  auto scope = timer.scope(cmd, kName);
+void TextureGatherPass::add_to(graph::FrameGraph& graph) const {
   const FrameTargets& t = r_.targets;
-  // accum: from the frame's first barrier (compute scope) to a colour attachment in GENERAL.
-  const vk::Scope attachment{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                             VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  vk::pipeline_barrier(cmd, {vk::image_barrier(t.accum, VK_IMAGE_LAYOUT_GENERAL,
-                                               VK_IMAGE_LAYOUT_GENERAL,
-                                               {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
-                                                    VK_PIPELINE_STAGE_2_CLEAR_BIT,
-                                                VK_ACCESS_2_NONE},
-                                               attachment)});
-  vk::ColorTarget color(t.accum.view());
-  color.layout = VK_IMAGE_LAYOUT_GENERAL;
-  vk::DepthTarget depth(t.depth.view());
-  depth.load = VK_ATTACHMENT_LOAD_OP_LOAD;
-  depth.store = VK_ATTACHMENT_STORE_OP_NONE;
-  depth.layout = kDepthReadLayout;
-  vk::begin_rendering(cmd, t.depth.extent(), {&color, 1}, &depth);
-  if (!draws_.empty()) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_, 0,
-                            nullptr);
-    // The lookup's depth need not be bit-identical to the G-buffer's (lavapipe compiles the
-    // same vertex shader per pipeline; `invariant` draws a Mesa warning), so it is pulled
-    // toward the camera (up: reversed depth) by a few units of depth resolution: the visible surface passes,
-    // what lies behind it does not. No slope-scaled term: at a silhouette it let the back
-    // of the sphere through (TextureSpaceTest.SphereSeamShowsNoLine: 2.75% there); with
-    // this bias no scattering pixel of the bunny, sphere or materials misses its lookup.
-    vkCmdSetDepthBias(cmd, kLookupBiasUnits, 0.0f, kLookupBiasSlope);
-    for (const auto& [instance, object] : draws_)
-      r_.scene.draw_instance(cmd, layout_.get(), instance, object);
-  }
-  vk::end_rendering(cmd);
-  const VkMemoryBarrier2 written = vk::memory_barrier(
-      attachment, {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT});
-  vk::pipeline_barrier(cmd, {}, {}, {&written, 1});
+  // The atlases it samples are SssTexturePass's: that pass orders its writes before
+  // this fragment shader.
+  graph.add_pass(kName).step(
+      {{&t.accum, graph::use::kColorAttachmentGeneral}, {&t.depth, graph::use::kDepthTest}},
+      [this, &t](VkCommandBuffer cmd) {
+        vk::ColorTarget color(t.accum.view());
+        color.layout = VK_IMAGE_LAYOUT_GENERAL;
+        vk::DepthTarget depth(t.depth.view());
+        depth.load = VK_ATTACHMENT_LOAD_OP_LOAD;
+        depth.store = VK_ATTACHMENT_STORE_OP_NONE;
+        depth.layout = kDepthReadLayout;
+        vk::begin_rendering(cmd, t.depth.extent(), {&color, 1}, &depth);
+        if (!draws_.empty()) {
+          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+          vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1,
+                                  &set_, 0, nullptr);
+          // The lookup's depth need not be bit-identical to the G-buffer's (lavapipe
+          // compiles the same vertex shader per pipeline; `invariant` draws a Mesa
+          // warning), so it is pulled toward the camera (up: reversed depth) by a few
+          // units of depth resolution: the visible surface passes, what lies behind it
+          // does not. No slope-scaled term: at a silhouette it let the back of the sphere
+          // through (TextureSpaceTest.SphereSeamShowsNoLine: 2.75% there); with this bias
+          // no scattering pixel of the bunny, sphere or materials misses its lookup.
+          vkCmdSetDepthBias(cmd, kLookupBiasUnits, 0.0f, kLookupBiasSlope);
+          for (const auto& [instance, object] : draws_)
+            r_.scene.draw_instance(cmd, layout_.get(), instance, object);
+        }
+        vk::end_rendering(cmd);
+      });
 }
 
 }  // namespace sss::renderer

@@ -9,7 +9,7 @@
 
 #include "renderer/FrameResources.h"
 #include "renderer/vk/Descriptors.h"
-#include "renderer/vk/GpuTimer.h"
+#include "renderer/graph/FrameGraph.h"
 
 namespace sss::renderer {
 
@@ -25,7 +25,7 @@ class TextureGatherPass {
   void set_objects(const SssTexturePass& texture);
   // Expects depth in kDepthReadLayout and accum in GENERAL after the frame's first
   // barrier; leaves accum in GENERAL for compute reads.
-  void record(VkCommandBuffer cmd, vk::GpuTimer& timer) const;
+  void add_to(graph::FrameGraph& graph) const;
 
  private:
   const FrameResources& r_;

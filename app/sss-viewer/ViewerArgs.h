@@ -50,6 +50,7 @@ struct ViewerArgs {
   std::string atlas_out;  // --atlas-out PREFIX: headless --sss texture writes the atlases
   bool no_specular = false;  // --no-specular: headless EXR --out less the specular target
   bool stats = false;
+  bool describe_frame = false;  // print the frame graph and exit
   std::string device;
   std::string vsync = "on";  // window: on (FIFO) | off (MAILBOX / IMMEDIATE)
   bool validation = false;   // --validation or SSS_VALIDATION=1

@@ -158,6 +158,9 @@ void add_render_options(CLI::App& app, ViewerArgs& a) {
 // How the viewer runs: statistics, the device, the window, the soak, and the tests' hooks.
 void add_run_options(CLI::App& app, ViewerArgs& a) {
   app.add_flag("--stats", a.stats, "Print GPU time per pass and the CPU frame time");
+  app.add_flag("--describe-frame", a.describe_frame,
+               "Print the frame's passes in order, each step with the images it reads and writes "
+               "(the frame graph, for these options and scene), and exit without rendering");
   app.add_option("--device", a.device, "Vulkan device (case-insensitive substring of its name)");
   app.add_option("--vsync", a.vsync, "Window: on (FIFO, default) | off (MAILBOX or IMMEDIATE)");
   app.add_flag("--validation", a.validation,
@@ -207,7 +210,7 @@ std::optional<int> check_outputs(const ViewerArgs& a) {
   const bool soak_options = a.soak > 0 || !a.soak_csv.empty() || !a.soak_svg.empty();
   if (soak_options && (!a.headless || a.soak == 0))
     return usage("--soak-csv and --soak-svg need --soak N, and --soak needs --headless");
-  if (a.headless) {
+  if (a.headless && !a.describe_frame) {
     if (a.out.empty() && a.soak == 0) return usage("--headless needs --out FILE.png|FILE.exr");
     const std::string ext = lower_extension(a.out);
     if (!a.out.empty() && ext != ".png" && ext != ".exr")
@@ -375,6 +378,11 @@ int viewer_main(int argc, char** argv) {
       return usage(std::string(option) + ": " + *refused);
 
   try {
+    if (a.describe_frame) {
+      vk::Context context(headless_context_options(a));
+      std::cout << renderer::Renderer(context, scene, options).describe_frame();
+      return kExitOk;
+    }
     if (!a.headless) return run_window(a, scene, options);
     if (a.soak > 0) return run_soak(a, scene, options);
     run_headless(a, scene, options, inputs);

@@ -1,0 +1,148 @@
+// The frame graph's barriers, derived from declared image uses (renderer/graph): each
+// rule of FrameGraph.h on made-up steps, then the real frame's description against the
+// table in docs/ARCHITECTURE.md. The frame's barriers themselves are checked by the
+// synchronization validation that every RenderTest runs with.
+#include "RenderTest.h"
+
+#include "renderer/Renderer.h"
+#include "renderer/graph/FrameGraph.h"
+#include "scene/BuiltinScenes.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace sss::renderer::testing {
+namespace {
+
+using graph::BarrierTracker;
+using graph::ImageUse;
+using graph::Transition;
+namespace use = graph::use;
+
+class FrameGraphTest : public RenderTest {
+ protected:
+  vk::Image image(const char* name) {
+    return vk::Image(ctx(), vk::ImageDesc{4, 4, VK_FORMAT_R16G16B16A16_SFLOAT,
+                                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                                          name});
+  }
+};
+
+constexpr vk::Scope kBefore{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT};
+
+TEST_F(FrameGraphTest, FirstUsesAreOneTransitionFromUndefinedEach) {
+  const vk::Image a = image("a"), b = image("b");
+  const std::vector<ImageUse> s1{{&a, use::kColorAttachment}};
+  const std::vector<ImageUse> s2{{&a, use::kSampled}, {&b, use::kComputeWrite}};
+  BarrierTracker tracker;
+  const std::vector<Transition> first = tracker.begin({&s1, &s2}, kBefore);
+  ASSERT_EQ(first.size(), 2u);
+  EXPECT_EQ(first[0].image, &a);
+  EXPECT_EQ(first[0].old_layout, VK_IMAGE_LAYOUT_UNDEFINED);
+  EXPECT_EQ(first[0].new_layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  EXPECT_EQ(first[0].src.stages, kBefore.stages);
+  EXPECT_EQ(first[0].dst.stages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
+  EXPECT_EQ(first[1].image, &b);
+  EXPECT_EQ(first[1].new_layout, VK_IMAGE_LAYOUT_GENERAL);
+  // The first uses need nothing more.
+  EXPECT_TRUE(tracker.use(s1).empty());
+  // a: written as an attachment, now sampled: one transition with the write made visible.
+  const std::vector<Transition> t = tracker.use(s2);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].image, &a);
+  EXPECT_EQ(t[0].old_layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  EXPECT_EQ(t[0].new_layout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  EXPECT_EQ(t[0].src.access, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  EXPECT_EQ(t[0].dst.access, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
+TEST_F(FrameGraphTest, AReadAfterAWriteWaitsOncePerKindOfReader) {
+  const vk::Image a = image("a");
+  const std::vector<ImageUse> write{{&a, use::kComputeWrite}};
+  const std::vector<ImageUse> read{{&a, use::kComputeRead}};
+  BarrierTracker tracker;
+  tracker.begin({&write, &read}, kBefore);
+  EXPECT_TRUE(tracker.use(write).empty());
+  const std::vector<Transition> t = tracker.use(read);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].old_layout, t[0].new_layout);  // GENERAL throughout: a dependency only
+  EXPECT_EQ(t[0].src.access, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  EXPECT_EQ(t[0].dst.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  // A second compute read of the same result: already visible.
+  EXPECT_TRUE(tracker.use(read).empty());
+}
+
+TEST_F(FrameGraphTest, AWriteWaitsForTheReadsAndTheWriteBeforeIt) {
+  const vk::Image a = image("a");
+  const std::vector<ImageUse> write{{&a, use::kComputeWrite}};
+  const std::vector<ImageUse> read{{&a, use::kComputeRead}};
+  BarrierTracker tracker;
+  tracker.begin({&write}, kBefore);
+  tracker.use(write);
+  tracker.use(read);
+  // Write after read (and after the first write): the readers' stages, the write's access.
+  const std::vector<Transition> t = tracker.use(write);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].src.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  EXPECT_EQ(t[0].src.access, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  EXPECT_EQ(t[0].dst.access, use::kComputeWrite.access);
+  // Two writes in a row also wait (write after write).
+  EXPECT_EQ(tracker.use(write).size(), 1u);
+}
+
+TEST_F(FrameGraphTest, ReadsInTwoLayoutsTransitionBetweenThem) {
+  const vk::Image a = image("a");
+  const std::vector<ImageUse> copy{{&a, use::kCopySource}};
+  const std::vector<ImageUse> write{{&a, use::kComputeWrite}};
+  BarrierTracker tracker;
+  tracker.begin({&write}, kBefore);
+  tracker.use(write);
+  const std::vector<Transition> to_copy = tracker.use(copy);
+  ASSERT_EQ(to_copy.size(), 1u);
+  EXPECT_EQ(to_copy[0].new_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  // Back to GENERAL for a write: after the copy's read.
+  const std::vector<Transition> back = tracker.use(write);
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].old_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  EXPECT_EQ(back[0].new_layout, VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_EQ(back[0].src.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT);
+  // leave(): nothing when the image is already in the layout asked for.
+  EXPECT_TRUE(tracker.leave(a, VK_IMAGE_LAYOUT_GENERAL, vk::kAllCommands).empty());
+  EXPECT_EQ(tracker.leave(a, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, vk::kAllCommands).size(), 1u);
+}
+
+TEST_F(FrameGraphTest, AStepThatUsesAnImageInTwoLayoutsIsRefused) {
+  const vk::Image a = image("a");
+  const std::vector<ImageUse> both{{&a, use::kSampled}, {&a, use::kComputeWrite}};
+  BarrierTracker tracker;
+  EXPECT_THROW(tracker.begin({&both}, kBefore), std::logic_error);
+}
+
+// The frame table in docs/ARCHITECTURE.md is the default frame's describe(), between
+// the markers (regenerate: `sss-viewer builtin:bunny --describe-frame`).
+TEST_F(FrameGraphTest, TheArchitectureDocsFrameTableIsTheGraphsDescription) {
+  RenderOptions options;  // the defaults: separable, transmission, no debug view
+  options.width = 64;
+  options.height = 36;
+  Renderer renderer(ctx(), scene::sphere_scene(), options);
+  const std::string described = renderer.describe_frame();
+  std::ifstream in(std::string(SSS_SOURCE_DIR) + "/docs/ARCHITECTURE.md");
+  ASSERT_TRUE(in) << "docs/ARCHITECTURE.md";
+  std::stringstream doc;
+  doc << in.rdbuf();
+  const std::string text = doc.str();
+  const std::string begin = "<!-- frame graph: begin -->\n```\n", end = "```\n<!-- frame graph: end -->";
+  const std::size_t b = text.find(begin), e = text.find(end);
+  ASSERT_NE(b, std::string::npos);
+  ASSERT_NE(e, std::string::npos);
+  EXPECT_EQ(text.substr(b + begin.size(), e - b - begin.size()), described);
+  // Every pass the frame times is in it, in order.
+  EXPECT_NE(described.find("shadow | "), std::string::npos);
+  EXPECT_LT(described.find("lighting | "), described.find("composite | "));
+}
+
+}  // namespace
+}  // namespace sss::renderer::testing
