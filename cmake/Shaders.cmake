@@ -6,6 +6,9 @@
 #
 #   <build>/.../generated/shaders/NAME.STAGE.h        #include "shaders/NAME.STAGE.h"
 #     -> const uint32_t sss_spv_NAME_STAGE[] = { 0x07230203, ... };
+#   <build>/.../generated/shaders/NAME.STAGE.bindings.h
+#     -> sss::shader::bindings::NAME_STAGE::<binding name>, kAll (cmake/ShaderReflect.cmake:
+#        the descriptor bindings the shader uses, reflected, so C++ states none of them)
 #
 # (the array name is the file name with every character outside [A-Za-z0-9_] replaced by
 # '_'). TARGET is an INTERFACE library that exposes the generated folder and makes its
@@ -60,7 +63,17 @@ function(sss_embed_shaders target)
       DEPFILE "${depfile}"
       COMMENT "GLSL -> SPIR-V: ${name}"
       VERBATIM)
-    list(APPEND outputs "${raw}")
+    set(bindings "${gen_dir}/${name}.bindings.h")
+    add_custom_command(
+      OUTPUT "${bindings}"
+      COMMAND "${CMAKE_COMMAND}" "-DGLSLANG=$<TARGET_FILE:Vulkan::glslangValidator>"
+              "-DSOURCE=${source}" "-DINCLUDE=${PROJECT_SOURCE_DIR}/shaders"
+              "-DOUTPUT=${bindings}" -P "${PROJECT_SOURCE_DIR}/cmake/ShaderReflect.cmake"
+      # After the SPIR-V, whose depfile already tracks the shader's #includes.
+      DEPENDS "${raw}" "${PROJECT_SOURCE_DIR}/cmake/ShaderReflect.cmake"
+      COMMENT "SPIR-V reflection: ${name}"
+      VERBATIM)
+    list(APPEND outputs "${raw}" "${bindings}")
   endforeach()
 
   add_custom_target(${target}_spirv DEPENDS ${outputs} SOURCES ${ARGN})

@@ -1,20 +1,14 @@
 #include "renderer/AntialiasPass.h"
 
+#include "shaders/antialias.comp.bindings.h"
 #include "shaders/antialias.comp.h"
 
 namespace sss::renderer {
 
-namespace {
-vk::DescriptorSetLayoutBuilder bindings() {
-  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs).add(1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
-  return b;
-}
-}  // namespace
+namespace b = shader::bindings::antialias_comp;
 
 AntialiasPass::AntialiasPass(const FrameResources& resources)
-    : r_(resources), program_(r_.context, bindings(), sss_spv_antialias_comp, 0, 1, kName) {
+    : r_(resources), program_(r_.context, b::kAll, sss_spv_antialias_comp, 0, 1, kName) {
   set_ = program_.allocate();
   write_descriptors();
 }
@@ -22,8 +16,8 @@ AntialiasPass::AntialiasPass(const FrameResources& resources)
 void AntialiasPass::write_descriptors() {
   const FrameTargets& t = r_.targets;
   vk::DescriptorWriter(set_)
-      .combined_image(0, t.display_source, r_.samplers.linear.get())
-      .storage_image(1, t.display)
+      .combined_image(b::source, t.display_source, r_.samplers.linear.get())
+      .storage_image(b::display_img, t.display)
       .update(r_.context);
 }
 

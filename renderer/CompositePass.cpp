@@ -1,23 +1,14 @@
 #include "renderer/CompositePass.h"
 
+#include "shaders/composite.comp.bindings.h"
 #include "shaders/composite.comp.h"
 
 namespace sss::renderer {
 
-namespace {
-vk::DescriptorSetLayoutBuilder bindings() {
-  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs).add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
-  for (uint32_t i : {2, 3, 4, 6}) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
-  b.add(7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs).add(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
-  b.add(9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
-  return b;
-}
-}  // namespace
+namespace b = shader::bindings::composite_comp;
 
 CompositePass::CompositePass(const FrameResources& resources)
-    : r_(resources), program_(r_.context, bindings(), sss_spv_composite_comp, 0, 1, kName) {
+    : r_(resources), program_(r_.context, b::kAll, sss_spv_composite_comp, 0, 1, kName) {
   set_ = program_.allocate();
   write_descriptors();
 }
@@ -27,15 +18,15 @@ void CompositePass::write_descriptors() {
   const VkSampler nearest = r_.samplers.nearest.get();
   const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL;
   vk::DescriptorWriter(set_)
-      .uniform_buffer(0, r_.frame_uniforms)
-      .storage_buffer(1, r_.materials)
-      .combined_image(2, t.albedo, nearest)
-      .combined_image(3, t.irradiance, nearest, general)
-      .combined_image(4, t.specular, nearest, general)
-      .combined_image(6, t.accum, nearest, general)
-      .storage_image(7, t.hdr)
-      .storage_image(8, t.display)
-      .combined_image(9, r_.environment.background(), nearest)
+      .uniform_buffer(b::Frame, r_.frame_uniforms)
+      .storage_buffer(b::Materials, r_.materials)
+      .combined_image(b::albedo_tex, t.albedo, nearest)
+      .combined_image(b::irradiance_tex, t.irradiance, nearest, general)
+      .combined_image(b::specular_tex, t.specular, nearest, general)
+      .combined_image(b::accumulated_tex, t.accum, nearest, general)
+      .storage_image(b::hdr_img, t.hdr)
+      .storage_image(b::display_img, t.display)
+      .combined_image(b::background_tex, r_.environment.background(), nearest)
       .update(r_.context);
 }
 

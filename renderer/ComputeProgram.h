@@ -23,6 +23,12 @@ struct ComputeProgram {
   ComputeProgram(const vk::Context& context, const vk::DescriptorSetLayoutBuilder& bindings,
                  std::span<const uint32_t> spirv, uint32_t push_bytes, uint32_t max_sets,
                  std::string_view name);
+  // The set layout from the shader's reflected bindings (its generated kAll).
+  ComputeProgram(const vk::Context& context, std::span<const vk::ShaderBinding> shader,
+                 std::span<const uint32_t> spirv, uint32_t push_bytes, uint32_t max_sets,
+                 std::string_view name)
+      : ComputeProgram(context, vk::DescriptorSetLayoutBuilder().add(shader), spirv, push_bytes,
+                       max_sets, name) {}
 
   VkDescriptorSet allocate() { return pool.allocate(set_layout.get()); }
   void bind(VkCommandBuffer cmd, VkDescriptorSet set) const;

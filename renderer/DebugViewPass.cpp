@@ -1,29 +1,17 @@
 #include "renderer/DebugViewPass.h"
 
+#include "shaders/debug_view.comp.bindings.h"
 #include "shaders/debug_view.comp.h"
 #include "shaders/shared/frame.h"
 
 
 namespace sss::renderer {
 
-namespace {
-vk::DescriptorSetLayoutBuilder bindings() {
-  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
-      .add(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
-      .add(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
-  for (uint32_t i = 3; i <= 10; ++i) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
-  b.add(11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
-  b.add(12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);  // normals
-  b.add(13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);  // shadow maps, comparison
-  return b;
-}
-}  // namespace
+namespace b = shader::bindings::debug_view_comp;
 
 DebugViewPass::DebugViewPass(const FrameResources& resources)
     : r_(resources),
-      program_(r_.context, bindings(), sss_spv_debug_view_comp, sizeof(shader::DebugPush), 1,
+      program_(r_.context, b::kAll, sss_spv_debug_view_comp, sizeof(shader::DebugPush), 1,
                kName) {
   set_ = program_.allocate();
   write_descriptors();
@@ -34,20 +22,20 @@ void DebugViewPass::write_descriptors() {
   const VkSampler nearest = r_.samplers.nearest.get();
   const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL;
   vk::DescriptorWriter(set_)
-      .uniform_buffer(0, r_.frame_uniforms)
-      .uniform_buffer(1, r_.lights)
-      .storage_buffer(2, r_.materials)
-      .combined_image(3, t.albedo, nearest)
-      .combined_image(4, t.depth, nearest, kDepthReadLayout)
-      .combined_image(5, t.irradiance, nearest, general)
-      .combined_image(6, t.specular, nearest, general)
-      .combined_image(7, t.blur_a, nearest, general)
-      .combined_image(8, t.accum, nearest, general)
-      .combined_image(9, t.light_depth, nearest)
-      .combined_image(10, t.uv_stretch, nearest)
-      .storage_image(11, t.display)
-      .combined_image(12, t.normal, nearest)
-      .combined_image(13, t.shadow, r_.samplers.shadow.get())
+      .uniform_buffer(b::Frame, r_.frame_uniforms)
+      .uniform_buffer(b::Lights, r_.lights)
+      .storage_buffer(b::Materials, r_.materials)
+      .combined_image(b::albedo_tex, t.albedo, nearest)
+      .combined_image(b::depth_tex, t.depth, nearest, kDepthReadLayout)
+      .combined_image(b::irradiance_tex, t.irradiance, nearest, general)
+      .combined_image(b::specular_tex, t.specular, nearest, general)
+      .combined_image(b::scattered_tex, t.blur_a, nearest, general)
+      .combined_image(b::accumulated_tex, t.accum, nearest, general)
+      .combined_image(b::light_depth_tex, t.light_depth, nearest)
+      .combined_image(b::uv_stretch_tex, t.uv_stretch, nearest)
+      .storage_image(b::display_img, t.display)
+      .combined_image(b::normal_tex, t.normal, nearest)
+      .combined_image(b::shadow_tex, t.shadow, r_.samplers.shadow.get())
       .update(r_.context);
 }
 

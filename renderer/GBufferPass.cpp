@@ -3,7 +3,12 @@
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Pipeline.h"
 #include "renderer/vk/Rendering.h"
+#include "shaders/gbuffer.frag.bindings.h"
 #include "shaders/gbuffer.frag.h"
+#include "shaders/gbuffer.vert.bindings.h"
+#include "shaders/gbuffer_uv_stretch.frag.bindings.h"
+#include "shaders/texture_irradiance.frag.bindings.h"
+#include "shaders/texture_irradiance.vert.bindings.h"
 #include "shaders/gbuffer_uv_stretch.frag.h"
 #include "shaders/gbuffer.vert.h"
 #include "shaders/shared/frame.h"
@@ -14,21 +19,24 @@
 
 namespace sss::renderer {
 
+namespace surface = shader::bindings::gbuffer_frag;  // shared/surface.glsl's set
+
 vk::DescriptorSetLayoutBuilder surface_set_bindings() {
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
-  b.add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT,
-        shader::kMaxTextures);
-  return b;
+  // Every shader that includes shared/surface.glsl, as each uses it.
+  return vk::DescriptorSetLayoutBuilder()
+      .add(shader::bindings::gbuffer_vert::kAll)
+      .add(shader::bindings::gbuffer_frag::kAll)
+      .add(shader::bindings::gbuffer_uv_stretch_frag::kAll)
+      .add(shader::bindings::texture_irradiance_vert::kAll)
+      .add(shader::bindings::texture_irradiance_frag::kAll);
 }
 
 void write_surface_set(VkDescriptorSet set, const FrameResources& resources) {
   vk::DescriptorWriter writer(set);
-  writer.uniform_buffer(0, resources.frame_uniforms);
+  writer.uniform_buffer(surface::Frame, resources.frame_uniforms);
   const std::vector<VkDescriptorImageInfo> textures = resources.scene.texture_descriptors();
   for (uint32_t i = 0; i < textures.size(); ++i)
-    writer.image(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures[i], i);
+    writer.image(surface::textures, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures[i], i);
   writer.update(resources.context);
 }
 

@@ -3,6 +3,7 @@
 #include "renderer/vk/Pipeline.h"
 #include "shaders/shared/config.h"
 #include "shaders/shared/frame.h"
+#include "shaders/sss_prefix.comp.bindings.h"
 #include "shaders/sss_prefix.comp.h"
 
 #include <algorithm>
@@ -10,22 +11,11 @@
 
 namespace sss::renderer {
 
-namespace {
-vk::DescriptorSetLayoutBuilder bindings() {
-  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
-      .add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)
-      .add(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
-      .add(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
-  return b;
-}
-}  // namespace
+namespace b = shader::bindings::sss_prefix_comp;
 
 LinePrefix::LinePrefix(const FrameResources& resources, int max_inputs)
     : r_(resources),
-      program_(r_.context, bindings(), sss_spv_sss_prefix_comp, sizeof(shader::BlurPush),
+      program_(r_.context, b::kAll, sss_spv_sss_prefix_comp, sizeof(shader::BlurPush),
                uint32_t(max_inputs), kName) {
   for (int i = 0; i < max_inputs; ++i) sets_.push_back(program_.allocate());
 }
@@ -37,11 +27,11 @@ void LinePrefix::write_descriptors(std::span<const vk::Image* const> inputs) {
   inputs_.assign(inputs.begin(), inputs.end());
   for (std::size_t i = 0; i < inputs.size(); ++i)
     vk::DescriptorWriter(sets_[i])
-        .uniform_buffer(0, r_.frame_uniforms)
-        .storage_buffer(1, r_.materials)
-        .combined_image(2, *inputs[i], nearest, VK_IMAGE_LAYOUT_GENERAL)
-        .storage_image(3, t.sss_prefix)
-        .combined_image(4, t.surface, nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .uniform_buffer(b::Frame, r_.frame_uniforms)
+        .storage_buffer(b::Materials, r_.materials)
+        .combined_image(b::input_tex, *inputs[i], nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .storage_image(b::prefix_img, t.sss_prefix)
+        .combined_image(b::surface_tex, t.surface, nearest, VK_IMAGE_LAYOUT_GENERAL)
         .update(r_.context);
 }
 

@@ -4,6 +4,7 @@
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Pipeline.h"
 #include "renderer/vk/Rendering.h"
+#include "shaders/shadow.vert.bindings.h"
 #include "shaders/shadow.vert.h"
 #include "shaders/shared/frame.h"
 
@@ -12,11 +13,8 @@
 namespace sss::renderer {
 
 namespace {
-vk::DescriptorSetLayoutBuilder bindings() {
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT);
-  return b;
-}
+namespace b = shader::bindings::shadow_vert;
+vk::DescriptorSetLayoutBuilder bindings() { return vk::DescriptorSetLayoutBuilder().add(b::kAll); }
 }  // namespace
 
 ShadowPass::ShadowPass(const FrameResources& resources, std::vector<bool> shadowed)
@@ -37,7 +35,7 @@ ShadowPass::ShadowPass(const FrameResources& resources, std::vector<bool> shadow
                     .build(r_.context, layout_.get(), kName)),
       pool_(r_.context, bindings(), 1, kName) {
   set_ = pool_.allocate(set_layout_.get());
-  vk::DescriptorWriter(set_).uniform_buffer(0, r_.lights).update(r_.context);
+  vk::DescriptorWriter(set_).uniform_buffer(b::Lights, r_.lights).update(r_.context);
 }
 
 void ShadowPass::add_to(graph::FrameGraph& graph, bool light_depth) const {

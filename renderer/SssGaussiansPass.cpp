@@ -1,28 +1,17 @@
 #include "renderer/SssGaussiansPass.h"
 
 #include "shaders/shared/frame.h"
+#include "shaders/sss_gaussians.comp.bindings.h"
 #include "shaders/sss_gaussians.comp.h"
 
 namespace sss::renderer {
 
-namespace {
-vk::DescriptorSetLayoutBuilder bindings() {
-  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
-      .add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)
-      .add(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
-      .add(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
-  return b;
-}
-}  // namespace
+namespace b = shader::bindings::sss_gaussians_comp;
 
 SssGaussiansPass::SssGaussiansPass(const FrameResources& resources, int gaussians)
     : r_(resources),
       gaussians_(gaussians),
-      program_(r_.context, bindings(), sss_spv_sss_gaussians_comp, sizeof(shader::BlurPush), 5,
+      program_(r_.context, b::kAll, sss_spv_sss_gaussians_comp, sizeof(shader::BlurPush), 5,
                kName) {
   blur_.allocate(program_);
   write_descriptors();
@@ -33,12 +22,12 @@ void SssGaussiansPass::write_descriptors() {
   const VkSampler nearest = r_.samplers.nearest.get();
   const auto write = [&](VkDescriptorSet set, const vk::Image& in, const vk::Image& out) {
     vk::DescriptorWriter(set)
-        .uniform_buffer(0, r_.frame_uniforms)
-        .storage_buffer(1, r_.materials)
-        .combined_image(2, t.surface, nearest, VK_IMAGE_LAYOUT_GENERAL)
-        .combined_image(4, in, nearest, VK_IMAGE_LAYOUT_GENERAL)
-        .storage_image(5, out)
-        .storage_image(6, t.accum)
+        .uniform_buffer(b::Frame, r_.frame_uniforms)
+        .storage_buffer(b::Materials, r_.materials)
+        .combined_image(b::surface_tex, t.surface, nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .combined_image(b::input_tex, in, nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .storage_image(b::output_img, out)
+        .storage_image(b::accum_img, t.accum)
         .update(r_.context);
   };
   blur_.write(t.irradiance, t.blur_a, t.blur_b, t.blur_temp, write);

@@ -1,32 +1,16 @@
 #include "renderer/SssSeparablePass.h"
 
 #include "shaders/shared/frame.h"
+#include "shaders/sss_separable.comp.bindings.h"
 #include "shaders/sss_separable.comp.h"
 
 namespace sss::renderer {
 
-namespace {
-vk::DescriptorSetLayoutBuilder bindings() {
-  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
-      .add(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)
-      .add(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
-      .add(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
-      .add(7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
-      .add(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
-      .add(9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
-  return b;
-}
-
-}  // namespace
+namespace b = shader::bindings::sss_separable_comp;
 
 SssSeparablePass::SssSeparablePass(const FrameResources& resources)
     : r_(resources),
-      program_(r_.context, bindings(), sss_spv_sss_separable_comp, sizeof(shader::BlurPush), 2,
+      program_(r_.context, b::kAll, sss_spv_sss_separable_comp, sizeof(shader::BlurPush), 2,
                kName),
       prefix_(resources, 2) {
   horizontal_ = program_.allocate();
@@ -39,16 +23,16 @@ void SssSeparablePass::write_descriptors() {
   const VkSampler nearest = r_.samplers.nearest.get();
   const auto write = [&](VkDescriptorSet set, const vk::Image& in) {
     vk::DescriptorWriter(set)
-        .uniform_buffer(0, r_.frame_uniforms)
-        .storage_buffer(1, r_.materials)
-        .combined_image(2, t.albedo, nearest)
-        .combined_image(3, t.specular, nearest, VK_IMAGE_LAYOUT_GENERAL)
-        .combined_image(4, in, nearest, VK_IMAGE_LAYOUT_GENERAL)
-        .storage_image(5, t.sss_line)
-        .storage_image(6, t.hdr)
-        .storage_image(7, t.display)
-        .storage_image(8, t.blur_a)
-        .combined_image(9, t.sss_prefix, nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .uniform_buffer(b::Frame, r_.frame_uniforms)
+        .storage_buffer(b::Materials, r_.materials)
+        .combined_image(b::albedo_tex, t.albedo, nearest)
+        .combined_image(b::specular_tex, t.specular, nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .combined_image(b::input_tex, in, nearest, VK_IMAGE_LAYOUT_GENERAL)
+        .storage_image(b::line_img, t.sss_line)
+        .storage_image(b::hdr_img, t.hdr)
+        .storage_image(b::display_img, t.display)
+        .storage_image(b::scattered_img, t.blur_a)
+        .combined_image(b::prefix_tex, t.sss_prefix, nearest, VK_IMAGE_LAYOUT_GENERAL)
         .update(r_.context);
   };
   write(horizontal_, t.irradiance);

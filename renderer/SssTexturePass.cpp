@@ -8,7 +8,10 @@
 #include "renderer/vk/Pipeline.h"
 #include "renderer/vk/Rendering.h"
 #include "shaders/shared/frame.h"
+#include "shaders/sss_texture.comp.bindings.h"
 #include "shaders/sss_texture.comp.h"
+#include "shaders/texture_dilate.comp.bindings.h"
+#include "shaders/texture_lighting.comp.bindings.h"
 #include "shaders/texture_dilate.comp.h"
 #include "shaders/texture_lighting.comp.h"
 #include "shaders/texture_irradiance.frag.h"
@@ -26,38 +29,9 @@ namespace sss::renderer {
 namespace {
 
 constexpr VkFormat kAtlasFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-
-vk::DescriptorSetLayoutBuilder lighting_bindings() {
-  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
-      .add(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs)
-      .add(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs);
-  for (uint32_t i = 3; i <= 7; ++i) b.add(i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs);
-  b.add(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
-  return b;
-}
-
-vk::DescriptorSetLayoutBuilder dilate_bindings() {
-  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
-      .add(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
-  return b;
-}
-
-vk::DescriptorSetLayoutBuilder blur_bindings() {
-  const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)
-      .add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, cs)
-      .add(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs)
-      .add(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cs);
-  return b;
-}
+namespace lit = shader::bindings::texture_lighting_comp;
+namespace dil = shader::bindings::texture_dilate_comp;
+namespace blur = shader::bindings::sss_texture_comp;
 
 vk::PipelineHandle raster_pipeline(const vk::Context& context, VkPipelineLayout layout) {
   vk::GraphicsPipelineBuilder builder;
@@ -120,11 +94,11 @@ SssTexturePass::SssTexturePass(const FrameResources& resources, const RenderOpti
           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, "texture irradiance")),
       raster_pipeline_(raster_pipeline(r_.context, raster_layout_.get())),
       raster_pool_(r_.context, surface_set_bindings(), 1, "texture irradiance"),
-      lighting_(r_.context, lighting_bindings(), sss_spv_texture_lighting_comp,
+      lighting_(r_.context, lit::kAll, sss_spv_texture_lighting_comp,
                 sizeof(shader::TexturePush), shader::kMaxTextureObjects, "texture lighting"),
-      dilate_(r_.context, dilate_bindings(), sss_spv_texture_dilate_comp, 0,
+      dilate_(r_.context, dil::kAll, sss_spv_texture_dilate_comp, 0,
               shader::kMaxTextureObjects, "texture dilate"),
-      blur_(r_.context, blur_bindings(), sss_spv_sss_texture_comp, sizeof(shader::TexturePush),
+      blur_(r_.context, blur::kAll, sss_spv_sss_texture_comp, sizeof(shader::TexturePush),
             5 * shader::kMaxTextureObjects, kName) {
   raster_set_ = raster_pool_.allocate(raster_set_layout_.get());
   write_descriptors();
@@ -142,15 +116,15 @@ void SssTexturePass::write_lighting(Textures& t) {
   const VkSampler nearest = r_.samplers.nearest.get();
   const VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL;
   vk::DescriptorWriter(t.lighting)
-      .uniform_buffer(0, r_.frame_uniforms)
-      .uniform_buffer(1, r_.lights)
-      .storage_buffer(2, r_.materials)
-      .combined_image(3, t.position, nearest, general)
-      .combined_image(4, t.normal, nearest, general)
-      .combined_image(5, t.a, nearest, general)
-      .combined_image(6, r_.targets.shadow, r_.samplers.shadow.get())
-      .combined_image(7, r_.targets.light_depth, nearest)
-      .storage_image(8, t.temp)
+      .uniform_buffer(lit::Frame, r_.frame_uniforms)
+      .uniform_buffer(lit::Lights, r_.lights)
+      .storage_buffer(lit::Materials, r_.materials)
+      .combined_image(lit::position_tex, t.position, nearest, general)
+      .combined_image(lit::normal_tex, t.normal, nearest, general)
+      .combined_image(lit::albedo_tex, t.a, nearest, general)
+      .combined_image(lit::shadow_tex, r_.targets.shadow, r_.samplers.shadow.get())
+      .combined_image(lit::light_depth_tex, r_.targets.light_depth, nearest)
+      .storage_image(lit::irradiance_img, t.temp)
       .update(r_.context);
 }
 
@@ -196,19 +170,19 @@ void SssTexturePass::allocate_object_sets() {
     write_lighting(t);
     t.dilate = dilate_.allocate();
     vk::DescriptorWriter(t.dilate)
-        .combined_image(0, t.temp, nearest, general)
-        .combined_image(1, t.b, nearest, general)
-        .storage_image(2, t.irradiance)
-        .storage_image(3, t.stretch)
+        .combined_image(dil::raw_irradiance_tex, t.temp, nearest, general)
+        .combined_image(dil::raw_stretch_tex, t.b, nearest, general)
+        .storage_image(dil::irradiance_img, t.irradiance)
+        .storage_image(dil::stretch_img, t.stretch)
         .update(r_.context);
     t.blur.allocate(blur_);
     const auto write = [&](VkDescriptorSet set, const vk::Image& in, const vk::Image& out) {
       vk::DescriptorWriter(set)
-          .storage_buffer(0, r_.materials)
-          .combined_image(1, t.stretch, nearest, general)
-          .combined_image(2, in, nearest, general)
-          .storage_image(3, out)
-          .storage_image(4, t.scattered)
+          .storage_buffer(blur::Materials, r_.materials)
+          .combined_image(blur::stretch_tex, t.stretch, nearest, general)
+          .combined_image(blur::input_tex, in, nearest, general)
+          .storage_image(blur::output_img, out)
+          .storage_image(blur::accum_img, t.scattered)
           .update(r_.context);
     };
     t.blur.write(t.irradiance, t.a, t.b, t.temp, write);

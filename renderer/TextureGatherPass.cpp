@@ -4,7 +4,9 @@
 #include "renderer/vk/GraphicsPipeline.h"
 #include "renderer/vk/Pipeline.h"
 #include "renderer/vk/Rendering.h"
+#include "shaders/gbuffer.vert.bindings.h"
 #include "shaders/gbuffer.vert.h"
+#include "shaders/texture_gather.frag.bindings.h"
 #include "shaders/shared/frame.h"
 #include "shaders/texture_gather.frag.h"
 
@@ -16,12 +18,11 @@ namespace {
 constexpr float kLookupBiasUnits = 4.0f;
 constexpr float kLookupBiasSlope = 0.0f;
 
+namespace vert = shader::bindings::gbuffer_vert;
+namespace frag = shader::bindings::texture_gather_frag;
+
 vk::DescriptorSetLayoutBuilder bindings() {
-  vk::DescriptorSetLayoutBuilder b;
-  b.add(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT)
-      .add(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT,
-           shader::kMaxTextureObjects);
-  return b;
+  return vk::DescriptorSetLayoutBuilder().add(vert::kAll).add(frag::kAll);
 }
 vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout layout) {
   vk::GraphicsPipelineBuilder builder;
@@ -45,7 +46,7 @@ TextureGatherPass::TextureGatherPass(const FrameResources& resources)
       pipeline_(build_pipeline(r_.context, layout_.get())),
       pool_(r_.context, bindings(), 1, kName) {
   set_ = pool_.allocate(set_layout_.get());
-  vk::DescriptorWriter(set_).uniform_buffer(0, r_.frame_uniforms).update(r_.context);
+  vk::DescriptorWriter(set_).uniform_buffer(vert::Frame, r_.frame_uniforms).update(r_.context);
 }
 
 void TextureGatherPass::set_objects(const SssTexturePass& texture) {
@@ -57,7 +58,7 @@ void TextureGatherPass::set_objects(const SssTexturePass& texture) {
     // Unused slots repeat object 0 (never read: no draw pushes their index).
     if (objects.empty()) break;
     const std::size_t o = i < objects.size() ? i : 0;
-    writer.image(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+    writer.image(frag::scattered, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                  texture.scattered(o).descriptor(VK_IMAGE_LAYOUT_GENERAL, linear), i);
   }
   for (std::size_t i = 0; i < objects.size(); ++i) draws_.emplace_back(objects[i].instance, int(i));

@@ -25,6 +25,24 @@ DescriptorSetLayoutBuilder& DescriptorSetLayoutBuilder::add(uint32_t binding, Vk
   return *this;
 }
 
+DescriptorSetLayoutBuilder& DescriptorSetLayoutBuilder::add(std::span<const ShaderBinding> shader) {
+  for (const ShaderBinding& s : shader) {
+    const auto same = std::find_if(bindings_.begin(), bindings_.end(),
+                                   [&](const VkDescriptorSetLayoutBinding& b) {
+                                     return b.binding == s.binding;
+                                   });
+    if (same == bindings_.end()) {
+      bindings_.push_back({s.binding, s.type, s.count, s.stages, nullptr});
+      continue;
+    }
+    if (same->descriptorType != s.type || same->descriptorCount != s.count)
+      throw std::logic_error("descriptor set layout: binding " + std::to_string(s.binding) +
+                             " has another type or count in another stage");
+    same->stageFlags |= s.stages;
+  }
+  return *this;
+}
+
 DescriptorSetLayoutHandle DescriptorSetLayoutBuilder::build(const Context& context,
                                                             std::string_view name) const {
   VkDescriptorSetLayoutCreateInfo info{};

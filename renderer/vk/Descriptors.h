@@ -13,6 +13,8 @@
 
 #include "renderer/vk/Handle.h"
 
+#include "renderer/vk/ShaderBinding.h"
+
 #include <vulkan/vulkan.h>
 
 #include <cstddef>
@@ -31,6 +33,10 @@ class DescriptorSetLayoutBuilder {
  public:
   DescriptorSetLayoutBuilder& add(uint32_t binding, VkDescriptorType type,
                                   VkShaderStageFlags stages, uint32_t count = 1);
+  // Every binding one shader uses (its generated kAll). A binding that another shader of
+  // the same pipeline already added gains this one's stages; a different type or count
+  // there throws std::logic_error (the two shaders disagree).
+  DescriptorSetLayoutBuilder& add(std::span<const ShaderBinding> shader);
   DescriptorSetLayoutHandle build(const Context& context, std::string_view name = {}) const;
   const std::vector<VkDescriptorSetLayoutBinding>& bindings() const { return bindings_; }
 
