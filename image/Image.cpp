@@ -50,11 +50,58 @@ void require_writable(const std::string& path, const Image& img) {
 // up to an empty name. Only single-part, non-deep files are read here. Returns an error
 // message, or an empty string when the header is well formed; width and height come from
 // its dataWindow, computed in 64 bits.
+std::int32_t le32(const unsigned char* p) {
+  return std::int32_t(std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 |
+                      std::uint32_t(p[3]) << 24);
+}
+
+// What check_exr_header learns from the attributes it reads.
+struct ExrHeaderFacts {
+  std::int64_t width = 0, height = 0;
+  bool have_window = false;
+  int compression = 0;            // NONE when absent
+  std::int64_t chunk_count = -1;  // absent
+};
+
+// One attribute of the header: an error, or empty (and what it says in `facts`).
+std::string check_exr_attribute(const std::string& name, const std::string& type,
+                                const unsigned char* value, std::int32_t size,
+                                ExrHeaderFacts& facts) {
+  if (name == "type") {
+    // The value up to its first NUL, as tinyexr reads it.
+    const std::string v(std::string(reinterpret_cast<const char*>(value), std::size_t(size)).c_str());
+    if (type != "string" || v != "scanlineimage")
+      return "EXR header attribute type: \"" + v + "\" (only scanlineimage is read)";
+  } else if (name == "tiles") {
+    return "EXR header attribute tiles: tiled EXR files are not read (re-save it as scanlines)";
+  } else if (name == "chunkCount") {
+    if (type != "int" || size != 4) return "EXR header attribute chunkCount: not an int";
+    facts.chunk_count = le32(value);
+  } else if (name == "compression") {
+    // NONE, RLE, ZIPS, ZIP only. tinyexr 1.0.1's PIZ decoder reads past its buffer on
+    // malformed data (found by fuzzing, fuzz/regressions/image/exr_piz_read_overflow.exr),
+    // and the others (PXR24, B44, DWA) it does not decode at all.
+    if (type != "compression" || size != 1) return "EXR header attribute compression: not a compression";
+    static const char* const kNames[] = {"none", "RLE", "ZIPS", "ZIP", "PIZ", "PXR24", "B44", "B44A", "DWAA", "DWAB"};
+    if (value[0] > 3)
+      return std::string("EXR compression ") + (value[0] < 10 ? kNames[value[0]] : std::to_string(value[0]).c_str()) +
+             " is not read (only none, RLE, ZIPS and ZIP; re-save the file with ZIP)";
+    facts.compression = value[0];
+  } else if (name == "dataWindow") {
+    if (type != "box2i" || size != 16) return "EXR header attribute dataWindow: not a box2i";
+    const std::int64_t x0 = le32(value), y0 = le32(value + 4), x1 = le32(value + 8),
+                       y1 = le32(value + 12);
+    facts.width = x1 - x0 + 1;
+    facts.height = y1 - y0 + 1;
+    facts.have_window = true;
+  }
+  return {};
+}
+
 std::string check_exr_header(const std::vector<unsigned char>& b, std::int64_t& width,
                              std::int64_t& height) {
   if (b.size() < 8) return "truncated EXR header";
-  const std::uint32_t field = std::uint32_t(b[4]) | std::uint32_t(b[5]) << 8 |
-                              std::uint32_t(b[6]) << 16 | std::uint32_t(b[7]) << 24;
+  const std::uint32_t field = std::uint32_t(le32(&b[4]));
   if ((field & 0xff) != 2) return "EXR version " + std::to_string(field & 0xff) + " (only 2 is read)";
   if (field & 0x1800) return "multi-part and deep EXR files are not read";
   // Tiled files are refused too: tinyexr 1.0.1 asserts or divides by zero on malformed tile
@@ -73,14 +120,8 @@ std::string check_exr_header(const std::vector<unsigned char>& b, std::int64_t& 
       }
     return false;
   };
-  auto le32 = [&](std::size_t at) {
-    return std::int32_t(std::uint32_t(b[at]) | std::uint32_t(b[at + 1]) << 8 |
-                        std::uint32_t(b[at + 2]) << 16 | std::uint32_t(b[at + 3]) << 24);
-  };
   std::size_t at = 8;
-  bool have_window = false;
-  int compression = 0;            // NONE when absent
-  std::int64_t chunk_count = -1;  // absent
+  ExrHeaderFacts facts;
   for (int count = 0;; ++count) {
     if (count > 1024) return "EXR header has more than 1024 attributes";
     std::string name, type;
@@ -88,50 +129,26 @@ std::string check_exr_header(const std::vector<unsigned char>& b, std::int64_t& 
     if (name.empty()) break;
     if (!read_cstr(at, type)) return "EXR header attribute " + name + ": type name is not terminated";
     if (b.size() - at < 4) return "EXR header attribute " + name + ": truncated";
-    const std::int32_t size = le32(at);
+    const std::int32_t size = le32(&b[at]);
     at += 4;
     if (size < 0 || std::size_t(size) > b.size() - at)
       return "EXR header attribute " + name + ": size " + std::to_string(size) + " past the end";
-    const unsigned char* value = b.data() + at;
-    if (name == "type") {
-      // The value up to its first NUL, as tinyexr reads it.
-      const std::string v(std::string(reinterpret_cast<const char*>(value), std::size_t(size)).c_str());
-      if (type != "string" || v != "scanlineimage")
-        return "EXR header attribute type: \"" + v + "\" (only scanlineimage is read)";
-    } else if (name == "tiles") {
-      return "EXR header attribute tiles: tiled EXR files are not read (re-save it as scanlines)";
-    } else if (name == "chunkCount") {
-      if (type != "int" || size != 4) return "EXR header attribute chunkCount: not an int";
-      chunk_count = le32(at);
-    } else if (name == "compression") {
-      // NONE, RLE, ZIPS, ZIP only. tinyexr 1.0.1's PIZ decoder reads past its buffer on
-      // malformed data (found by fuzzing, fuzz/regressions/image/exr_piz_read_overflow.exr),
-      // and the others (PXR24, B44, DWA) it does not decode at all.
-      if (type != "compression" || size != 1) return "EXR header attribute compression: not a compression";
-      static const char* const kNames[] = {"none", "RLE", "ZIPS", "ZIP", "PIZ", "PXR24", "B44", "B44A", "DWAA", "DWAB"};
-      if (value[0] > 3)
-        return std::string("EXR compression ") + (value[0] < 10 ? kNames[value[0]] : std::to_string(value[0]).c_str()) +
-               " is not read (only none, RLE, ZIPS and ZIP; re-save the file with ZIP)";
-      compression = value[0];
-    } else if (name == "dataWindow") {
-      if (type != "box2i" || size != 16) return "EXR header attribute dataWindow: not a box2i";
-      const std::int64_t x0 = le32(at), y0 = le32(at + 4), x1 = le32(at + 8), y1 = le32(at + 12);
-      width = x1 - x0 + 1;
-      height = y1 - y0 + 1;
-      have_window = true;
-    }
+    if (std::string e = check_exr_attribute(name, type, b.data() + at, size, facts); !e.empty())
+      return e;
     at += std::size_t(size);
   }
-  if (!have_window) return "EXR header has no dataWindow";
+  if (!facts.have_window) return "EXR header has no dataWindow";
+  width = facts.width;
+  height = facts.height;
   // tinyexr sizes its offset table by chunkCount before checking it against the file (a
   // 300-byte file could ask for 16 GiB): it must be the count the image has, one block
   // per scanline for none/RLE/ZIPS and per 16 for ZIP (OpenEXR file layout).
-  if (chunk_count != -1 && height > 0) {
-    const std::int64_t lines = compression == 3 ? 16 : 1;
+  if (facts.chunk_count != -1 && height > 0) {
+    const std::int64_t lines = facts.compression == 3 ? 16 : 1;
     const std::int64_t expected = (height + lines - 1) / lines;
-    if (chunk_count != expected)
-      return "EXR header attribute chunkCount: " + std::to_string(chunk_count) + ", the image has " +
-             std::to_string(expected) + " blocks";
+    if (facts.chunk_count != expected)
+      return "EXR header attribute chunkCount: " + std::to_string(facts.chunk_count) +
+             ", the image has " + std::to_string(expected) + " blocks";
   }
   return {};
 }

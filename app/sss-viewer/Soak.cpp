@@ -232,21 +232,18 @@ std::string soak_svg(const std::vector<SoakSample>& samples, const SoakVerdict& 
   return svg.str();
 }
 
-int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::RenderOptions& options) {
-  if (a.soak_every < 1 || a.soak_cycle < 1)
-    return usage_error("sss-viewer", "--soak-every and --soak-cycle must be at least 1");
-  vk::Context context(headless_context_options(a));
-  renderer::Renderer r(context, scene, options);
-  print_warnings(r);
-  MaterialEditor editor(scene, options.separable_taps, FitWorker::compute_default, options.single_scattering);
-  if (!editor.had_sss())
-    return usage_error("sss-viewer", "--soak: the scene " + a.scene +
-                                         " has no SSS material to change");
-  constexpr auto kFitTimeout = std::chrono::minutes(2);
-  // The editor's start-up refit of the scene's own materials (the window does the same).
-  if (!editor.wait_idle(kFitTimeout)) throw std::runtime_error("--soak: the start-up fit did not finish");
-  editor.update(r);
+namespace {
 
+constexpr auto kFitTimeout = std::chrono::minutes(2);
+
+struct SoakTimes {
+  double render_ms = 0.0, refit_ms = 0.0, readback_ms = 0.0, total_s = 0.0;
+};
+
+// The frames: every --soak-every frames a sample (read back as a screenshot would), then
+// the next step of the material cycle through the panel's code, refit and applied.
+SoakTimes soak_frames(const ViewerArgs& a, renderer::Renderer& r, MaterialEditor& editor,
+                      std::vector<SoakSample>& samples) {
   const std::vector<int> presets = accepted_presets(editor.edits()[0]);
   if (presets.empty()) throw std::runtime_error("--soak: the material panel accepts no preset");
   const auto all = profiles::presets();
@@ -264,16 +261,15 @@ int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::Ren
     return std::string(all[std::size_t(preset)].name);
   };
 
-  std::vector<SoakSample> samples;
+  SoakTimes times;
   std::string shown = "scene";
-  double render_ms = 0.0, refit_ms = 0.0, readback_ms = 0.0;
   const auto start = Clock::now();
   for (int frame = 0;; ++frame) {
     if (frame % a.soak_every == 0 || frame == a.soak) {
       if (frame > 0) {  // read the frame back, as a screenshot does
         const auto t = Clock::now();
         (void)r.read_display();
-        readback_ms += ms_since(t);
+        times.readback_ms += ms_since(t);
       }
       samples.push_back({frame, resident_kb(), vk::live_object_count(), heap_kb(), shown});
       if (frame == a.soak) break;
@@ -283,26 +279,21 @@ int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::Ren
         throw std::runtime_error("--soak: the refit for " + shown + " did not finish");
       if (!editor.update(r))
         throw std::runtime_error("--soak: " + shown + " was not applied: " + editor.edits()[0].error);
-      refit_ms += ms_since(t);
+      times.refit_ms += ms_since(t);
     }
     const auto t = Clock::now();
     r.render_frame();
-    render_ms += ms_since(t);
+    times.render_ms += ms_since(t);
     editor.frame_presented();
   }
-  const double total_s = ms_since(start) / 1000.0;
+  times.total_s = ms_since(start) / 1000.0;
+  return times;
+}
 
-  SoakVerdict v = judge_soak(samples, a.soak_every, a.soak_cycle, a.soak_max_growth_kb);
-  if (!a.soak_csv.empty()) image::write_file_atomically(a.soak_csv, soak_csv(samples));
-  if (!a.soak_svg.empty()) {
-    std::ostringstream title;
-    title << "sss-viewer --soak " << a.soak << ": " << a.scene << " " << options.width << "x"
-          << options.height << ", material changed every " << a.soak_every << " frames, cycle of "
-          << a.soak_cycle;
-    image::write_file_atomically(a.soak_svg, soak_svg(samples, v, title.str()));
-  }
-  if (!a.out.empty()) write_frame(r, a.out);
-
+// The table of samples, the times and the verdict on stdout.
+void print_soak_report(const ViewerArgs& a, const renderer::RenderOptions& options,
+                       const std::vector<SoakSample>& samples, SoakVerdict& v,
+                       const SoakTimes& times) {
   std::printf("soak: %s %ux%u, %d frames, material changed every %d frames through the panel's "
               "code, cycle of %d steps (%d frames)\n",
               a.scene.c_str(), options.width, options.height, a.soak, a.soak_every, a.soak_cycle,
@@ -319,9 +310,9 @@ int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::Ren
   std::printf("\n");
   std::printf("time: %.1f s; render_frame %.2f ms/frame; refit + upload %.1f ms per change; "
               "readback %.2f ms per sample\n",
-              total_s, render_ms / std::max(a.soak, 1),
-              refit_ms / std::max<std::size_t>(samples.size() - 1, 1),
-              readback_ms / std::max<std::size_t>(samples.size() - 1, 1));
+              times.total_s, times.render_ms / std::max(a.soak, 1),
+              times.refit_ms / std::max<std::size_t>(samples.size() - 1, 1),
+              times.readback_ms / std::max<std::size_t>(samples.size() - 1, 1));
   std::printf("warm-up: the first %d frames (one material cycle)\n", v.warmup_frames);
   const char* rss_state = v.rss_ok ? "ok" : "FAIL";
 #if defined(__SANITIZE_ADDRESS__)
@@ -339,6 +330,37 @@ int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::Ren
   if (!a.soak_svg.empty()) std::printf("wrote %s\n", a.soak_svg.c_str());
   std::printf("soak: %s\n", v.ok() ? "pass" : "FAIL");
   std::fflush(stdout);
+}
+
+}  // namespace
+
+int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::RenderOptions& options) {
+  if (a.soak_every < 1 || a.soak_cycle < 1)
+    return usage_error("sss-viewer", "--soak-every and --soak-cycle must be at least 1");
+  vk::Context context(headless_context_options(a));
+  renderer::Renderer r(context, scene, options);
+  print_warnings(r);
+  MaterialEditor editor(scene, options.separable_taps, FitWorker::compute_default, options.single_scattering);
+  if (!editor.had_sss())
+    return usage_error("sss-viewer", "--soak: the scene " + a.scene +
+                                         " has no SSS material to change");
+  // The editor's start-up refit of the scene's own materials (the window does the same).
+  if (!editor.wait_idle(kFitTimeout)) throw std::runtime_error("--soak: the start-up fit did not finish");
+  editor.update(r);
+
+  std::vector<SoakSample> samples;
+  const SoakTimes times = soak_frames(a, r, editor, samples);
+  SoakVerdict v = judge_soak(samples, a.soak_every, a.soak_cycle, a.soak_max_growth_kb);
+  if (!a.soak_csv.empty()) image::write_file_atomically(a.soak_csv, soak_csv(samples));
+  if (!a.soak_svg.empty()) {
+    std::ostringstream title;
+    title << "sss-viewer --soak " << a.soak << ": " << a.scene << " " << options.width << "x"
+          << options.height << ", material changed every " << a.soak_every << " frames, cycle of "
+          << a.soak_cycle;
+    image::write_file_atomically(a.soak_svg, soak_svg(samples, v, title.str()));
+  }
+  if (!a.out.empty()) write_frame(r, a.out);
+  print_soak_report(a, options, samples, v, times);
   return v.ok() ? kExitOk : kExitRuntime;
 }
 
