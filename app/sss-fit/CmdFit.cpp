@@ -66,6 +66,65 @@ Rgb edge_error(const profiles::RgbProfile& profile, const profiles::GaussianFit&
   return worst;
 }
 
+// Channel c's Monte Carlo of the same medium (sss-fit fit --plot-mc), r·R with error bars.
+PlotSeries monte_carlo_series(const ProfileSource& src, int c, const profiles::ModelOptions& opt) {
+  // From 0.02 of the shortest reduced mean free path to 20 of the longest diffusion
+  // lengths 1/σtr among the layers (the medium's own for one medium).
+  double mfp = std::numeric_limits<double>::infinity(), diffusion = 0.0;
+  for (const profiles::Coefficients& k : src.channel_media(c)) {
+    mfp = std::min(mfp, k.mfp_reduced());
+    diffusion = std::max(diffusion, 1.0 / k.sigma_tr_classical());
+  }
+  profiles::MonteCarloOptions mc;
+  mc.photons = opt.mc_photons;
+  mc.seed = opt.mc_seed + c;
+  mc.threads = opt.mc_threads;
+  mc.bin_edges_mm = profiles::log_bin_edges(0.02 * mfp, 20.0 * diffusion, 40);
+  mc.progress = [c](double f) { progress_bar("Monte Carlo", (c + f) / 3.0); };
+  const auto res = src.monte_carlo(c, mc);
+  PlotSeries pts;
+  pts.label = std::string(kChannelNames[c]) + " Monte Carlo";
+  pts.color = kChannelColor[c];
+  pts.markers = true;
+  for (std::size_t b = 1; b + 1 < res.bin_edges_mm.size(); ++b) {
+    const double r0 = res.bin_edges_mm[b], r1 = res.bin_edges_mm[b + 1];
+    const double r = std::sqrt(0.5 * (r0 * r0 + r1 * r1));
+    pts.x.push_back(r);
+    pts.y.push_back(r * res.reflectance.value[b]);
+    pts.y_err.push_back(r * res.reflectance.stderr_[b]);
+  }
+  return pts;
+}
+
+// The numbers under the legend: the fit's errors and total reflectance.
+std::vector<std::string> plot_notes(const profiles::GaussianFit& fit, const Rgb& edge) {
+  std::vector<std::string> notes;
+  char line[128];
+  std::snprintf(line, sizeof line, "relative L2 error of r·R:");
+  notes.push_back(line);
+  std::snprintf(line, sizeof line, "R %.2f%%  G %.2f%%  B %.2f%%", 100 * fit.relative_error[0],
+                100 * fit.relative_error[1], 100 * fit.relative_error[2]);
+  notes.push_back(line);
+  notes.push_back("max edge-response error:");
+  std::snprintf(line, sizeof line, "R %.2f%%  G %.2f%%  B %.2f%%", 100 * edge[0], 100 * edge[1],
+                100 * edge[2]);
+  notes.push_back(line);
+  std::snprintf(line, sizeof line, "total reflectance:");
+  notes.push_back(line);
+  std::snprintf(line, sizeof line, "%.4f %.4f %.4f", fit.total_reflectance[0],
+                fit.total_reflectance[1], fit.total_reflectance[2]);
+  notes.push_back(line);
+  if (fit.prefilter_variance_mm2 > 0.0) {
+    std::snprintf(line, sizeof line, "errors at resolution %.3g mm:",
+                  std::sqrt(fit.prefilter_variance_mm2));
+    notes.push_back(line);
+    notes.push_back("both blurred by a Gaussian of");
+    notes.push_back("that standard deviation");
+  }
+  notes.push_back("solid: model, dashed: fit");
+  return notes;
+}
+
 LogLogPlot make_plot(const FitArgs& a, const ProfileSource& src, const profiles::RgbProfile& profile,
                      const profiles::FitTarget& target, const profiles::GaussianFit& fit,
                      const Rgb& edge, const profiles::ModelOptions& opt) {
@@ -97,59 +156,9 @@ LogLogPlot make_plot(const FitArgs& a, const ProfileSource& src, const profiles:
     plot.series.push_back(std::move(model));
     plot.series.push_back(std::move(fitted));
   }
-  if (a.plot_mc) {
-    for (int c = 0; c < 3; ++c) {
-      // From 0.02 of the shortest reduced mean free path to 20 of the longest diffusion
-      // lengths 1/σtr among the layers (the medium's own for one medium).
-      double mfp = std::numeric_limits<double>::infinity(), diffusion = 0.0;
-      for (const profiles::Coefficients& k : src.channel_media(c)) {
-        mfp = std::min(mfp, k.mfp_reduced());
-        diffusion = std::max(diffusion, 1.0 / k.sigma_tr_classical());
-      }
-      profiles::MonteCarloOptions mc;
-      mc.photons = opt.mc_photons;
-      mc.seed = opt.mc_seed + c;
-      mc.threads = opt.mc_threads;
-      mc.bin_edges_mm = profiles::log_bin_edges(0.02 * mfp, 20.0 * diffusion, 40);
-      mc.progress = [c](double f) { progress_bar("Monte Carlo", (c + f) / 3.0); };
-      const auto res = src.monte_carlo(c, mc);
-      PlotSeries pts;
-      pts.label = std::string(kChannelNames[c]) + " Monte Carlo";
-      pts.color = kChannelColor[c];
-      pts.markers = true;
-      for (std::size_t b = 1; b + 1 < res.bin_edges_mm.size(); ++b) {
-        const double r0 = res.bin_edges_mm[b], r1 = res.bin_edges_mm[b + 1];
-        const double r = std::sqrt(0.5 * (r0 * r0 + r1 * r1));
-        pts.x.push_back(r);
-        pts.y.push_back(r * res.reflectance.value[b]);
-        pts.y_err.push_back(r * res.reflectance.stderr_[b]);
-      }
-      plot.series.push_back(std::move(pts));
-    }
-  }
-  char line[128];
-  std::snprintf(line, sizeof line, "relative L2 error of r·R:");
-  plot.notes.push_back(line);
-  std::snprintf(line, sizeof line, "R %.2f%%  G %.2f%%  B %.2f%%", 100 * fit.relative_error[0],
-                100 * fit.relative_error[1], 100 * fit.relative_error[2]);
-  plot.notes.push_back(line);
-  plot.notes.push_back("max edge-response error:");
-  std::snprintf(line, sizeof line, "R %.2f%%  G %.2f%%  B %.2f%%", 100 * edge[0], 100 * edge[1],
-                100 * edge[2]);
-  plot.notes.push_back(line);
-  std::snprintf(line, sizeof line, "total reflectance:");
-  plot.notes.push_back(line);
-  std::snprintf(line, sizeof line, "%.4f %.4f %.4f", fit.total_reflectance[0],
-                fit.total_reflectance[1], fit.total_reflectance[2]);
-  plot.notes.push_back(line);
-  if (fit.prefilter_variance_mm2 > 0.0) {
-    std::snprintf(line, sizeof line, "errors at resolution %.3g mm:",
-                  std::sqrt(fit.prefilter_variance_mm2));
-    plot.notes.push_back(line);
-    plot.notes.push_back("both blurred by a Gaussian of");
-    plot.notes.push_back("that standard deviation");
-  }
-  plot.notes.push_back("solid: model, dashed: fit");
+  if (a.plot_mc)
+    for (int c = 0; c < 3; ++c) plot.series.push_back(monte_carlo_series(src, c, opt));
+  plot.notes = plot_notes(fit, edge);
   return plot;
 }
 
