@@ -150,24 +150,28 @@ void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
   ImGui::End();
 }
 
-void ViewerUi::draw_sss(renderer::Renderer& r) {
-  if (!ImGui::CollapsingHeader("SSS", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  renderer::RenderOptions o = r.options();
-  // One label per technique, in SssTechnique's order.
-  constexpr const char* kLabels[] = {"off", "screen: separable", "screen: gaussians", "texture space"};
-  const auto label = [&](renderer::SssTechnique t) { return kLabels[static_cast<int>(t)]; };
-  bool changed = false;
-  if (ImGui::BeginCombo("mode", label(o.technique))) {
-    for (const renderer::SssTechnique t : renderer::all_techniques())
-      if (ImGui::Selectable(label(t), t == o.technique)) {
-        changed |= t != o.technique;
-        o.technique = t;
-      }
-    ImGui::EndCombo();
+namespace {
+// What a debug view's colours mean, under its combo (nullptr: nothing to say).
+const char* debug_view_legend(renderer::DebugView view) {
+  switch (view) {
+    case renderer::DebugView::KernelRadius:
+      return "kernel radius in px on a log2 scale (automatic: 1 px to the largest radius "
+             "on screen); magenta < 1 px (the screen kernel undersamples the profile)";
+    case renderer::DebugView::Thickness:
+      return "mm through the object along light 0 (automatic: 0 to the largest SSS "
+             "object's size); grey: no shadow map there";
+    case renderer::DebugView::UvStretch:
+      return "mm per unit of u (red) and v (green), automatic: 0 to pi x the largest SSS "
+               "object's size; grey: no UVs";
+    case renderer::DebugView::ProfileId: return "one flat colour per material";
+    default: return nullptr;
   }
-  if (o.technique == renderer::SssTechnique::Texture) changed |= draw_texture_objects(r, o);
-  changed |= ImGui::SliderFloat("exposure", &o.exposure, 0.05f, 8.0f, "%.2f",
-                                ImGuiSliderFlags_Logarithmic);
+}
+}  // namespace
+
+// The frame's toggles: Fresnel, single scattering, transmission, FXAA, the background.
+bool ViewerUi::draw_frame_toggles(renderer::RenderOptions& o) {
+  bool changed = false;
   changed |= ImGui::Checkbox("directional Fresnel", &o.fresnel);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("--fresnel: light enters SSS materials x F_t(eta, theta_i) and leaves\n"
@@ -201,6 +205,12 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("--background environment: the environment light behind the geometry,\n"
                       "as the camera sees it (where there is one; else the colour)");
+  return changed;
+}
+
+// The debug view, the labels, the moving scale, and the view's range and legend.
+bool ViewerUi::draw_debug_view(const renderer::Renderer& r, renderer::RenderOptions& o) {
+  bool changed = false;
   const std::string view_label(renderer::debug_view_name(o.debug_view));
   if (ImGui::BeginCombo("debug view", view_label.c_str())) {
     for (const renderer::DebugView v : renderer::all_debug_views()) {
@@ -222,28 +232,34 @@ void ViewerUi::draw_sss(renderer::Renderer& r) {
   // The view's scale (renderer/README.md, "Debug views"): a colour bar with the range the
   // frame uses, and the range to edit.
   if (renderer::debug_view_has_range(o.debug_view)) changed |= draw_debug_range(r, o);
-  const char* legend = nullptr;
-  switch (o.debug_view) {
-    case renderer::DebugView::KernelRadius:
-      legend = "kernel radius in px on a log2 scale (automatic: 1 px to the largest radius "
-               "on screen); magenta < 1 px (the screen kernel undersamples the profile)";
-      break;
-    case renderer::DebugView::Thickness:
-      legend = "mm through the object along light 0 (automatic: 0 to the largest SSS "
-               "object's size); grey: no shadow map there";
-      break;
-    case renderer::DebugView::UvStretch:
-      legend = "mm per unit of u (red) and v (green), automatic: 0 to pi x the largest SSS "
-               "object's size; grey: no UVs";
-      break;
-    case renderer::DebugView::ProfileId: legend = "one flat colour per material"; break;
-    default: break;
-  }
-  if (legend != nullptr) {
+  if (const char* legend = debug_view_legend(o.debug_view); legend != nullptr) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("%s", legend);
     ImGui::PopStyleColor();
   }
+  return changed;
+}
+
+void ViewerUi::draw_sss(renderer::Renderer& r) {
+  if (!ImGui::CollapsingHeader("SSS", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  renderer::RenderOptions o = r.options();
+  // One label per technique, in SssTechnique's order.
+  constexpr const char* kLabels[] = {"off", "screen: separable", "screen: gaussians", "texture space"};
+  const auto label = [&](renderer::SssTechnique t) { return kLabels[static_cast<int>(t)]; };
+  bool changed = false;
+  if (ImGui::BeginCombo("mode", label(o.technique))) {
+    for (const renderer::SssTechnique t : renderer::all_techniques())
+      if (ImGui::Selectable(label(t), t == o.technique)) {
+        changed |= t != o.technique;
+        o.technique = t;
+      }
+    ImGui::EndCombo();
+  }
+  if (o.technique == renderer::SssTechnique::Texture) changed |= draw_texture_objects(r, o);
+  changed |= ImGui::SliderFloat("exposure", &o.exposure, 0.05f, 8.0f, "%.2f",
+                                ImGuiSliderFlags_Logarithmic);
+  changed |= draw_frame_toggles(o);
+  changed |= draw_debug_view(r, o);
   if (!changed) return;
   try {
     r.set_options(o);

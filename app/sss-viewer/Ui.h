@@ -89,10 +89,19 @@ class ViewerUi {
   void draw_sss(renderer::Renderer& r);
   // Texture mode: each object's texture size and update policy; true when o changed.
   bool draw_texture_objects(const renderer::Renderer& r, renderer::RenderOptions& o);
+  // draw_sss's parts, each true if o changed: the frame's toggles (Fresnel, single
+  // scattering, transmission, FXAA, background); the debug view with its range and legend.
+  bool draw_frame_toggles(renderer::RenderOptions& o);
+  bool draw_debug_view(const renderer::Renderer& r, renderer::RenderOptions& o);
   // The debug view's colour bar, its range, and the range's editor; true if o changed.
   bool draw_debug_range(const renderer::Renderer& r, renderer::RenderOptions& o);
   void draw_materials(renderer::Renderer& r);
   void draw_material(MaterialEdit& e, std::size_t i);
+  // draw_material's parts: the preset, model and kind of source; the medium's fields
+  // (true: refit); the errors, notes and plot. `layered`: e had layers as the frame began.
+  void draw_source(MaterialEdit& e, std::size_t i, bool layered);
+  bool draw_medium(MaterialEdit& e, std::size_t i, bool layered);
+  void draw_material_status(MaterialEdit& e);
   // A stack's rows (per layer: its coefficients, thickness, split / up / down / remove) and
   // its η; true when a field's edit ended (the caller applies).
   bool draw_layers(MaterialEdit& e, std::size_t i);

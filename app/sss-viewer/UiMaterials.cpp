@@ -227,8 +227,7 @@ bool ViewerUi::draw_layers(MaterialEdit& e, std::size_t i) {
   return apply;
 }
 
-void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
-  const bool layered = !e.layers.empty();
+void ViewerUi::draw_source(MaterialEdit& e, std::size_t i, bool layered) {
   const auto all = profiles::presets();
   const int shown_preset = e.kind == SourceKind::Preset ? e.preset : -1;
   if (ImGui::BeginCombo("preset", preset_label(shown_preset).c_str())) {
@@ -253,7 +252,11 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
     ImGui::SetTooltip("OpenPBR's subsurface parameters (Standard Surface's map onto them): the "
                       "colour seen, linear Rec.709; mean free path = radius x radius scale");
   ImGui::EndDisabled();
+}
 
+// The medium's own fields (a stack's layers, OpenPBR, coefficients or artist) and its
+// thickness; true when an edit asks for a refit.
+bool ViewerUi::draw_medium(MaterialEdit& e, std::size_t i, bool layered) {
   // Typed fields apply when the edit ends (Enter, Tab, click away); drags, sliders and
   // the colour picker apply on every change (the refit is asynchronous).
   bool apply = false;
@@ -303,12 +306,11 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
                         "edit either layer");
     ImGui::EndDisabled();
   }
-  apply |= ImGui::SliderInt("gaussians", &e.gaussians, scene::kMinGaussians, scene::kMaxGaussians);
-  apply |= ImGui::SliderFloat("scale", &e.scale, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-  const char* albedo[] = {"post-scatter", "pre-post"};
-  apply |= ImGui::Combo("albedo", &e.albedo, albedo, 2);
-  if (apply) editor_.apply(i);
+  return apply;
+}
 
+// The fit's error, the scale's note, the warnings and the profile plot.
+void ViewerUi::draw_material_status(MaterialEdit& e) {
   if (!e.error.empty()) ImGui::TextColored(kErrorColor, "%s", e.error.c_str());
   if (!e.scale_note.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
@@ -335,6 +337,19 @@ void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
                             : "r R(r): model solid, Gaussian fit dashed; r T(r), the light through "
                               "the far face: dotted; below: R's relative error");
   }
+}
+
+void ViewerUi::draw_material(MaterialEdit& e, std::size_t i) {
+  // As the frame began: a preset chosen now replaces a stack from the next frame.
+  const bool layered = !e.layers.empty();
+  draw_source(e, i, layered);
+  bool apply = draw_medium(e, i, layered);
+  apply |= ImGui::SliderInt("gaussians", &e.gaussians, scene::kMinGaussians, scene::kMaxGaussians);
+  apply |= ImGui::SliderFloat("scale", &e.scale, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  const char* albedo[] = {"post-scatter", "pre-post"};
+  apply |= ImGui::Combo("albedo", &e.albedo, albedo, 2);
+  if (apply) editor_.apply(i);
+  draw_material_status(e);
 }
 
 }  // namespace sss::app
