@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <system_error>
 
@@ -38,6 +39,55 @@ bool has_relative_uris(const ordered_json& doc) {
         return true;
   }
   return false;
+}
+
+// Writes extras.sss (and the KHR extensions beside it) into doc's materials and lists
+// the extensions as used; an error names the material and the field that refused it.
+std::optional<LoadError> write_sss_materials(ordered_json& doc, const std::vector<Material>& materials,
+                                             double mm_per_unit, const std::string& input) {
+  const auto fail = [&](std::string object, std::string field, std::string message) {
+    return LoadError{input, std::move(object), std::move(field), std::move(message)};
+  };
+  if (!doc.contains("materials") || !doc["materials"].is_array())
+    return fail("materials", "", "the file has no materials to write SSS into");
+  ordered_json& list = doc["materials"];
+  const std::size_t count = std::min(list.size(), materials.size());
+  std::set<std::string> used;  // the KHR extensions written
+  for (std::size_t i = 0; i < count; ++i) {
+    ordered_json& m = list[i];
+    if (!m.is_object())
+      return fail("materials[" + std::to_string(i) + "]", "", "is not a JSON object");
+    const bool had = m.contains("extras") && m["extras"].is_object() && m["extras"].contains("sss");
+    if (!materials[i].sss.enabled && !had) continue;
+    if (!m.contains("extras")) m["extras"] = ordered_json::object();
+    if (!m["extras"].is_object())
+      return fail("materials[" + std::to_string(i) + "]", "extras",
+                  "is not a JSON object, so extras.sss cannot be added");
+    m["extras"]["sss"] = ordered_json::parse(sss_extras_json(materials[i].sss).dump());
+    if (!materials[i].sss.enabled) continue;
+    // The standard extensions beside it, for other tools (extras.sss still wins here).
+    const json khr = khr_extensions_json(materials[i].sss, mm_per_unit);
+    if (khr.empty()) continue;
+    if (!m.contains("extensions")) m["extensions"] = ordered_json::object();
+    if (!m["extensions"].is_object())
+      return fail("materials[" + std::to_string(i) + "]", "extensions",
+                  "is not a JSON object, so the KHR material extensions cannot be added");
+    for (const auto& [name, value] : khr.items()) {
+      m["extensions"][name] = ordered_json::parse(value.dump());
+      used.insert(name);
+    }
+  }
+  // Listed as used, never as required: drafts among them, and extras.sss holds it all.
+  if (!used.empty()) {
+    if (!doc.contains("extensionsUsed") || !doc["extensionsUsed"].is_array())
+      doc["extensionsUsed"] = ordered_json::array();
+    for (const std::string& name : used)
+      if (std::find(doc["extensionsUsed"].begin(), doc["extensionsUsed"].end(), name) ==
+          doc["extensionsUsed"].end())
+        doc["extensionsUsed"].push_back(name);
+  }
+
+  return std::nullopt;
 }
 
 }  // namespace
@@ -78,44 +128,7 @@ std::variant<std::string, LoadError> gltf_with_sss_materials(const std::string& 
                           "in the same folder (" + in_dir.string() + ")");
   }
 
-  if (!doc.contains("materials") || !doc["materials"].is_array())
-    return fail("materials", "", "the file has no materials to write SSS into");
-  ordered_json& list = doc["materials"];
-  const std::size_t count = std::min(list.size(), materials.size());
-  std::set<std::string> used;  // the KHR extensions written
-  for (std::size_t i = 0; i < count; ++i) {
-    ordered_json& m = list[i];
-    if (!m.is_object())
-      return fail("materials[" + std::to_string(i) + "]", "", "is not a JSON object");
-    const bool had = m.contains("extras") && m["extras"].is_object() && m["extras"].contains("sss");
-    if (!materials[i].sss.enabled && !had) continue;
-    if (!m.contains("extras")) m["extras"] = ordered_json::object();
-    if (!m["extras"].is_object())
-      return fail("materials[" + std::to_string(i) + "]", "extras",
-                  "is not a JSON object, so extras.sss cannot be added");
-    m["extras"]["sss"] = ordered_json::parse(sss_extras_json(materials[i].sss).dump());
-    if (!materials[i].sss.enabled) continue;
-    // The standard extensions beside it, for other tools (extras.sss still wins here).
-    const json khr = khr_extensions_json(materials[i].sss, mm_per_unit);
-    if (khr.empty()) continue;
-    if (!m.contains("extensions")) m["extensions"] = ordered_json::object();
-    if (!m["extensions"].is_object())
-      return fail("materials[" + std::to_string(i) + "]", "extensions",
-                  "is not a JSON object, so the KHR material extensions cannot be added");
-    for (const auto& [name, value] : khr.items()) {
-      m["extensions"][name] = ordered_json::parse(value.dump());
-      used.insert(name);
-    }
-  }
-  // Listed as used, never as required: drafts among them, and extras.sss holds it all.
-  if (!used.empty()) {
-    if (!doc.contains("extensionsUsed") || !doc["extensionsUsed"].is_array())
-      doc["extensionsUsed"] = ordered_json::array();
-    for (const std::string& name : used)
-      if (std::find(doc["extensionsUsed"].begin(), doc["extensionsUsed"].end(), name) ==
-          doc["extensionsUsed"].end())
-        doc["extensionsUsed"].push_back(name);
-  }
+  if (auto e = write_sss_materials(doc, materials, mm_per_unit, input)) return *e;
 
   std::string text = doc.dump(2);
   if (!glb) return text + "\n";
