@@ -233,6 +233,36 @@ std::variant<Image, ImageError> decode_png(const std::vector<unsigned char>& byt
 
 // The image of an OpenEXR file's bytes (scanline, HALF/FLOAT/UINT channels; R, G, B and
 // optionally A, or one gray channel) with its string attributes, or why not.
+// The decoded channels into img's RGBA: idx[k] is the channel of R, G, B, A (-1: none),
+// or a one-channel image is grey.
+void copy_exr_pixels(const EXRHeader& header, const EXRImage& exr, const int (&idx)[4], bool gray,
+                     Image& img) {
+  // One sample of channel c (tinyexr allocates every channel at full size, whatever its
+  // sampling) at pixel i; HALF was decoded as FLOAT, UINT is converted.
+  auto sample = [&](int c, std::size_t i) -> float {
+    if (header.requested_pixel_types[c] == TINYEXR_PIXELTYPE_UINT)
+      return static_cast<float>(reinterpret_cast<const std::uint32_t*>(exr.images[c])[i]);
+    return reinterpret_cast<const float*>(exr.images[c])[i];
+  };
+  const std::size_t n = std::size_t(exr.width) * std::size_t(exr.height);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) img.rgba[4 * i + k] = sample(gray ? 0 : idx[k], i);
+    img.rgba[4 * i + 3] = gray || idx[3] < 0 ? 1.0f : sample(idx[3], i);  // no alpha: opaque
+  }
+}
+
+// The header's string attributes, in img.attributes.
+void copy_string_attributes(const EXRHeader& header, Image& img) {
+  for (int a = 0; a < header.num_custom_attributes; ++a) {
+    const EXRAttribute& attr = header.custom_attributes[a];
+    if (std::strcmp(attr.type, "string") != 0 || attr.size < 0 || !attr.value) continue;
+    // A string attribute is its bytes (OpenEXR writes no terminator; some writers do).
+    std::string value(reinterpret_cast<const char*>(attr.value), std::size_t(attr.size));
+    if (const auto nul = value.find('\0'); nul != std::string::npos) value.resize(nul);
+    img.attributes.emplace_back(attr.name, value);
+  }
+}
+
 std::variant<Image, ImageError> decode_exr(const std::vector<unsigned char>& bytes, const std::string& path) {
   // dataWindow's max - min + 1 of hostile 32-bit corners overflows an int: in 64 bits
   // (found by fuzzing, fuzz/regressions/image/exr_data_window_int_overflow.exr).
@@ -291,26 +321,8 @@ std::variant<Image, ImageError> decode_exr(const std::vector<unsigned char>& byt
     return ImageError{path, "EXR decoded to a size other than its dataWindow"};
   Image img(exr.width, exr.height);
   if (header.tiled || exr.images == nullptr) return ImageError{path, "corrupt EXR"};  // refused above
-  // One sample of channel c (tinyexr allocates every channel at full size, whatever its
-  // sampling) at pixel i; HALF was decoded as FLOAT, UINT is converted.
-  auto sample = [&](int c, std::size_t i) -> float {
-    if (header.requested_pixel_types[c] == TINYEXR_PIXELTYPE_UINT)
-      return static_cast<float>(reinterpret_cast<const std::uint32_t*>(exr.images[c])[i]);
-    return reinterpret_cast<const float*>(exr.images[c])[i];
-  };
-  const std::size_t n = std::size_t(exr.width) * std::size_t(exr.height);
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int k = 0; k < 3; ++k) img.rgba[4 * i + k] = sample(gray ? 0 : idx[k], i);
-    img.rgba[4 * i + 3] = gray || idx[3] < 0 ? 1.0f : sample(idx[3], i);  // no alpha: opaque
-  }
-  for (int a = 0; a < header.num_custom_attributes; ++a) {
-    const EXRAttribute& attr = header.custom_attributes[a];
-    if (std::strcmp(attr.type, "string") != 0 || attr.size < 0 || !attr.value) continue;
-    // A string attribute is its bytes (OpenEXR writes no terminator; some writers do).
-    std::string value(reinterpret_cast<const char*>(attr.value), std::size_t(attr.size));
-    if (const auto nul = value.find('\0'); nul != std::string::npos) value.resize(nul);
-    img.attributes.emplace_back(attr.name, value);
-  }
+  copy_exr_pixels(header, exr, idx, gray, img);
+  copy_string_attributes(header, img);
   return img;
 }
 
