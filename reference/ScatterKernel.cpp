@@ -153,18 +153,12 @@ class DiscAverage {
 
 }  // namespace
 
-ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_area_mm2, bool far_side_dark) {
-  if (!std::isfinite(point_area_mm2) || !(point_area_mm2 > 0.0))
-    throw std::invalid_argument("point_area_mm2: must be finite and > 0, got " +
-                                message_number(point_area_mm2));
-  point_area_mm2_ = point_area_mm2;
-  const double a = std::sqrt(point_area_mm2 / std::numbers::pi);
+// The disc-averaged kernel K(d) of reflection (or, transmit, of transmission) as cubics
+// over the cells described below, for irradiance points of radius a.
+ScatterKernel::Table ScatterKernel::build_table(const profiles::RgbProfile& profile, bool transmit,
+                                                double a, double support_mm) {
   const double S = profile.support_radius();
   const double inner = profile.inner_radius();
-  support_mm_ = S + a;
-  const Rgb total_t = profile.total_transmittance();
-  has_transmittance_ = total_t[0] > 0.0 || total_t[1] > 0.0 || total_t[2] > 0.0;
-
   // Two tables in y = |d/a − 1|: inside the disc's rim (y = 1 − d/a, from 2^-20 to 1,
   // d = 0) and outside it (y = d/a − 1, from 2^-20 to S/a): log-spaced towards the kink
   // at d = a on both sides, where K' has a logarithmic singularity for profiles with a
@@ -178,50 +172,42 @@ ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_a
   // hundreds of dipole pairs) are read through a log-log interpolant (ProfileTable.h).
   const bool interpolate = profiles::model_is_costly(profile.model());
 
-  const auto build = [&](bool transmit) {
-    Table t;
-    t.inv_a = inv_a;
-    t.end = support_mm_ * inv_a;
-    t.base = base;
-    t.inner_cells = std::uint32_t(inner_cells);
-    t.coef.assign(16 * cells, 0.0f);
-    for (int c = 0; c < 3; ++c) {
-      const DiscAverage K(profile.channel(c), transmit, interpolate, a, S, inner);
-      t.at_kink[c] = K(a);
-      // K at t = 0, 1/3, 2/3 and 1 of every cell (the far edge computed again: cells on
-      // the two sides do not share edges).
-      std::vector<double> v(4 * cells);
-      tbb::parallel_for(std::size_t(0), 4 * cells, [&](std::size_t i) {
-        const std::size_t cell = i / 4;
-        const bool outside = cell >= inner_cells;
-        const std::uint64_t key = base + (outside ? cell - inner_cells : cell);
-        const double y0 = edge(key), y1 = edge(key + 1);
-        const double y = y0 + double(i % 4) / 3.0 * (y1 - y0);
-        v[i] = K(a * std::fabs(outside ? 1.0 + y : 1.0 - y));
-      });
-      // The cubic through (0, K0), (1/3, K1), (2/3, K2), (1, K3) in monomial form.
-      for (std::size_t cell = 0; cell < cells; ++cell) {
-        const double* k = &v[4 * cell];
-        float* out = &t.coef[16 * cell];
-        out[0 + c] = float(k[0]);
-        out[4 + c] = float(0.5 * (-11.0 * k[0] + 18.0 * k[1] - 9.0 * k[2] + 2.0 * k[3]));
-        out[8 + c] = float(4.5 * (2.0 * k[0] - 5.0 * k[1] + 4.0 * k[2] - k[3]));
-        out[12 + c] = float(4.5 * (-k[0] + 3.0 * k[1] - 3.0 * k[2] + k[3]));
-      }
+  Table t;
+  t.inv_a = inv_a;
+  t.end = support_mm * inv_a;
+  t.base = base;
+  t.inner_cells = std::uint32_t(inner_cells);
+  t.coef.assign(16 * cells, 0.0f);
+  for (int c = 0; c < 3; ++c) {
+    const DiscAverage K(profile.channel(c), transmit, interpolate, a, S, inner);
+    t.at_kink[c] = K(a);
+    // K at t = 0, 1/3, 2/3 and 1 of every cell (the far edge computed again: cells on
+    // the two sides do not share edges).
+    std::vector<double> v(4 * cells);
+    tbb::parallel_for(std::size_t(0), 4 * cells, [&](std::size_t i) {
+      const std::size_t cell = i / 4;
+      const bool outside = cell >= inner_cells;
+      const std::uint64_t key = base + (outside ? cell - inner_cells : cell);
+      const double y0 = edge(key), y1 = edge(key + 1);
+      const double y = y0 + double(i % 4) / 3.0 * (y1 - y0);
+      v[i] = K(a * std::fabs(outside ? 1.0 + y : 1.0 - y));
+    });
+    // The cubic through (0, K0), (1/3, K1), (2/3, K2), (1, K3) in monomial form.
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+      const double* k = &v[4 * cell];
+      float* out = &t.coef[16 * cell];
+      out[0 + c] = float(k[0]);
+      out[4 + c] = float(0.5 * (-11.0 * k[0] + 18.0 * k[1] - 9.0 * k[2] + 2.0 * k[3]));
+      out[8 + c] = float(4.5 * (2.0 * k[0] - 5.0 * k[1] + 4.0 * k[2] - k[3]));
+      out[12 + c] = float(4.5 * (-k[0] + 3.0 * k[1] - 3.0 * k[2] + k[3]));
     }
-    return t;
-  };
-  reflect_ = build(false);
-  if (far_side_dark) {  // the reflectance table's cells, all zero
-    far_side_dark_ = has_transmittance_ = true;
-    transmit_ = reflect_;
-    std::fill(transmit_.coef.begin(), transmit_.coef.end(), 0.0f);
-    transmit_.at_kink = glm::dvec3(0.0);
-  } else if (has_transmittance_) {
-    transmit_ = build(true);
   }
-  // ∫_0^ρ 2πd K(d) dd through the table, with a break at the kink d = a.
-  near_radius_ = kNearSpacings * std::sqrt(point_area_mm2);
+  return t;
+}
+
+// ∫_0^near_radius_ 2πd K(d) dd of the reflectance through the table, with a break at the
+// kink d = a.
+glm::dvec3 ScatterKernel::near_disc_integral(double a) const {
   const auto ring = [&](double lo, double hi) {
     const profiles::GaussLegendreRule& gl = profiles::gauss_legendre(16);
     glm::dvec3 sum(0.0);
@@ -235,7 +221,30 @@ ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_a
     }
     return sum;
   };
-  near_integral_ = ring(0.0, std::min(a, near_radius_)) + ring(std::min(a, near_radius_), near_radius_);
+  return ring(0.0, std::min(a, near_radius_)) + ring(std::min(a, near_radius_), near_radius_);
+}
+
+ScatterKernel::ScatterKernel(const profiles::RgbProfile& profile, double point_area_mm2, bool far_side_dark) {
+  if (!std::isfinite(point_area_mm2) || !(point_area_mm2 > 0.0))
+    throw std::invalid_argument("point_area_mm2: must be finite and > 0, got " +
+                                message_number(point_area_mm2));
+  point_area_mm2_ = point_area_mm2;
+  const double a = std::sqrt(point_area_mm2 / std::numbers::pi);
+  support_mm_ = profile.support_radius() + a;
+  const Rgb total_t = profile.total_transmittance();
+  has_transmittance_ = total_t[0] > 0.0 || total_t[1] > 0.0 || total_t[2] > 0.0;
+
+  reflect_ = build_table(profile, false, a, support_mm_);
+  if (far_side_dark) {  // the reflectance table's cells, all zero
+    far_side_dark_ = has_transmittance_ = true;
+    transmit_ = reflect_;
+    std::fill(transmit_.coef.begin(), transmit_.coef.end(), 0.0f);
+    transmit_.at_kink = glm::dvec3(0.0);
+  } else if (has_transmittance_) {
+    transmit_ = build_table(profile, true, a, support_mm_);
+  }
+  near_radius_ = kNearSpacings * std::sqrt(point_area_mm2);
+  near_integral_ = near_disc_integral(a);
 }
 
 glm::dvec3 ScatterKernel::Table::eval(double d) const {

@@ -89,6 +89,9 @@ class ScatterKernel {
     glm::dvec3 eval(double d) const;
     Jet jet(double d) const;
   };
+  static Table build_table(const profiles::RgbProfile& profile, bool transmit, double a,
+                           double support_mm);
+  glm::dvec3 near_disc_integral(double a) const;
   Table reflect_, transmit_;
   bool has_transmittance_ = false;
   bool far_side_dark_ = false;
