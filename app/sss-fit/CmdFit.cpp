@@ -162,9 +162,40 @@ LogLogPlot make_plot(const FitArgs& a, const ProfileSource& src, const profiles:
   return plot;
 }
 
-}  // namespace
+// The fit as text: its Gaussians, totals and errors, the times, the separable taps.
+void print_fit(const FitArgs& a, const ProfileSource& src, const profiles::GaussianFit& fit,
+               const Rgb& edge, const profiles::SeparableKernel* separable, double ms_profile,
+               double ms_fit) {
+  std::printf("%d-Gaussian fit of %s for %s\n", a.gaussians, src.model_name.c_str(),
+              src.description.c_str());
+  std::printf("G(v,r) = exp(-r^2/2v)/(2 pi v);  R(r) ~ sum_i w_i G(v_i, r)\n\n");
+  std::printf("  %-12s %-12s %-12s %-12s\n", "v (mm^2)", "w_R", "w_G", "w_B");
+  for (std::size_t i = 0; i < fit.variances_mm2.size(); ++i)
+    std::printf("  %-12.5g %-12.5g %-12.5g %-12.5g\n", fit.variances_mm2[i], fit.weights[i][0],
+                fit.weights[i][1], fit.weights[i][2]);
+  std::printf("\ntotal reflectance     %.6f %.6f %.6f\n", fit.total_reflectance[0],
+              fit.total_reflectance[1], fit.total_reflectance[2]);
+  std::printf("relative L2 error    %.3f%% %.3f%% %.3f%%   (of r*R(r), measure dr)\n",
+              100 * fit.relative_error[0], 100 * fit.relative_error[1],
+              100 * fit.relative_error[2]);
+  std::printf("edge-response error  %.3f%% %.3f%% %.3f%%   (max |M - M_fit| / total across a light edge)\n",
+              100 * edge[0], 100 * edge[1], 100 * edge[2]);
+  if (fit.prefilter_variance_mm2 > 0.0)
+    std::printf("resolution           %.4g mm   (the L2 error compares model and fit both blurred by a\n"
+                "                     Gaussian of this standard deviation; --resolution 0: unblurred)\n",
+                std::sqrt(fit.prefilter_variance_mm2));
+  std::printf("time: profile %.2f ms, sampling + fit %.2f ms\n", ms_profile, ms_fit);
+  if (separable) {
+    std::printf("\nseparable kernel, %d taps over +-%.4g mm (weights sum to 1 per channel):\n",
+                a.taps, separable->range_mm);
+    for (std::size_t i = 0; i < separable->offsets_mm.size(); ++i)
+      std::printf("  %+10.5f mm  %.6f %.6f %.6f\n", separable->offsets_mm[i],
+                  separable->weights[i][0], separable->weights[i][1], separable->weights[i][2]);
+  }
+}
 
-int run_fit(const FitArgs& a) {
+// The options that need no medium; the exit code of a refusal.
+std::optional<int> check_fit_args(const FitArgs& a) {
   if (!profiles::valid_gaussian_count(a.gaussians))
     return usage_error("--gaussians: " + profiles::gaussian_count_rule() + ", got " + std::to_string(a.gaussians));
   if (a.taps != 0 && (a.taps < 3 || a.taps % 2 == 0 || a.taps > 255))
@@ -174,6 +205,13 @@ int run_fit(const FitArgs& a) {
     return usage_error("--out: writes a JSON kernel (.json) or a C header (.h, .hpp), got '" + a.out + "'");
   if (!a.plot.empty() && !ends_with_any(a.plot, {".svg"}))
     return usage_error("--plot: writes an SVG plot, name it .svg, got '" + a.plot + "'");
+  return std::nullopt;
+}
+
+}  // namespace
+
+int run_fit(const FitArgs& a) {
+  if (const auto refused = check_fit_args(a)) return *refused;
   const auto opt = model_options(a.common);
   const auto src = resolve_source(a.common, opt, /*with_model=*/true);
   if (!src) return kExitUsage;
@@ -211,34 +249,9 @@ int run_fit(const FitArgs& a) {
     std::cout << json << '\n';
     return kExitOk;
   }
-  const double ms_profile = std::chrono::duration<double, std::milli>(t1 - t0).count();
-  const double ms_fit = std::chrono::duration<double, std::milli>(t2 - t1).count();
-  std::printf("%d-Gaussian fit of %s for %s\n", a.gaussians, src->model_name.c_str(),
-              src->description.c_str());
-  std::printf("G(v,r) = exp(-r^2/2v)/(2 pi v);  R(r) ~ sum_i w_i G(v_i, r)\n\n");
-  std::printf("  %-12s %-12s %-12s %-12s\n", "v (mm^2)", "w_R", "w_G", "w_B");
-  for (std::size_t i = 0; i < fit.variances_mm2.size(); ++i)
-    std::printf("  %-12.5g %-12.5g %-12.5g %-12.5g\n", fit.variances_mm2[i], fit.weights[i][0],
-                fit.weights[i][1], fit.weights[i][2]);
-  std::printf("\ntotal reflectance     %.6f %.6f %.6f\n", fit.total_reflectance[0],
-              fit.total_reflectance[1], fit.total_reflectance[2]);
-  std::printf("relative L2 error    %.3f%% %.3f%% %.3f%%   (of r*R(r), measure dr)\n",
-              100 * fit.relative_error[0], 100 * fit.relative_error[1],
-              100 * fit.relative_error[2]);
-  std::printf("edge-response error  %.3f%% %.3f%% %.3f%%   (max |M - M_fit| / total across a light edge)\n",
-              100 * edge[0], 100 * edge[1], 100 * edge[2]);
-  if (fit.prefilter_variance_mm2 > 0.0)
-    std::printf("resolution           %.4g mm   (the L2 error compares model and fit both blurred by a\n"
-                "                     Gaussian of this standard deviation; --resolution 0: unblurred)\n",
-                std::sqrt(fit.prefilter_variance_mm2));
-  std::printf("time: profile %.2f ms, sampling + fit %.2f ms\n", ms_profile, ms_fit);
-  if (separable) {
-    std::printf("\nseparable kernel, %d taps over +-%.4g mm (weights sum to 1 per channel):\n",
-                a.taps, separable->range_mm);
-    for (std::size_t i = 0; i < separable->offsets_mm.size(); ++i)
-      std::printf("  %+10.5f mm  %.6f %.6f %.6f\n", separable->offsets_mm[i],
-                  separable->weights[i][0], separable->weights[i][1], separable->weights[i][2]);
-  }
+  print_fit(a, *src, fit, edge, separable ? &*separable : nullptr,
+            std::chrono::duration<double, std::milli>(t1 - t0).count(),
+            std::chrono::duration<double, std::milli>(t2 - t1).count());
   if (!a.out.empty()) std::printf("wrote %s\n", a.out.c_str());
   if (!a.plot.empty()) std::printf("wrote %s\n", a.plot.c_str());
   return kExitOk;
