@@ -158,6 +158,47 @@ std::optional<FieldError> from_coefficients(const MediumArgs& a, const Scalars& 
   return std::nullopt;
 }
 
+// Standard Surface's subsurface (--subsurface-radius R,G,B or --subsurface-scale) as
+// OpenPBR's, or the option that is wrong.
+std::variant<profiles::OpenPbrSubsurface, FieldError> from_standard_surface_args(
+    const MediumArgs& a, const Rgb& color, const Rgb& radius, double g, double ior) {
+  profiles::StandardSurfaceSubsurface ss;
+  ss.color = color;
+  ss.radius = radius;
+  if (!a.subsurface_scale.empty()) {
+    auto v = parse_number("--subsurface-scale", a.subsurface_scale);
+    if (auto* e = std::get_if<FieldError>(&v)) return *e;
+    ss.scale = std::get<double>(v);
+  }
+  ss.anisotropy = g;
+  ss.ior = ior;
+  if (auto e = profiles::validate(ss)) {
+    // Standard Surface's field → the option that set it.
+    static const std::pair<const char*, const char*> kOptions[] = {
+        {"subsurface_color", "--subsurface-color"}, {"subsurface_radius", "--subsurface-radius"},
+        {"subsurface_scale", "--subsurface-scale"}, {"subsurface_anisotropy", "--g"},
+        {"specular_IOR", "--eta"}};
+    return named_by_option(std::move(*e), kOptions);
+  }
+  return profiles::openpbr_from_standard_surface(ss);
+}
+
+// OpenPBR's subsurface: one radius, an optional radius scale.
+std::variant<profiles::OpenPbrSubsurface, FieldError> from_openpbr_args(
+    const MediumArgs& a, const Rgb& color, const Rgb& radius, double g, double ior) {
+  profiles::OpenPbrSubsurface p;
+  p.color = color;
+  p.radius_mm = radius[0];
+  if (!a.subsurface_radius_scale.empty()) {
+    auto v = parse_rgb("--subsurface-radius-scale", a.subsurface_radius_scale);
+    if (auto* e = std::get_if<FieldError>(&v)) return *e;
+    p.radius_scale = std::get<Rgb>(v);
+  }
+  p.anisotropy = g;
+  p.ior = ior;
+  return p;
+}
+
 // OpenPBR's or Standard Surface's --subsurface-* parameters, inverted to coefficients.
 std::optional<FieldError> from_openpbr(const MediumArgs& a, const Scalars& k, profiles::Model model,
                                        const profiles::ModelOptions& opt, ResolvedMedium& out,
@@ -184,38 +225,13 @@ std::optional<FieldError> from_openpbr(const MediumArgs& a, const Scalars& k, pr
       return FieldError{"--albedo-inversion", "expected van-de-hulst or model, got '" + a.albedo_inversion + "'"};
     inversion = *parsed;
   }
-  profiles::OpenPbrSubsurface p;
-  if (standard_surface) {
-    profiles::StandardSurfaceSubsurface ss;
-    ss.color = std::get<Rgb>(col);
-    ss.radius = std::get<Rgb>(radius);
-    if (!a.subsurface_scale.empty()) {
-      auto v = parse_number("--subsurface-scale", a.subsurface_scale);
-      if (auto* e = std::get_if<FieldError>(&v)) return *e;
-      ss.scale = std::get<double>(v);
-    }
-    ss.anisotropy = g;
-    ss.ior = eta_given ? eta : 1.5;
-    if (auto e = profiles::validate(ss)) {
-      // Standard Surface's field → the option that set it.
-      static const std::pair<const char*, const char*> kOptions[] = {
-          {"subsurface_color", "--subsurface-color"}, {"subsurface_radius", "--subsurface-radius"},
-          {"subsurface_scale", "--subsurface-scale"}, {"subsurface_anisotropy", "--g"},
-          {"specular_IOR", "--eta"}};
-      return named_by_option(std::move(*e), kOptions);
-    }
-    p = profiles::openpbr_from_standard_surface(ss);
-  } else {
-    p.color = std::get<Rgb>(col);
-    p.radius_mm = std::get<Rgb>(radius)[0];
-    if (!a.subsurface_radius_scale.empty()) {
-      auto v = parse_rgb("--subsurface-radius-scale", a.subsurface_radius_scale);
-      if (auto* e = std::get_if<FieldError>(&v)) return *e;
-      p.radius_scale = std::get<Rgb>(v);
-    }
-    p.anisotropy = g;
-    p.ior = eta_given ? eta : 1.5;  // OpenPBR's default specular_ior
-  }
+  // Both default to OpenPBR's specular_ior, 1.5.
+  const double ior = eta_given ? eta : 1.5;
+  auto params = standard_surface
+                    ? from_standard_surface_args(a, std::get<Rgb>(col), std::get<Rgb>(radius), g, ior)
+                    : from_openpbr_args(a, std::get<Rgb>(col), std::get<Rgb>(radius), g, ior);
+  if (auto* e = std::get_if<FieldError>(&params)) return *e;
+  const profiles::OpenPbrSubsurface p = std::get<profiles::OpenPbrSubsurface>(params);
   auto m = profiles::medium_from_openpbr(p, inversion, model, opt);
   if (auto* e = std::get_if<FieldError>(&m)) {
     // The spec's field → the option that set it.
