@@ -135,6 +135,48 @@ std::string_view checked_body(std::string_view bytes, std::string_view name, con
   return bytes.substr(0, bytes.size() - 8);
 }
 
+// The walk's parameters: photons, seed, chunks, roulette and (version 3) g.
+void read_sampling(Reader& r, std::uint32_t version, McTableData& t) {
+  t.photons = r.get<std::uint64_t>("photons");
+  t.seed = r.get<std::uint64_t>("seed");
+  t.chunk_photons = r.get<std::uint64_t>("chunk_photons");
+  if (t.chunk_photons == 0) r.fail("chunk_photons", "must be > 0");
+  if (t.photons % t.chunk_photons != 0 || t.photons / t.chunk_photons < 2)
+    r.fail("photons", "must be a multiple of chunk_photons, at least two chunks");
+  t.roulette_weight = r.get<double>("roulette_weight");
+  t.roulette_survival = r.get<double>("roulette_survival");
+  if (!(t.roulette_weight > 0.0 && t.roulette_weight < 1.0))
+    r.fail("roulette_weight", "must lie in (0, 1)");
+  if (!(t.roulette_survival > 0.0 && t.roulette_survival < 1.0))
+    r.fail("roulette_survival", "must lie in (0, 1)");
+  if (version == kVersionAnisotropic) {
+    t.g = r.get<double>("g");
+    if (!(t.g > -1.0 && t.g < 1.0) || t.g == 0.0)
+      r.fail("g", "a version 3 table must have g in (-1, 1) and not 0, got " + message_number(t.g));
+  }
+}
+
+// Totals in [0, 1] and no negative flux or standard error.
+void check_values(Reader& r, const McTableData& t) {
+  for (std::size_t i = 0; i < t.total.size(); ++i)
+    if (!(t.total[i] >= 0.0 && t.total[i] <= 1.0) || !(t.total_se[i] >= 0.0))
+      r.fail("total", "node " + std::to_string(i) + " is outside [0, 1] or has a negative error");
+  for (std::size_t i = 0; i < t.single_total.size(); ++i)
+    if (!(t.single_total[i] >= 0.0 && t.single_total[i] <= 1.0) || !(t.single_total_se[i] >= 0.0))
+      r.fail("single_total", std::string(t.single_per_node() ? "node " : "eta ") +
+                                 std::to_string(i) + " is outside [0, 1] or has a negative error");
+  auto non_negative = [&](const std::vector<double>& v, const char* field) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!(v[i] >= 0.0)) r.fail(field, "entry " + std::to_string(i) + " is negative");
+  };
+  non_negative(t.multiple_total_se, "multiple_total_se");
+  non_negative(t.flux, "flux");
+  non_negative(t.flux_se, "flux_se");
+  non_negative(t.single_flux, "single_flux");
+  non_negative(t.single_flux_se, "single_flux_se");
+  non_negative(t.multiple_flux_se, "multiple_flux_se");
+}
+
 }  // namespace
 
 std::string serialize_mc_table(const McTableData& t) {
@@ -189,23 +231,7 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
   if (na < 2 || na > 4096) r.fail("n_albedo", "must lie in [2, 4096], got " + std::to_string(na));
   if (nedges < 3 || nedges > 4096)
     r.fail("n_edges", "must lie in [3, 4096], got " + std::to_string(nedges));
-  t.photons = r.get<std::uint64_t>("photons");
-  t.seed = r.get<std::uint64_t>("seed");
-  t.chunk_photons = r.get<std::uint64_t>("chunk_photons");
-  if (t.chunk_photons == 0) r.fail("chunk_photons", "must be > 0");
-  if (t.photons % t.chunk_photons != 0 || t.photons / t.chunk_photons < 2)
-    r.fail("photons", "must be a multiple of chunk_photons, at least two chunks");
-  t.roulette_weight = r.get<double>("roulette_weight");
-  t.roulette_survival = r.get<double>("roulette_survival");
-  if (!(t.roulette_weight > 0.0 && t.roulette_weight < 1.0))
-    r.fail("roulette_weight", "must lie in (0, 1)");
-  if (!(t.roulette_survival > 0.0 && t.roulette_survival < 1.0))
-    r.fail("roulette_survival", "must lie in (0, 1)");
-  if (version == kVersionAnisotropic) {
-    t.g = r.get<double>("g");
-    if (!(t.g > -1.0 && t.g < 1.0) || t.g == 0.0)
-      r.fail("g", "a version 3 table must have g in (-1, 1) and not 0, got " + message_number(t.g));
-  }
+  read_sampling(r, version, t);
   t.eta = r.get_array<double>("eta", ne);
   t.albedo = r.get_array<double>("albedo", na);
   t.r_edges = r.get_array<double>("r_edges", nedges);
@@ -227,23 +253,7 @@ McTableData parse_mc_table(std::string_view bytes, std::string_view name) {
   t.single_flux = r.get_array<float>("single_flux", ns * nb);
   t.single_flux_se = r.get_array<float>("single_flux_se", ns * nb);
   t.multiple_flux_se = r.get_array<float>("multiple_flux_se", ne * na * nb);
-  for (std::size_t i = 0; i < t.total.size(); ++i)
-    if (!(t.total[i] >= 0.0 && t.total[i] <= 1.0) || !(t.total_se[i] >= 0.0))
-      r.fail("total", "node " + std::to_string(i) + " is outside [0, 1] or has a negative error");
-  for (std::size_t i = 0; i < t.single_total.size(); ++i)
-    if (!(t.single_total[i] >= 0.0 && t.single_total[i] <= 1.0) || !(t.single_total_se[i] >= 0.0))
-      r.fail("single_total", std::string(t.single_per_node() ? "node " : "eta ") +
-                                 std::to_string(i) + " is outside [0, 1] or has a negative error");
-  auto non_negative = [&](const std::vector<double>& v, const char* field) {
-    for (std::size_t i = 0; i < v.size(); ++i)
-      if (!(v[i] >= 0.0)) r.fail(field, "entry " + std::to_string(i) + " is negative");
-  };
-  non_negative(t.multiple_total_se, "multiple_total_se");
-  non_negative(t.flux, "flux");
-  non_negative(t.flux_se, "flux_se");
-  non_negative(t.single_flux, "single_flux");
-  non_negative(t.single_flux_se, "single_flux_se");
-  non_negative(t.multiple_flux_se, "multiple_flux_se");
+  check_values(r, t);
   if (r.pos() != body.size())
     r.fail("size", std::to_string(body.size() - r.pos()) + " unexpected bytes before the checksum");
   return t;
