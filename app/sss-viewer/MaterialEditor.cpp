@@ -198,6 +198,88 @@ float copy_thickness(const LayerEdit& l) {
   return static_cast<float>(std::max(0.1, 2.0 * mfp));
 }
 
+// The panel's source fields (preset, artist, OpenPBR or coefficients) into s.source;
+// false, with e.error, when they are refused.
+bool source_from_fields(MaterialEdit& e, double thickness, SssSpec& s) {
+  if (e.kind == SourceKind::Preset && e.preset >= 0) {
+    s.source = scene::PresetSource{std::string(profiles::presets()[std::size_t(e.preset)].name)};
+  } else if (e.kind == SourceKind::Artist) {
+    profiles::ArtistParameters p;
+    for (int c = 0; c < 3; ++c) {
+      p.color[c] = e.color[c];
+      p.mfp_mm[c] = e.mfp_mm[c];
+    }
+    p.eta = e.artist_eta;
+    p.thickness_mm = thickness;
+    if (auto err = check_artist(p)) {
+      e.error = err->what();
+      return false;
+    }
+    s.source = scene::ArtistSource{p};
+  } else if (e.kind == SourceKind::OpenPbr) {
+    scene::OpenPbrSource o;
+    for (int c = 0; c < 3; ++c) {
+      o.parameters.color[c] = e.pbr_color[c];
+      o.parameters.radius_scale[c] = e.pbr_radius_scale[c];
+    }
+    o.parameters.radius_mm = e.pbr_radius_mm;
+    o.parameters.anisotropy = e.pbr_anisotropy;
+    o.parameters.ior = e.pbr_ior;
+    o.inversion = e.pbr_inversion == 1 ? profiles::AlbedoInversion::Model : profiles::AlbedoInversion::VanDeHulst;
+    o.standard_surface = e.pbr_standard_surface;
+    o.thickness_mm = thickness;
+    if (auto err = profiles::validate(o.parameters)) {
+      e.error = err->what();
+      return false;
+    }
+    s.source = o;
+  } else {
+    e.kind = SourceKind::Coefficients;
+    profiles::Medium m;
+    for (int c = 0; c < 3; ++c) {
+      m.sigma_a[c] = e.sigma_a[c];
+      m.sigma_s[c] = e.sigma_s[c];
+      m.g[c] = e.g[c];
+      m.eta[c] = e.eta[c];
+    }
+    m.thickness_mm = thickness;
+    s.source = scene::CoefficientSource{m};
+  }
+  return true;
+}
+
+// Whether s can be built (false, with e.error when it says why), before it reaches the
+// worker.
+bool spec_is_valid(MaterialEdit& e, const SssSpec& s) {
+  // Everything but the artist inversion is cheap: check it here, so that bad input never
+  // reaches the worker (and the frame stays as it is).
+  const bool inverts = e.kind == SourceKind::Artist || (e.kind == SourceKind::OpenPbr && e.pbr_inversion == 1);
+  if (!inverts) {
+    auto made = scene::make_sss_material(s.source, s.model, s.gaussians, s.scale, s.albedo_mode);
+    if (auto* err = std::get_if<FieldError>(&made)) {
+      e.error = err->what();
+      return false;
+    }
+    // The model's own limits (multipole: a finite slab). Only multipole has any, and
+    // building a pbd profile here would cost ~10 ms (its total reflectance).
+    if (s.model == profiles::Model::Multipole) {
+      try {
+        const profiles::RgbProfile check(s.model,
+                                         std::get<scene::SssMaterial>(made).effective_medium());
+      } catch (const std::invalid_argument& ex) {
+        e.error = ex.what();
+        return false;
+      }
+    }
+  } else if (!profiles::valid_gaussian_count(s.gaussians) || !std::isfinite(s.scale) || !(s.scale > 0.0)) {
+    auto made = scene::make_sss_material(scene::PresetSource{"skin1"}, s.model, s.gaussians,
+                                         s.scale, s.albedo_mode);
+    if (auto* err = std::get_if<FieldError>(&made)) e.error = err->what();
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool MaterialEditor::add_layer(std::size_t edit, std::size_t at) {
@@ -365,76 +447,7 @@ std::optional<SssSpec> MaterialEditor::spec_from_fields(MaterialEdit& e) {
   s.albedo_mode = e.albedo == 1 ? scene::AlbedoMode::PrePost : scene::AlbedoMode::PostScatter;
   const double thickness =
       e.thickness_mm > 0.0f ? double(e.thickness_mm) : std::numeric_limits<double>::infinity();
-  if (e.kind == SourceKind::Preset && e.preset >= 0) {
-    s.source = scene::PresetSource{std::string(profiles::presets()[std::size_t(e.preset)].name)};
-  } else if (e.kind == SourceKind::Artist) {
-    profiles::ArtistParameters p;
-    for (int c = 0; c < 3; ++c) {
-      p.color[c] = e.color[c];
-      p.mfp_mm[c] = e.mfp_mm[c];
-    }
-    p.eta = e.artist_eta;
-    p.thickness_mm = thickness;
-    if (auto err = check_artist(p)) {
-      e.error = err->what();
-      return std::nullopt;
-    }
-    s.source = scene::ArtistSource{p};
-  } else if (e.kind == SourceKind::OpenPbr) {
-    scene::OpenPbrSource o;
-    for (int c = 0; c < 3; ++c) {
-      o.parameters.color[c] = e.pbr_color[c];
-      o.parameters.radius_scale[c] = e.pbr_radius_scale[c];
-    }
-    o.parameters.radius_mm = e.pbr_radius_mm;
-    o.parameters.anisotropy = e.pbr_anisotropy;
-    o.parameters.ior = e.pbr_ior;
-    o.inversion = e.pbr_inversion == 1 ? profiles::AlbedoInversion::Model : profiles::AlbedoInversion::VanDeHulst;
-    o.standard_surface = e.pbr_standard_surface;
-    o.thickness_mm = thickness;
-    if (auto err = profiles::validate(o.parameters)) {
-      e.error = err->what();
-      return std::nullopt;
-    }
-    s.source = o;
-  } else {
-    e.kind = SourceKind::Coefficients;
-    profiles::Medium m;
-    for (int c = 0; c < 3; ++c) {
-      m.sigma_a[c] = e.sigma_a[c];
-      m.sigma_s[c] = e.sigma_s[c];
-      m.g[c] = e.g[c];
-      m.eta[c] = e.eta[c];
-    }
-    m.thickness_mm = thickness;
-    s.source = scene::CoefficientSource{m};
-  }
-  // Everything but the artist inversion is cheap: check it here, so that bad input never
-  // reaches the worker (and the frame stays as it is).
-  const bool inverts = e.kind == SourceKind::Artist || (e.kind == SourceKind::OpenPbr && e.pbr_inversion == 1);
-  if (!inverts) {
-    auto made = scene::make_sss_material(s.source, s.model, s.gaussians, s.scale, s.albedo_mode);
-    if (auto* err = std::get_if<FieldError>(&made)) {
-      e.error = err->what();
-      return std::nullopt;
-    }
-    // The model's own limits (multipole: a finite slab). Only multipole has any, and
-    // building a pbd profile here would cost ~10 ms (its total reflectance).
-    if (s.model == profiles::Model::Multipole) {
-      try {
-        const profiles::RgbProfile check(s.model,
-                                         std::get<scene::SssMaterial>(made).effective_medium());
-      } catch (const std::invalid_argument& ex) {
-        e.error = ex.what();
-        return std::nullopt;
-      }
-    }
-  } else if (!profiles::valid_gaussian_count(s.gaussians) || !std::isfinite(s.scale) || !(s.scale > 0.0)) {
-    auto made = scene::make_sss_material(scene::PresetSource{"skin1"}, s.model, s.gaussians,
-                                         s.scale, s.albedo_mode);
-    if (auto* err = std::get_if<FieldError>(&made)) e.error = err->what();
-    return std::nullopt;
-  }
+  if (!source_from_fields(e, thickness, s) || !spec_is_valid(e, s)) return std::nullopt;
   return s;
 }
 
