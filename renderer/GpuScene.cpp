@@ -110,6 +110,39 @@ GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
   }
 }
 
+namespace {
+
+// A device-local buffer holding `data`, uploaded through a staging copy.
+template <class T>
+vk::Buffer device_buffer(const vk::Context& context, std::span<const T> data,
+                         VkBufferUsageFlags usage, const std::string& name) {
+  vk::Buffer buffer(context, {data.size() * sizeof(T), usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              vk::MemoryUsage::DeviceLocal, name});
+  vk::upload_buffer(context, buffer, data);
+  return buffer;
+}
+
+// The atlas gutter's triangles (scene/UvAtlas.h): copies of their host vertices at the
+// gutter's UVs, with the host's island and the gutter's depth.
+std::vector<GpuVertex> gutter_vertices(const scene::Mesh::AtlasGutter& g,
+                                       const std::vector<GpuVertex>& vertices,
+                                       const scene::UvIslands& islands) {
+  std::vector<GpuVertex> gutter;
+  gutter.reserve(g.vertices.size());
+  for (std::size_t k = 0; k < g.vertices.size(); ++k) {
+    GpuVertex v = vertices.at(g.vertices[k]);
+    const float island = float(islands.vertex_island.at(g.host.at(k / 3)));
+    v.atlas[0] = g.uv[k].x;
+    v.atlas[1] = g.uv[k].y;
+    v.atlas[2] = island;
+    v.atlas[3] = g.depth[k];
+    gutter.push_back(v);
+  }
+  return gutter;
+}
+
+}  // namespace
+
 GpuScene::MeshBuffers GpuScene::upload_geometry(const vk::Context& context, const scene::Mesh& mesh,
                                                 bool scatters) {
   const bool has_uv = mesh.uv0.size() == mesh.positions.size();
@@ -152,35 +185,16 @@ GpuScene::MeshBuffers GpuScene::upload_geometry(const vk::Context& context, cons
   b.index_count = static_cast<std::uint32_t>(mesh.indices.size());
   b.material = mesh.material;
   if (!vertices.empty() && !mesh.indices.empty()) {
-    b.vertices = vk::Buffer(context, {vertices.size() * sizeof(GpuVertex),
-                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
-                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                      vk::MemoryUsage::DeviceLocal, mesh.name + " vertices"});
-    vk::upload_buffer(context, b.vertices, std::span<const GpuVertex>(vertices));
-    b.indices = vk::Buffer(context, {mesh.indices.size() * sizeof(std::uint32_t),
-                                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
-                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                     vk::MemoryUsage::DeviceLocal, mesh.name + " indices"});
-    vk::upload_buffer(context, b.indices, std::span<const std::uint32_t>(mesh.indices));
+    b.vertices = device_buffer(context, std::span<const GpuVertex>(vertices),
+                               VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, mesh.name + " vertices");
+    b.indices = device_buffer(context, std::span<const std::uint32_t>(mesh.indices),
+                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT, mesh.name + " indices");
   }
   const scene::Mesh::AtlasGutter& g = mesh.uv_atlas_gutter;
   if (sss_uvs && !mesh.uv_atlas.empty() && !g.vertices.empty()) {
-    std::vector<GpuVertex> gutter;
-    gutter.reserve(g.vertices.size());
-    for (std::size_t k = 0; k < g.vertices.size(); ++k) {
-      GpuVertex v = vertices.at(g.vertices[k]);
-      const float island = float(islands.vertex_island.at(g.host.at(k / 3)));
-      v.atlas[0] = g.uv[k].x;
-      v.atlas[1] = g.uv[k].y;
-      v.atlas[2] = island;
-      v.atlas[3] = g.depth[k];
-      gutter.push_back(v);
-    }
-    b.gutter = vk::Buffer(context, {gutter.size() * sizeof(GpuVertex),
-                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
-                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                    vk::MemoryUsage::DeviceLocal, mesh.name + " gutter"});
-    vk::upload_buffer(context, b.gutter, std::span<const GpuVertex>(gutter));
+    const std::vector<GpuVertex> gutter = gutter_vertices(g, vertices, islands);
+    b.gutter = device_buffer(context, std::span<const GpuVertex>(gutter),
+                             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, mesh.name + " gutter");
     b.gutter_vertices = static_cast<std::uint32_t>(gutter.size());
   }
   return b;
