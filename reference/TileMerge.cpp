@@ -71,49 +71,39 @@ struct TileFile {
   TileSpec tile;
 };
 
-}  // namespace
+// One tile's EXR with its attributes read and checked, or what is wrong with it.
+std::variant<TileFile, std::string> read_tile(const std::string& path) {
+  auto read = image::read_image(path);
+  if (auto* e = std::get_if<image::ImageError>(&read)) return e->what();
+  TileFile t;
+  t.path = path;
+  t.image = std::move(std::get<image::Image>(read));
+  const auto content = attribute(t.image, kAttrContent);
+  const auto tile = attribute(t.image, kAttrTile);
+  const auto settings = attribute(t.image, kAttrSettings);
+  const auto spp = attribute(t.image, kAttrSpp);
+  if (!content || !settings || !spp)
+    return path + ": not a tile of a per-pixel Monte Carlo render (no " + kAttrContent + "/" + kAttrSettings + "/" + kAttrSpp +
+           " attributes: written by sss-reference --method random-walk or --estimator probe)";
+  if (spp->empty() || spp->size() > 18 || spp->find_first_not_of("0123456789") != std::string::npos)
+    return path + ": " + kAttrSpp + " is '" + *spp + "', expected a sample count";
+  if (*content != "mean" && *content != "variance")
+    return path + ": " + kAttrContent + " is '" + *content + "', expected mean or variance";
+  if (!tile) return path + ": a whole frame, not a tile (it has no " + kAttrTile + " attribute): nothing to merge";
+  std::string why;
+  const std::optional<TileSpec> spec = parse_tile(*tile, why);
+  if (!spec) return path + ": " + kAttrTile + ": " + why;
+  t.content = *content;
+  t.settings = *settings;
+  t.spp = *spp;
+  t.tile = *spec;
+  return t;
+}
 
-std::variant<MergedFrame, std::string> merge_tiles(const std::vector<std::string>& files) {
-  if (files.empty()) return std::string("no tiles given");
-  std::vector<TileFile> tiles;
-  for (const std::string& path : files) {
-    auto read = image::read_image(path);
-    if (auto* e = std::get_if<image::ImageError>(&read)) return e->what();
-    TileFile t;
-    t.path = path;
-    t.image = std::move(std::get<image::Image>(read));
-    const auto content = attribute(t.image, kAttrContent);
-    const auto tile = attribute(t.image, kAttrTile);
-    const auto settings = attribute(t.image, kAttrSettings);
-    const auto spp = attribute(t.image, kAttrSpp);
-    if (!content || !settings || !spp)
-      return path + ": not a tile of a per-pixel Monte Carlo render (no " + kAttrContent + "/" + kAttrSettings + "/" + kAttrSpp +
-             " attributes: written by sss-reference --method random-walk or --estimator probe)";
-    if (spp->empty() || spp->size() > 18 || spp->find_first_not_of("0123456789") != std::string::npos)
-      return path + ": " + kAttrSpp + " is '" + *spp + "', expected a sample count";
-    if (*content != "mean" && *content != "variance")
-      return path + ": " + kAttrContent + " is '" + *content + "', expected mean or variance";
-    if (!tile) return path + ": a whole frame, not a tile (it has no " + kAttrTile + " attribute): nothing to merge";
-    std::string why;
-    const std::optional<TileSpec> spec = parse_tile(*tile, why);
-    if (!spec) return path + ": " + kAttrTile + ": " + why;
-    t.content = *content;
-    t.settings = *settings;
-    t.spp = *spp;
-    t.tile = *spec;
-    tiles.push_back(std::move(t));
-  }
-  const TileFile& first = tiles.front();
-  auto describe = [](const TileFile& t) {
-    return std::to_string(t.image.width) + "x" + std::to_string(t.image.height) + ", " + std::to_string(t.tile.count) +
-           " tiles, " + t.spp + " spp, settings '" + t.settings + "'";
-  };
-  for (const TileFile& t : tiles)
-    if (t.image.width != first.image.width || t.image.height != first.image.height || t.tile.count != first.tile.count ||
-        t.spp != first.spp || t.settings != first.settings)
-      return t.path + ": rendered with other settings than " + first.path + " (" + describe(t) + " against " +
-             describe(first) + ")";
-  const std::uint32_t n = first.tile.count;
+// The tiles by content (mean, variance) and index; what is duplicated or missing.
+std::variant<std::map<std::string, std::vector<const TileFile*>>, std::string> slot_tiles(
+    const std::vector<TileFile>& tiles) {
+  const std::uint32_t n = tiles.front().tile.count;
   std::map<std::string, std::vector<const TileFile*>> by_content;
   by_content["mean"].assign(n, nullptr);
   by_content["variance"].assign(n, nullptr);
@@ -130,6 +120,33 @@ std::variant<MergedFrame, std::string> merge_tiles(const std::vector<std::string
         return content + " tile " + std::to_string(k + 1) + "/" + std::to_string(n) +
                " is missing (a merge needs the mean and the variance EXR of every tile)";
 
+  return by_content;
+}
+
+}  // namespace
+
+std::variant<MergedFrame, std::string> merge_tiles(const std::vector<std::string>& files) {
+  if (files.empty()) return std::string("no tiles given");
+  std::vector<TileFile> tiles;
+  for (const std::string& path : files) {
+    auto read = read_tile(path);
+    if (auto* e = std::get_if<std::string>(&read)) return *e;
+    tiles.push_back(std::move(std::get<TileFile>(read)));
+  }
+  const TileFile& first = tiles.front();
+  auto describe = [](const TileFile& t) {
+    return std::to_string(t.image.width) + "x" + std::to_string(t.image.height) + ", " + std::to_string(t.tile.count) +
+           " tiles, " + t.spp + " spp, settings '" + t.settings + "'";
+  };
+  for (const TileFile& t : tiles)
+    if (t.image.width != first.image.width || t.image.height != first.image.height || t.tile.count != first.tile.count ||
+        t.spp != first.spp || t.settings != first.settings)
+      return t.path + ": rendered with other settings than " + first.path + " (" + describe(t) + " against " +
+             describe(first) + ")";
+  const std::uint32_t n = first.tile.count;
+  auto slotted = slot_tiles(tiles);
+  if (auto* e = std::get_if<std::string>(&slotted)) return *e;
+  auto& by_content = std::get<0>(slotted);
   MergedFrame out;
   out.tiles = n;
   const int w = first.image.width, h = first.image.height;
