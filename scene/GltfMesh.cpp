@@ -109,6 +109,44 @@ struct AttributeSource {
 
 // POSITION, NORMAL, TEXCOORD_0 (with KHR_texture_transform) and TANGENT into `mesh`; the
 // vertex count in `n`.
+// KHR_texture_transform of the material's textures, applied to the UVs they read.
+Status transform_uvs(GltfContext& ctx, const tinygltf::Primitive& prim, const std::string& object,
+                     Mesh& mesh) {
+  if (!mesh.uv0.empty() && prim.material >= 0 && std::size_t(prim.material) < ctx.uv_transforms.size())
+    if (const auto& t = ctx.uv_transforms[std::size_t(prim.material)])
+      for (glm::vec2& uv : mesh.uv0) {
+        const float u = uv.x, v = uv.y;
+        uv = {(*t)[0] * u + (*t)[1] * v + (*t)[2], (*t)[3] * u + (*t)[4] * v + (*t)[5]};
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
+          return ctx.fail(object, "attributes.TEXCOORD_0",
+                          "KHR_texture_transform of materials[" + std::to_string(prim.material) +
+                              "] takes a UV past float range");
+      }
+  return std::nullopt;
+}
+
+// TANGENT, normalized, with w made +1 or -1, then following the UVs' KHR_texture_transform.
+Status read_tangents(const AttributeSource& source, Mesh& mesh, std::size_t n) {
+  GltfContext& ctx = source.ctx;
+  const std::string& object = source.object;
+  std::vector<float> f;
+  if (auto e = source.read(kTangent, f)) return e;
+  if (auto e = attribute_count(ctx, object, "TANGENT", f.size() / 4, n)) return e;
+  mesh.tangents.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float w = f[4 * i + 3];
+    if (w == 0.0f)
+      return ctx.fail(object, "attributes.TANGENT", "element " + std::to_string(i) +
+                                                        " has w = 0; it must be +1 or -1");
+    glm::vec3 t(f[4 * i], f[4 * i + 1], f[4 * i + 2]);
+    const float len = glm::length(t);
+    t = len > 0.0f && std::isfinite(len) ? t / len : glm::vec3(1, 0, 0);
+    mesh.tangents[i] = glm::vec4(t, w > 0.0f ? 1.0f : -1.0f);
+  }
+  if (auto e = transform_tangents(ctx, source.prim, object, mesh)) return e;
+  return std::nullopt;
+}
+
 Status read_vertices(const AttributeSource& source, bool compressed, Mesh& mesh, std::size_t& n) {
   GltfContext& ctx = source.ctx;
   const tinygltf::Primitive& prim = source.prim;
@@ -156,34 +194,9 @@ Status read_vertices(const AttributeSource& source, bool compressed, Mesh& mesh,
     mesh.uv0.resize(n);
     for (std::size_t i = 0; i < n; ++i) mesh.uv0[i] = {f[2 * i], f[2 * i + 1]};
   }
-  // KHR_texture_transform of the material's textures, applied to the UVs they read.
-  if (!mesh.uv0.empty() && prim.material >= 0 && std::size_t(prim.material) < ctx.uv_transforms.size())
-    if (const auto& t = ctx.uv_transforms[std::size_t(prim.material)])
-      for (glm::vec2& uv : mesh.uv0) {
-        const float u = uv.x, v = uv.y;
-        uv = {(*t)[0] * u + (*t)[1] * v + (*t)[2], (*t)[3] * u + (*t)[4] * v + (*t)[5]};
-        if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
-          return ctx.fail(object, "attributes.TEXCOORD_0",
-                          "KHR_texture_transform of materials[" + std::to_string(prim.material) +
-                              "] takes a UV past float range");
-      }
-  if (attr("TANGENT") >= 0) {
-    if (auto e = read(kTangent, f)) return e;
-    if (auto e = attribute_count(ctx, object, "TANGENT", f.size() / 4, n)) return e;
-    mesh.tangents.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const float w = f[4 * i + 3];
-      if (w == 0.0f)
-        return ctx.fail(object, "attributes.TANGENT", "element " + std::to_string(i) +
-                                                          " has w = 0; it must be +1 or -1");
-      glm::vec3 t(f[4 * i], f[4 * i + 1], f[4 * i + 2]);
-      const float len = glm::length(t);
-      t = len > 0.0f && std::isfinite(len) ? t / len : glm::vec3(1, 0, 0);
-      mesh.tangents[i] = glm::vec4(t, w > 0.0f ? 1.0f : -1.0f);
-    }
-    if (auto e = transform_tangents(ctx, prim, object, mesh)) return e;
-  }
-
+  if (auto e = transform_uvs(ctx, prim, object, mesh)) return e;
+  if (attr("TANGENT") >= 0)
+    if (auto e = read_tangents(source, mesh, n)) return e;
   return std::nullopt;
 }
 
