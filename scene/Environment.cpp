@@ -96,6 +96,71 @@ Environment uniform_environment(const glm::vec3& radiance, float intensity) {
   return e;
 }
 
+namespace {
+
+// Each row's solid-angle weight, sin(theta) at its centre.
+std::vector<double> row_weights(int height) {
+  std::vector<double> row_weight(static_cast<std::size_t>(height));
+  for (int y = 0; y < height; ++y) row_weight[std::size_t(y)] = std::sin(kPi * (y + 0.5) / height);
+  return row_weight;
+}
+
+// L_k = sum over pixels of L Y_k dOmega, dOmega proportional to sin(theta) at the row's
+// centre, scaled so the weights sum to 4 pi (a uniform image is then exact).
+std::array<glm::dvec3, 9> radiance_sh(const Environment& e, const std::vector<double>& row_weight) {
+  const int width = e.width, height = e.height;
+  double total = 0.0;
+  for (int y = 0; y < height; ++y) total += row_weight[std::size_t(y)] * width;
+  std::array<glm::dvec3, 9> sum{};
+  // direction_at, with each column's azimuth and each row's polar angle computed once.
+  std::vector<double> sin_psi(static_cast<std::size_t>(width)), cos_psi(static_cast<std::size_t>(width));
+  for (int x = 0; x < width; ++x) {
+    const double psi = 2.0 * kPi * ((x + 0.5) / width - 0.5);
+    sin_psi[std::size_t(x)] = std::sin(psi);
+    cos_psi[std::size_t(x)] = std::cos(psi);
+  }
+  for (int y = 0; y < height; ++y) {
+    const double theta = kPi * (y + 0.5) / height, st = std::sin(theta), ct = std::cos(theta);
+    for (int x = 0; x < width; ++x) {
+      const glm::vec3 d(float(st * sin_psi[std::size_t(x)]), float(ct), float(-st * cos_psi[std::size_t(x)]));
+      const std::array<float, 9> b = sh_basis(d);
+      const glm::dvec3 l(e.image[std::size_t(y) * width + x]);
+      const double w = row_weight[std::size_t(y)] * 4.0 * kPi / total;
+      for (int k = 0; k < 9; ++k) sum[k] += l * (double(b[k]) * w);
+    }
+  }
+  return sum;
+}
+
+// The radiance on the prefilter's grid: each grid texel the solid-angle mean of the
+// pixels whose centres fall in it, when the image is at least as fine; else the image
+// read bilinearly at the texel's centre.
+std::vector<glm::vec3> prefilter_grid(const Environment& e, const std::vector<double>& row_weight) {
+  const int width = e.width, height = e.height;
+  const int gw = kSpecularWidth, gh = kSpecularHeight;
+  std::vector<glm::vec3> grid(std::size_t(gw) * gh);
+  if (width >= gw && height >= gh) {
+    std::vector<glm::dvec3> acc(grid.size(), glm::dvec3(0.0));
+    std::vector<double> weight(grid.size(), 0.0);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        // The cell that holds the pixel's centre.
+        const std::size_t cell =
+            std::size_t(((2 * y + 1) * gh) / (2 * height)) * gw + std::size_t(((2 * x + 1) * gw) / (2 * width));
+        acc[cell] += glm::dvec3(e.image[std::size_t(y) * width + x]) * row_weight[std::size_t(y)];
+        weight[cell] += row_weight[std::size_t(y)];
+      }
+    for (std::size_t i = 0; i < grid.size(); ++i) grid[i] = glm::vec3(acc[i] / std::max(weight[i], 1e-300));
+  } else {
+    for (int y = 0; y < gh; ++y)
+      for (int x = 0; x < gw; ++x)
+        grid[std::size_t(y) * gw + x] = e.radiance(direction_at((x + 0.5) / gw, (y + 0.5) / gh));
+  }
+  return grid;
+}
+
+}  // namespace
+
 Environment image_environment(const std::string& source, int width, int height,
                               const std::vector<float>& rgba, float intensity) {
   check_intensity(intensity, source);
@@ -121,56 +186,10 @@ Environment image_environment(const std::string& source, int width, int height,
         }
       e.image[std::size_t(y) * width + x] = glm::vec3(p[0], p[1], p[2]) * intensity;
     }
-  // L_k = sum over pixels of L Y_k dOmega, dOmega proportional to sin(theta) at the row's
-  // centre, scaled so the weights sum to 4 pi (a uniform image is then exact).
-  std::vector<double> row_weight(static_cast<std::size_t>(height));
-  double total = 0.0;
-  for (int y = 0; y < height; ++y) {
-    row_weight[std::size_t(y)] = std::sin(kPi * (y + 0.5) / height);
-    total += row_weight[std::size_t(y)] * width;
-  }
-  std::array<glm::dvec3, 9> sum{};
-  // direction_at, with each column's azimuth and each row's polar angle computed once.
-  std::vector<double> sin_psi(static_cast<std::size_t>(width)), cos_psi(static_cast<std::size_t>(width));
-  for (int x = 0; x < width; ++x) {
-    const double psi = 2.0 * kPi * ((x + 0.5) / width - 0.5);
-    sin_psi[std::size_t(x)] = std::sin(psi);
-    cos_psi[std::size_t(x)] = std::cos(psi);
-  }
-  for (int y = 0; y < height; ++y) {
-    const double theta = kPi * (y + 0.5) / height, st = std::sin(theta), ct = std::cos(theta);
-    for (int x = 0; x < width; ++x) {
-      const glm::vec3 d(float(st * sin_psi[std::size_t(x)]), float(ct), float(-st * cos_psi[std::size_t(x)]));
-      const std::array<float, 9> b = sh_basis(d);
-      const glm::dvec3 l(e.image[std::size_t(y) * width + x]);
-      const double w = row_weight[std::size_t(y)] * 4.0 * kPi / total;
-      for (int k = 0; k < 9; ++k) sum[k] += l * (double(b[k]) * w);
-    }
-  }
+  const std::vector<double> row_weight = row_weights(height);
+  const std::array<glm::dvec3, 9> sum = radiance_sh(e, row_weight);
   for (int k = 0; k < 9; ++k) e.irradiance_sh[k] = glm::vec3(sum[k] * kCosineBand[k]);
-  // The radiance on the prefilter's grid: each grid texel the solid-angle mean of the
-  // pixels whose centres fall in it, when the image is at least as fine; else the image
-  // read bilinearly at the texel's centre.
-  const int gw = kSpecularWidth, gh = kSpecularHeight;
-  std::vector<glm::vec3> grid(std::size_t(gw) * gh);
-  if (width >= gw && height >= gh) {
-    std::vector<glm::dvec3> acc(grid.size(), glm::dvec3(0.0));
-    std::vector<double> weight(grid.size(), 0.0);
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        // The cell that holds the pixel's centre.
-        const std::size_t cell =
-            std::size_t(((2 * y + 1) * gh) / (2 * height)) * gw + std::size_t(((2 * x + 1) * gw) / (2 * width));
-        acc[cell] += glm::dvec3(e.image[std::size_t(y) * width + x]) * row_weight[std::size_t(y)];
-        weight[cell] += row_weight[std::size_t(y)];
-      }
-    for (std::size_t i = 0; i < grid.size(); ++i) grid[i] = glm::vec3(acc[i] / std::max(weight[i], 1e-300));
-  } else {
-    for (int y = 0; y < gh; ++y)
-      for (int x = 0; x < gw; ++x)
-        grid[std::size_t(y) * gw + x] = e.radiance(direction_at((x + 0.5) / gw, (y + 0.5) / gh));
-  }
-  e.specular = prefilter_levels(grid);
+  e.specular = prefilter_levels(prefilter_grid(e, row_weight));
   return e;
 }
 
