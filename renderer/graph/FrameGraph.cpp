@@ -23,6 +23,12 @@ vk::Scope& operator|=(vk::Scope& a, const vk::Scope& b) {
   return a;
 }
 
+bool read_only(VkImageLayout layout) {
+  return layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL ||
+         layout == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL ||
+         layout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+}
+
 bool covers(const vk::Scope& done, const vk::Scope& wanted) {
   return (done.stages & wanted.stages) == wanted.stages &&
          (done.access & wanted.access) == wanted.access;
@@ -51,6 +57,15 @@ std::vector<ImageUse> merged(const std::vector<ImageUse>& uses) {
 
 }  // namespace
 
+vk::Scope BarrierTracker::after(const State& s) {
+  // Once a barrier has made the write available (and visible to a reader), later ones
+  // chain after its readers and name no source access: the writer's access would not
+  // match a layout the image has since moved to (best practices,
+  // ImageBarrierAccessLayout).
+  const bool available = s.visible.stages != VK_PIPELINE_STAGE_2_NONE;
+  return {s.write.stages | s.reads.stages, available ? VK_ACCESS_2_NONE : s.write.access};
+}
+
 BarrierTracker::State& BarrierTracker::state(const vk::Image* image) {
   const auto it = std::find_if(states_.begin(), states_.end(),
                                [&](const State& s) { return s.image == image; });
@@ -68,7 +83,19 @@ std::vector<Transition> BarrierTracker::begin(
       const bool seen = std::any_of(states_.begin(), states_.end(),
                                     [&](const State& s) { return s.image == u.image; });
       if (seen) continue;
-      state(u.image).layout = u.access.layout;
+      State& s = state(u.image);
+      if (!u.access.writes && read_only(u.access.layout)) {
+        // Read before anything writes it this frame (its shader does not fetch it in this
+        // mode): to GENERAL now, and to its read-only layout at the use, chained through
+        // the reader's stages. UNDEFINED straight to a read-only layout would be a read
+        // of discarded contents (best practices: TransitionUndefinedToReadOnly).
+        s.layout = VK_IMAGE_LAYOUT_GENERAL;
+        s.reads = {u.access.stages, VK_ACCESS_2_NONE};
+        out.push_back({u.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, before,
+                       {u.access.stages, VK_ACCESS_2_NONE}});
+        continue;
+      }
+      s.layout = u.access.layout;
       out.push_back({u.image, VK_IMAGE_LAYOUT_UNDEFINED, u.access.layout, before, scope_of(u.access)});
     }
   return out;
@@ -83,8 +110,7 @@ std::vector<Transition> BarrierTracker::use(const std::vector<ImageUse>& uses) {
     if (u.access.writes || relayout) {
       // After the last write and every read since: an execution dependency on the
       // readers, and the writer's writes made available.
-      vk::Scope src = s.write;
-      src.stages |= s.reads.stages;
+      const vk::Scope src = after(s);
       if (relayout || src.stages != VK_PIPELINE_STAGE_2_NONE)
         out.push_back({u.image, s.layout, u.access.layout, src, dst});
       s.layout = u.access.layout;
@@ -99,8 +125,11 @@ std::vector<Transition> BarrierTracker::use(const std::vector<ImageUse>& uses) {
       continue;
     }
     // A read in the same layout: the last write made visible to this kind of reader once.
+    // When an earlier barrier already made the write available (and, with a change of
+    // layout, left the writer's layout), this one only chains after that barrier's
+    // readers and makes it visible: no source access, which would not match the layout.
     if (s.write.stages != VK_PIPELINE_STAGE_2_NONE && !covers(s.visible, dst)) {
-      out.push_back({u.image, s.layout, s.layout, s.write, dst});
+      out.push_back({u.image, s.layout, s.layout, after(s), dst});
       s.visible |= dst;
     }
     s.reads |= dst;
@@ -109,12 +138,10 @@ std::vector<Transition> BarrierTracker::use(const std::vector<ImageUse>& uses) {
 }
 
 std::vector<Transition> BarrierTracker::leave(const vk::Image& image, VkImageLayout layout,
-                                              vk::Scope after) {
+                                              vk::Scope then) {
   State& s = state(&image);
   if (s.layout == layout) return {};
-  vk::Scope src = s.write;
-  src.stages |= s.reads.stages;
-  std::vector<Transition> out{{&image, s.layout, layout, src, after}};
+  std::vector<Transition> out{{&image, s.layout, layout, after(s), then}};
   s = State{&image, layout, {}, {}, {}};
   return out;
 }

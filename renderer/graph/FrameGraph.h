@@ -10,10 +10,13 @@
 //     stages and reads, once per kind of reader (a second compute read of the same
 //     result needs no second barrier);
 //   - write after read or write, and any change of layout: the earlier readers' and
-//     writer's stages before the new access.
+//     writer's stages before the new access;
+//   - once a barrier has made a write available, later ones chain after its readers with
+//     no source access (the writer's access need not match the layout any more).
 // Each image's first use in the frame is one transition from UNDEFINED (last frame's
 // contents are not needed) in a single barrier at the start, after everything the
-// previous frame did. After the last pass, images given to keep() are left in their
+// previous frame did. An image read before anything writes it (bound, but not fetched in
+// this mode) goes to GENERAL there and to its read-only layout at the use. After the last pass, images given to keep() are left in their
 // layout for readback and presentation.
 //
 // Passes run in the order they are added: the renderer adds them in an order where every
@@ -124,7 +127,7 @@ class BarrierTracker {
   // What `uses` need after everything tracked so far; records them as done.
   std::vector<Transition> use(const std::vector<ImageUse>& uses);
   // `image` into `layout` after everything tracked (nothing if it is already there).
-  std::vector<Transition> leave(const vk::Image& image, VkImageLayout layout, vk::Scope after);
+  std::vector<Transition> leave(const vk::Image& image, VkImageLayout layout, vk::Scope then);
 
  private:
   struct State {
@@ -135,6 +138,8 @@ class BarrierTracker {
     vk::Scope visible;  // what the last write has been made visible to
   };
   State& state(const vk::Image* image);
+  // The source scope of a dependency on everything tracked for the image.
+  static vk::Scope after(const State& s);
   std::vector<State> states_;
 };
 

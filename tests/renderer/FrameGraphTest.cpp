@@ -83,14 +83,18 @@ TEST_F(FrameGraphTest, AWriteWaitsForTheReadsAndTheWriteBeforeIt) {
   tracker.begin({&write}, kBefore);
   tracker.use(write);
   tracker.use(read);
-  // Write after read (and after the first write): the readers' stages, the write's access.
+  // Write after read (and after the first write): the readers' stages; the read's barrier
+  // already made the first write available, so no source access.
   const std::vector<Transition> t = tracker.use(write);
   ASSERT_EQ(t.size(), 1u);
   EXPECT_EQ(t[0].src.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-  EXPECT_EQ(t[0].src.access, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  EXPECT_EQ(t[0].src.access, VK_ACCESS_2_NONE);
   EXPECT_EQ(t[0].dst.access, use::kComputeWrite.access);
-  // Two writes in a row also wait (write after write).
-  EXPECT_EQ(tracker.use(write).size(), 1u);
+  // Two writes in a row also wait (write after write), and the first one's writes are
+  // made available.
+  const std::vector<Transition> again = tracker.use(write);
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0].src.access, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 TEST_F(FrameGraphTest, ReadsInTwoLayoutsTransitionBetweenThem) {
@@ -109,9 +113,56 @@ TEST_F(FrameGraphTest, ReadsInTwoLayoutsTransitionBetweenThem) {
   EXPECT_EQ(back[0].old_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   EXPECT_EQ(back[0].new_layout, VK_IMAGE_LAYOUT_GENERAL);
   EXPECT_EQ(back[0].src.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT);
+  // The copy's barrier made the write available: no storage write named against the
+  // TRANSFER_SRC layout (best practices, ImageBarrierAccessLayout).
+  EXPECT_EQ(back[0].src.access, VK_ACCESS_2_NONE);
   // leave(): nothing when the image is already in the layout asked for.
   EXPECT_TRUE(tracker.leave(a, VK_IMAGE_LAYOUT_GENERAL, vk::kAllCommands).empty());
   EXPECT_EQ(tracker.leave(a, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, vk::kAllCommands).size(), 1u);
+}
+
+// An image only read this frame (its shader skips it in this mode) goes to GENERAL at the
+// start and to its read-only layout at the use, chained through the reader's stages: from
+// UNDEFINED straight to a read-only layout would read discarded contents.
+TEST_F(FrameGraphTest, AnImageReadBeforeAnyWriteReachesItsLayoutThroughGeneral) {
+  const vk::Image a = image("a");
+  const std::vector<ImageUse> read{{&a, use::kSampled}};
+  BarrierTracker tracker;
+  const std::vector<Transition> first = tracker.begin({&read}, kBefore);
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_EQ(first[0].new_layout, VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_EQ(first[0].dst.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  const std::vector<Transition> t = tracker.use(read);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].old_layout, VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_EQ(t[0].new_layout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  EXPECT_EQ(t[0].src.stages, first[0].dst.stages);  // chained after the first transition
+  EXPECT_TRUE(tracker.use(read).empty());
+}
+
+// A second kind of reader after a change of layout: the write is already available, so
+// the barrier chains after the first reader and names no source access (the writer's
+// attachment write would not match the read-only layout).
+TEST_F(FrameGraphTest, ASecondKindOfReaderChainsAfterTheFirstWithoutTheWritersAccess) {
+  const vk::Image depth(ctx(), vk::ImageDesc{4, 4, VK_FORMAT_D32_SFLOAT,
+                                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
+                                                 VK_IMAGE_USAGE_SAMPLED_BIT,
+                                             "depth"});
+  const std::vector<ImageUse> write{{&depth, use::kDepthAttachment}};
+  const std::vector<ImageUse> test{{&depth, use::kDepthTest}};
+  const std::vector<ImageUse> sample{{&depth, use::kSampledDepth}};
+  BarrierTracker tracker;
+  tracker.begin({&write}, kBefore);
+  tracker.use(write);
+  const std::vector<Transition> to_test = tracker.use(test);
+  ASSERT_EQ(to_test.size(), 1u);
+  EXPECT_EQ(to_test[0].src.access, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+  const std::vector<Transition> to_sample = tracker.use(sample);
+  ASSERT_EQ(to_sample.size(), 1u);
+  EXPECT_EQ(to_sample[0].old_layout, to_sample[0].new_layout);
+  EXPECT_EQ(to_sample[0].src.access, VK_ACCESS_2_NONE);
+  EXPECT_EQ(to_sample[0].src.stages, use::kFragmentTests);  // the writer's and the test's
+  EXPECT_EQ(to_sample[0].dst.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
 TEST_F(FrameGraphTest, AStepThatUsesAnImageInTwoLayoutsIsRefused) {
