@@ -369,6 +369,40 @@ bool MaterialEditor::set_layers(std::size_t edit, const profiles::LayerStack& st
   return apply(edit);
 }
 
+bool MaterialEditor::set_layer_preset(std::size_t edit, std::size_t at, int preset) {
+  MaterialEdit& e = edits_.at(edit);
+  const auto all = profiles::presets();
+  if (at >= e.layers.size()) {
+    e.error = "layer preset: no layer " + std::to_string(at);
+    return false;
+  }
+  const std::string field = "layers[" + std::to_string(at) + "].preset";
+  if (preset < 0 || preset >= static_cast<int>(all.size())) {
+    e.error = field + ": no preset " + std::to_string(preset);
+    return false;
+  }
+  const profiles::Preset& p = all[static_cast<std::size_t>(preset)];
+  const profiles::Medium m = profiles::preset_medium(p);
+  for (int c = 0; c < 3; ++c)
+    if (static_cast<float>(m.eta[c]) != e.eta[c]) {
+      e.error = field + ": preset " + std::string(p.name) + " has eta " + message_number(m.eta[c]) +
+                " but the stack's is " + message_number(e.eta[c]) +
+                ": every layer of a stack has the same eta (set \"eta (all)\" first)";
+      return false;
+    }
+  const LayerEdit before = e.layers[at];
+  LayerEdit& l = e.layers[at];
+  for (int c = 0; c < 3; ++c) {
+    l.sigma_a[c] = static_cast<float>(m.sigma_a[c]);
+    l.sigma_s[c] = static_cast<float>(m.sigma_s[c]);
+    l.g[c] = static_cast<float>(m.g[c]);
+  }
+  l.preset = preset;
+  if (apply(edit)) return true;
+  e.layers[at] = before;  // apply() set the error and submitted nothing
+  return false;
+}
+
 bool MaterialEditor::select_preset(std::size_t edit, int preset) {
   MaterialEdit& e = edits_.at(edit);
   const auto all = profiles::presets();

@@ -29,10 +29,12 @@ enum class SourceKind { Preset, Coefficients, Artist, OpenPbr };
 // One layer of a stack as the editor shows it (issue 19): σa, σs, g per channel R, G, B in
 // mm^-1, and the thickness in mm (0: semi-infinite, the last layer only). The stack's η is
 // MaterialEdit::eta, for every layer: the interfaces between layers are index-matched
-// (profiles/Layered.h).
+// (profiles/Layered.h). `preset` indexes profiles::presets() while the layer's coefficients
+// are that preset's (chosen in its row); -1 once they are typed, or read from a file.
 struct LayerEdit {
   std::array<float, 3> sigma_a{}, sigma_s{}, g{};
   float thickness_mm = 0.0f;
+  int preset = -1;
 };
 
 struct MaterialEdit {
@@ -137,6 +139,12 @@ class MaterialEditor {
   bool remove_layer(std::size_t edit, std::size_t at);
   bool move_layer(std::size_t edit, std::size_t at, int by);
   bool set_layers(std::size_t edit, const profiles::LayerStack& stack);
+  // Gives layer `at` a preset's coefficients (σa, σs, g; the JSON's {preset, thickness_mm}
+  // entry), keeping its thickness. Refused, with the layer as it was, when the preset's η
+  // is not the stack's (the interfaces are index-matched), or when the stack it makes is
+  // not valid (spectralon absorbs nothing; a layer thinner than the preset's 1/σt'): the
+  // error names layers[at] and the field.
+  bool set_layer_preset(std::size_t edit, std::size_t at, int preset);
 
   // After the widgets changed the edit's fields (coefficients, artist values, gaussians,
   // scale, albedo): checks and queues a refit. Editing a coefficient of a preset makes

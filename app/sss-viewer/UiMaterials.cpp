@@ -179,8 +179,9 @@ bool ViewerUi::draw_layers(MaterialEdit& e, std::size_t i) {
   const ImGuiInputTextFlags typed = ImGuiInputTextFlags_CharsScientific;
   bool apply = false;
   // A button's change to the stack waits until the rows are drawn (the loop walks it).
-  enum class Op { None, Split, Remove, Up, Down } op = Op::None;
+  enum class Op { None, Split, Remove, Up, Down, Preset } op = Op::None;
   std::size_t at = 0;
+  int chosen = -1;  // Op::Preset's preset
   for (std::size_t k = 0; k < e.layers.size(); ++k) {
     LayerEdit& l = e.layers[k];
     ImGui::PushID(int(k));
@@ -200,12 +201,21 @@ bool ViewerUi::draw_layers(MaterialEdit& e, std::size_t i) {
     ImGui::EndDisabled();
     ImGui::SameLine();
     if (ImGui::SmallButton("remove")) op = Op::Remove, at = k;
+    if (ImGui::BeginCombo("preset", preset_label(l.preset).c_str())) {
+      for (int p = 0; p < int(profiles::presets().size()); ++p)
+        if (ImGui::Selectable(preset_label(p).c_str(), p == l.preset)) op = Op::Preset, at = k, chosen = p;
+      ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("this layer's sigma_a, sigma_s and g from a preset; its thickness stays");
+    bool typed_edit = false;  // a typed coefficient makes the layer (custom)
     ImGui::InputFloat3("sigma_a 1/mm", l.sigma_a.data(), "%.4g", typed);
-    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    typed_edit |= ImGui::IsItemDeactivatedAfterEdit();
     ImGui::InputFloat3("sigma_s 1/mm", l.sigma_s.data(), "%.4g", typed);
-    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    typed_edit |= ImGui::IsItemDeactivatedAfterEdit();
     ImGui::InputFloat3("g", l.g.data(), "%.3g", typed);
-    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    typed_edit |= ImGui::IsItemDeactivatedAfterEdit();
+    if (typed_edit) l.preset = -1;
+    apply |= typed_edit;
     ImGui::InputFloat("thickness mm", &l.thickness_mm, 0.0f, 0.0f, "%.3g", typed);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("mm; 0: semi-infinite (the last layer only); a layer must be thicker "
@@ -222,6 +232,7 @@ bool ViewerUi::draw_layers(MaterialEdit& e, std::size_t i) {
     case Op::Remove: editor_.remove_layer(i, at); return false;
     case Op::Up: editor_.move_layer(i, at, -1); return false;
     case Op::Down: editor_.move_layer(i, at, +1); return false;
+    case Op::Preset: editor_.set_layer_preset(i, at, chosen); return false;
     case Op::None: break;
   }
   return apply;

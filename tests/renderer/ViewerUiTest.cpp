@@ -674,6 +674,54 @@ TEST(LayerEditor, AStackFromTheSceneBecomesOneMediumUnderTheDefaultModel) {
   EXPECT_EQ(thin.edit().kind, SourceKind::Coefficients);
 }
 
+// A layer's preset (its row's combo) gives it the coefficients the file format's
+// {"preset", "thickness_mm"} entry gives: the stack the editor builds is the one the JSON
+// parser builds from the same entries, to the fields' float rounding (2^-24 relative, so
+// 1e-6 of the value). Its thickness and the other layers stay. A preset that cannot be a
+// layer (spectralon absorbs nothing) or whose eta is not the stack's (marble) is refused naming
+// the layer, the layer stays as it was, and nothing is submitted.
+TEST(LayerEditor, ALayerTakesAPresetAndKeepsItsThickness) {
+  LayerEditorFixture f;  // skin1, eta 1.3 as every preset
+  ASSERT_TRUE(f.ed->add_layer(0, 0)) << f.edit().error;  // skin1 over skin1
+  const float top = f.edit().layers[0].thickness_mm;
+  ASSERT_TRUE(f.ed->set_layer_preset(0, 1, preset("skin2"))) << f.edit().error;
+  EXPECT_EQ(f.edit().layers[1].preset, preset("skin2"));
+  const scene::SssMaterial built = f.resolved();
+  ASSERT_EQ(built.layers.size(), 2u);
+  const std::string text = R"({"layers": [{"preset": "skin1", "thickness_mm": )" + std::to_string(top) +
+                           R"(}, {"preset": "skin2"}]})";
+  const auto parsed = scene::parse_sss_extras_text(text);
+  ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(parsed)) << text;
+  const scene::SssMaterial& file = std::get<scene::SssMaterial>(parsed);
+  ASSERT_EQ(file.layers.size(), 2u);
+  EXPECT_NEAR(built.layers[0].thickness_mm, file.layers[0].thickness_mm, 1e-6 * top);
+  for (std::size_t k = 0; k < 2; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(built.layers[k].sigma_a[c], file.layers[k].sigma_a[c], 1e-6 * file.layers[k].sigma_a[c]) << k;
+      EXPECT_NEAR(built.layers[k].sigma_s[c], file.layers[k].sigma_s[c], 1e-6 * file.layers[k].sigma_s[c]) << k;
+      EXPECT_EQ(built.layers[k].g[c], file.layers[k].g[c]) << k;
+    }
+  }
+  EXPECT_FALSE(built.layers[1].is_slab());  // the base stays semi-infinite
+
+  const int computed = [&] { std::lock_guard l(f.mutex); return f.computed; }();
+  const app::LayerEdit before = f.edit().layers[0];
+  EXPECT_FALSE(f.ed->set_layer_preset(0, 0, preset("spectralon")));
+  EXPECT_NE(f.edit().error.find("layers[0].sigma_a"), std::string::npos) << f.edit().error;
+  EXPECT_EQ(f.edit().layers[0].sigma_a, before.sigma_a);
+  EXPECT_EQ(f.edit().layers[0].preset, before.preset);
+  EXPECT_FALSE(f.ed->set_layer_preset(0, 0, preset("marble")));  // measured at eta 1.5
+  EXPECT_NE(f.edit().error.find("layers[0].preset: preset marble has eta 1.5 but the stack's is 1.3"),
+            std::string::npos) << f.edit().error;
+  EXPECT_EQ(f.edit().layers[0].sigma_s, before.sigma_s);
+  EXPECT_FALSE(f.ed->set_layer_preset(0, 2, preset("skin2")));
+  EXPECT_NE(f.edit().error.find("no layer 2"), std::string::npos) << f.edit().error;
+  EXPECT_FALSE(f.ed->set_layer_preset(0, 0, 99));
+  EXPECT_NE(f.edit().error.find("layers[0].preset: no preset 99"), std::string::npos) << f.edit().error;
+  ASSERT_TRUE(f.ed->wait_idle(120s));
+  EXPECT_EQ(f.computed, computed);  // none of the refused choices reached the worker
+}
+
 // The panel draws a stack's rows (ImGui checks its ID and disabled stacks in debug
 // builds; here: it draws, stays within the window's budget, and its scripted edit
 // layers=FILE.json reaches the renderer).
