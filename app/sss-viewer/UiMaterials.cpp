@@ -163,7 +163,7 @@ void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {
         ImGui::SetTooltip("%s", e.enabled
             ? "off: an opaque PBR surface; the fields stay for the next switch on"
             : "scatter light under this surface: skin1 at scale 1 to start, as "
-              "--sss-material NAME=skin1 (texture-space mode needs the material at load)");
+              "--sss-material NAME=skin1 (texture space builds the mesh's UV atlas if it needs one)");
       if (e.enabled)
         draw_material(e, i);
       else if (!e.error.empty())
@@ -174,66 +174,79 @@ void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {
   }
 }
 
+namespace {
+
+// What a layer row's button or menu asks for; done after the rows are drawn (the loop
+// walks the stack it would change).
+struct LayerOp {
+  enum class Kind { None, Split, Remove, Up, Down, Preset } kind = Kind::None;
+  std::size_t at = 0;
+  int preset = -1;  // Kind::Preset's
+};
+
+// Layer k's row: its buttons, preset menu, coefficients and thickness. True when a typed
+// field's edit ended (a typed coefficient also makes the layer "(custom)").
+bool draw_layer_row(LayerEdit& l, std::size_t k, bool last, LayerOp& op) {
+  using Kind = LayerOp::Kind;
+  const ImGuiInputTextFlags typed = ImGuiInputTextFlags_CharsScientific;
+  ImGui::Separator();
+  ImGui::Text("layer %zu%s", k, last && l.thickness_mm == 0.0f ? " (semi-infinite)" : "");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("split")) op = {Kind::Split, k};
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("two identical layers in its place (the look stays)");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(k == 0);
+  if (ImGui::SmallButton("up")) op = {Kind::Up, k};
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(last);
+  if (ImGui::SmallButton("down")) op = {Kind::Down, k};
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::SmallButton("remove")) op = {Kind::Remove, k};
+  if (ImGui::BeginCombo("preset", preset_label(l.preset).c_str())) {
+    for (int p = 0; p < int(profiles::presets().size()); ++p)
+      if (ImGui::Selectable(preset_label(p).c_str(), p == l.preset)) op = {Kind::Preset, k, p};
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("this layer's sigma_a, sigma_s and g from a preset; its thickness stays");
+  bool typed_edit = false;
+  ImGui::InputFloat3("sigma_a 1/mm", l.sigma_a.data(), "%.4g", typed);
+  typed_edit |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::InputFloat3("sigma_s 1/mm", l.sigma_s.data(), "%.4g", typed);
+  typed_edit |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::InputFloat3("g", l.g.data(), "%.3g", typed);
+  typed_edit |= ImGui::IsItemDeactivatedAfterEdit();
+  if (typed_edit) l.preset = -1;
+  ImGui::InputFloat("thickness mm", &l.thickness_mm, 0.0f, 0.0f, "%.3g", typed);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("mm; 0: semi-infinite (the last layer only); a layer must be thicker "
+                      "than its 1/sigma_t'");
+  return typed_edit || ImGui::IsItemDeactivatedAfterEdit();
+}
+
+}  // namespace
+
 bool ViewerUi::draw_layers(MaterialEdit& e, std::size_t i) {
   ImGui::TextDisabled("model layered, %zu layers, top first", e.layers.size());
-  const ImGuiInputTextFlags typed = ImGuiInputTextFlags_CharsScientific;
   bool apply = false;
-  // A button's change to the stack waits until the rows are drawn (the loop walks it).
-  enum class Op { None, Split, Remove, Up, Down, Preset } op = Op::None;
-  std::size_t at = 0;
-  int chosen = -1;  // Op::Preset's preset
+  LayerOp op;
   for (std::size_t k = 0; k < e.layers.size(); ++k) {
-    LayerEdit& l = e.layers[k];
     ImGui::PushID(int(k));
-    const bool last = k + 1 == e.layers.size();
-    ImGui::Separator();
-    ImGui::Text("layer %zu%s", k, last && l.thickness_mm == 0.0f ? " (semi-infinite)" : "");
-    ImGui::SameLine();
-    if (ImGui::SmallButton("split")) op = Op::Split, at = k;
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("two identical layers in its place (the look stays)");
-    ImGui::SameLine();
-    ImGui::BeginDisabled(k == 0);
-    if (ImGui::SmallButton("up")) op = Op::Up, at = k;
-    ImGui::EndDisabled();
-    ImGui::SameLine();
-    ImGui::BeginDisabled(last);
-    if (ImGui::SmallButton("down")) op = Op::Down, at = k;
-    ImGui::EndDisabled();
-    ImGui::SameLine();
-    if (ImGui::SmallButton("remove")) op = Op::Remove, at = k;
-    if (ImGui::BeginCombo("preset", preset_label(l.preset).c_str())) {
-      for (int p = 0; p < int(profiles::presets().size()); ++p)
-        if (ImGui::Selectable(preset_label(p).c_str(), p == l.preset)) op = Op::Preset, at = k, chosen = p;
-      ImGui::EndCombo();
-    }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("this layer's sigma_a, sigma_s and g from a preset; its thickness stays");
-    bool typed_edit = false;  // a typed coefficient makes the layer (custom)
-    ImGui::InputFloat3("sigma_a 1/mm", l.sigma_a.data(), "%.4g", typed);
-    typed_edit |= ImGui::IsItemDeactivatedAfterEdit();
-    ImGui::InputFloat3("sigma_s 1/mm", l.sigma_s.data(), "%.4g", typed);
-    typed_edit |= ImGui::IsItemDeactivatedAfterEdit();
-    ImGui::InputFloat3("g", l.g.data(), "%.3g", typed);
-    typed_edit |= ImGui::IsItemDeactivatedAfterEdit();
-    if (typed_edit) l.preset = -1;
-    apply |= typed_edit;
-    ImGui::InputFloat("thickness mm", &l.thickness_mm, 0.0f, 0.0f, "%.3g", typed);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("mm; 0: semi-infinite (the last layer only); a layer must be thicker "
-                        "than its 1/sigma_t'");
-    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    apply |= draw_layer_row(e.layers[k], k, k + 1 == e.layers.size(), op);
     ImGui::PopID();
   }
   ImGui::Separator();
-  ImGui::InputFloat3("eta (all)", e.eta.data(), "%.3g", typed);
+  ImGui::InputFloat3("eta (all)", e.eta.data(), "%.3g", ImGuiInputTextFlags_CharsScientific);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("every layer's: the interfaces are index-matched");
   apply |= ImGui::IsItemDeactivatedAfterEdit();
-  switch (op) {  // each applies the stack itself
-    case Op::Split: editor_.add_layer(i, at); return false;
-    case Op::Remove: editor_.remove_layer(i, at); return false;
-    case Op::Up: editor_.move_layer(i, at, -1); return false;
-    case Op::Down: editor_.move_layer(i, at, +1); return false;
-    case Op::Preset: editor_.set_layer_preset(i, at, chosen); return false;
-    case Op::None: break;
+  switch (op.kind) {  // each applies the stack itself
+    case LayerOp::Kind::Split: editor_.add_layer(i, op.at); return false;
+    case LayerOp::Kind::Remove: editor_.remove_layer(i, op.at); return false;
+    case LayerOp::Kind::Up: editor_.move_layer(i, op.at, -1); return false;
+    case LayerOp::Kind::Down: editor_.move_layer(i, op.at, +1); return false;
+    case LayerOp::Kind::Preset: editor_.set_layer_preset(i, op.at, op.preset); return false;
+    case LayerOp::Kind::None: break;
   }
   return apply;
 }
