@@ -129,7 +129,10 @@ nlohmann::ordered_json to_json(const Report& r) {
   };
 }
 
-std::string to_table(const Report& r) {
+namespace {
+
+// The inputs' lines and what was compared.
+std::string table_header(const Report& r) {
   const image::Metrics& m = r.metrics;
   std::string out;
   for (const auto* in : {&r.a, &r.b}) {
@@ -143,7 +146,13 @@ std::string to_table(const Report& r) {
                 m.compared_pixels, m.total_pixels, m.total_pixels - m.compared_pixels - silhouette,
                 r.silhouette_pixels ? format(", %zu at a silhouette", silhouette).c_str() : "",
                 image::encoding_name(r.space), g(m.peak).c_str());
+  return out;
+}
 
+// One row per metric, with its limit and verdict where one was checked.
+std::string table_metrics(const Report& r) {
+  const image::Metrics& m = r.metrics;
+  std::string out;
   auto row = [&](const std::string& label, const std::string& value, const std::string& note,
                  const char* metric) {
     std::string limit;
@@ -171,6 +180,12 @@ std::string to_table(const Report& r) {
   row("SSIM", g(m.ssim), "", "ssim");
   row("summed A / B", format("%.4f %.4f %.4f", m.sum_ratio[0], m.sum_ratio[1], m.sum_ratio[2]),
       "R G B: the bias", nullptr);
+  return out;
+}
+
+// The heat map's and the log-ratio map's lines, where they were written.
+std::string table_maps(const Report& r) {
+  std::string out;
   if (r.heatmap) {
     const char* why = r.heatmap_scale == "p99"    ? ", the 99th percentile"
                       : r.heatmap_scale == "max"  ? ", the largest error"
@@ -193,6 +208,13 @@ std::string to_table(const Report& r) {
                   g(s.mean_log2).c_str(), g(s.mean_abs_log2).c_str(), g(100.0 * s.tolerance).c_str(),
                   g(s.fraction_brighter).c_str(), g(s.fraction_darker).c_str());
   }
+  return out;
+}
+
+}  // namespace
+
+std::string to_table(const Report& r) {
+  std::string out = table_header(r) + table_metrics(r) + table_maps(r);
   std::string failed;
   for (const Check& c : r.checks)
     if (!c.pass)
