@@ -253,28 +253,49 @@ class Schema {
     }
   }
 
-  void check_root() {
+  // The root's own fields: asset, scene, extensionsUsed and extensionsRequired, extensions.
+  bool check_top_level() {
     const json* asset = object(root_, "", "asset", true);
-    if (!asset) return;
+    if (!asset) return false;
     if (!string(*asset, "asset", "version", true) || !string(*asset, "asset", "minVersion") ||
         !string(*asset, "asset", "generator") || !string(*asset, "asset", "copyright"))
-      return;
-    if (!index(root_, "", "scene", "scenes")) return;
+      return false;
+    if (!index(root_, "", "scene", "scenes")) return false;
     for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
       const json* v = member(root_, "", key);
       if (!v) continue;
       if (!v->is_array()) {
         fail(key, "", "must be an array of strings");
-        return;
+        return false;
       }
       for (std::size_t k = 0; k < v->size(); ++k)
         if (!(*v)[k].is_string()) {
           fail(key, "[" + std::to_string(k) + "]", "must be a string");
-          return;
+          return false;
         }
     }
-    if (!extensions(root_, "")) return;
+    return extensions(root_, "");
+  }
 
+  void buffer_view(const json& v, const std::string& n) {
+    if (!index(v, n, "buffer", "buffers", true) || !size(v, n, "byteOffset") ||
+        !size(v, n, "byteLength", true, 1) || !integer(v, n, "byteStride", 4, 252) ||
+        !one_of(v, n, "target", {34962, 34963}))
+      return;
+    // EXT_meshopt_compression's README, "JSON schema updates"; the rules that tie
+    // these fields together are checked in GltfJson.cpp.
+    if (const json* e = find_extension(v, "EXT_meshopt_compression")) {
+      const std::string en = n + ".extensions.EXT_meshopt_compression";
+      index(*e, en, "buffer", "buffers", true) && size(*e, en, "byteOffset") &&
+          size(*e, en, "byteLength", true, 1) && integer(*e, en, "byteStride", 1, 256, true) &&
+          size(*e, en, "count", true, 1) &&
+          one_of(*e, en, "mode", {"ATTRIBUTES", "TRIANGLES", "INDICES"}, true) &&
+          one_of(*e, en, "filter", {"NONE", "OCTAHEDRAL", "QUATERNION", "EXPONENTIAL"});
+    }
+  }
+
+  void check_root() {
+    if (!check_top_level()) return;
     each("accessors", [&](const json& a, const std::string& n) { accessor(a, n); });
     each("animations", [&](const json& a, const std::string& n) { animation(a, n); });
     each("buffers", [&](const json& b, const std::string& n) {
@@ -282,22 +303,7 @@ class Schema {
       if (const json* e = find_extension(b, "EXT_meshopt_compression"))
         boolean(*e, n + ".extensions.EXT_meshopt_compression", "fallback");
     });
-    each("bufferViews", [&](const json& v, const std::string& n) {
-      if (!index(v, n, "buffer", "buffers", true) || !size(v, n, "byteOffset") ||
-          !size(v, n, "byteLength", true, 1) || !integer(v, n, "byteStride", 4, 252) ||
-          !one_of(v, n, "target", {34962, 34963}))
-        return;
-      // EXT_meshopt_compression's README, "JSON schema updates"; the rules that tie
-      // these fields together are checked in GltfJson.cpp.
-      if (const json* e = find_extension(v, "EXT_meshopt_compression")) {
-        const std::string en = n + ".extensions.EXT_meshopt_compression";
-        index(*e, en, "buffer", "buffers", true) && size(*e, en, "byteOffset") &&
-            size(*e, en, "byteLength", true, 1) && integer(*e, en, "byteStride", 1, 256, true) &&
-            size(*e, en, "count", true, 1) &&
-            one_of(*e, en, "mode", {"ATTRIBUTES", "TRIANGLES", "INDICES"}, true) &&
-            one_of(*e, en, "filter", {"NONE", "OCTAHEDRAL", "QUATERNION", "EXPONENTIAL"});
-      }
-    });
+    each("bufferViews", [&](const json& v, const std::string& n) { buffer_view(v, n); });
     each("cameras", [&](const json& c, const std::string& n) { camera(c, n); });
     each("images", [&](const json& im, const std::string& n) {
       string(im, n, "uri") && index(im, n, "bufferView", "bufferViews") &&
