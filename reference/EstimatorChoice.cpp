@@ -27,25 +27,39 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
-}  // namespace
+// The pixel's footprint in mm at its hit point p (normal n): the square root of the area
+// spanned by where the rays of the next pixels right and below meet the tangent plane at
+// p (the camera's rays are defined past the image's last column and row too); nullopt
+// where one runs along the plane.
+std::optional<double> surface_footprint(const CameraRays& camera, std::uint32_t x, std::uint32_t y,
+                                        const glm::dvec3& p, const glm::dvec3& n) {
+  auto step = [&](std::uint32_t nx, std::uint32_t ny) -> std::optional<glm::dvec3> {
+    const CameraRays::Ray r = camera.pixel(nx, ny);
+    const double along = glm::dot(glm::dvec3(r.direction), n);
+    if (std::abs(along) < 1e-9) return std::nullopt;
+    const double t = glm::dot(p - glm::dvec3(r.origin), n) / along;
+    return glm::dvec3(r.origin) + t * glm::dvec3(r.direction) - p;
+  };
+  const auto dx = step(x + 1, y), dy = step(x, y + 1);
+  if (!dx || !dy) return std::nullopt;
+  const double footprint = std::sqrt(glm::length(glm::cross(*dx, *dy)));
+  if (!std::isfinite(footprint)) return std::nullopt;
+  return footprint;
+}
 
-EstimatorChoice choose_estimator(const scene::Scene& s, const ReferenceOptions& o) {
-  ReferenceOptions checked = o;
-  checked.estimator = Estimator::Octree;
-  checked.spp = 0;
-  checked.target_error = 0.0;
-  checked.tile = {};
-  detail::check_options(checked);
-  detail::check_scene(s);
-  EstimatorChoice choice;
+// Over at most ~4096 pixels on a regular grid, those that see a scattering surface: the
+// footprint, its material's point spacing (mm), and their ratio.
+struct FootprintSamples {
+  std::vector<double> ratios, footprints, spacings;
+};
+
+FootprintSamples sample_footprints(const scene::Scene& s, const ReferenceOptions& o,
+                                   const std::vector<double>& spacing_of) {
   const RayScene rays(s, o.threads);
   const CameraRays camera(s.cameras[0], o.width, o.height, s.mm_per_unit);
-  std::vector<double> spacing_of(s.materials.size(), 0.0);
-  for (std::size_t m = 0; m < s.materials.size(); ++m)
-    if (s.materials[m].sss.enabled) spacing_of[m] = o.spacing_mfp * detail::smallest_mfp(s.materials[m].sss.effective_medium());
   const std::uint32_t stride = std::max<std::uint32_t>(
       1, std::uint32_t(std::ceil(std::sqrt(double(o.width) * double(o.height) / 4096.0))));
-  std::vector<double> ratios, footprints, spacings;
+  FootprintSamples out;
   for (std::uint32_t y = stride / 2; y < o.height; y += stride)
     for (std::uint32_t x = stride / 2; x < o.width; x += stride) {
       const CameraRays::Ray ray = camera.pixel(x, y);
@@ -55,30 +69,18 @@ EstimatorChoice choose_estimator(const scene::Scene& s, const ReferenceOptions& 
       if (!(spacing_of[material] > 0.0)) continue;
       const glm::dvec3 n = face_normal(s, rays, hit->instance, hit->triangle);
       const glm::dvec3 p = glm::dvec3(ray.origin) + double(hit->t) * glm::dvec3(ray.direction);
-      // Where the next pixel's ray meets the tangent plane at p: the pixel's step on the
-      // surface (the camera's rays are defined past the image's last column and row too).
-      auto step = [&](std::uint32_t nx, std::uint32_t ny) -> std::optional<glm::dvec3> {
-        const CameraRays::Ray r = camera.pixel(nx, ny);
-        const double along = glm::dot(glm::dvec3(r.direction), n);
-        if (std::abs(along) < 1e-9) return std::nullopt;
-        const double t = glm::dot(p - glm::dvec3(r.origin), n) / along;
-        return glm::dvec3(r.origin) + t * glm::dvec3(r.direction) - p;
-      };
-      const auto dx = step(x + 1, y), dy = step(x, y + 1);
-      if (!dx || !dy) continue;
-      const double footprint = std::sqrt(glm::length(glm::cross(*dx, *dy)));
-      if (!std::isfinite(footprint)) continue;
-      ratios.push_back(footprint / spacing_of[material]);
-      footprints.push_back(footprint);
-      spacings.push_back(spacing_of[material]);
+      const std::optional<double> footprint = surface_footprint(camera, x, y, p, n);
+      if (!footprint) continue;
+      out.ratios.push_back(*footprint / spacing_of[material]);
+      out.footprints.push_back(*footprint);
+      out.spacings.push_back(spacing_of[material]);
     }
-  choice.pixels = ratios.size();
-  choice.ratio = median(ratios);
-  choice.footprint_mm = median(footprints);
-  choice.spacing_mm = median(spacings);
-  choice.spacing_mfp = o.spacing_mfp;
-  if (!ratios.empty() && choice.ratio < 1.0) choice.spacing_mfp = o.spacing_mfp * choice.ratio;
-  // The points that spacing plans over every SSS surface (as make_groups plans them).
+  return out;
+}
+
+// Per material, the area of its scattering surfaces in mm^2 (what make_groups plans points
+// over); 0 for one that does not scatter.
+std::vector<double> scattering_area(const scene::Scene& s, const std::vector<double>& spacing_of) {
   std::vector<double> area(s.materials.size(), 0.0);
   for (const scene::Instance& inst : s.instances) {
     const scene::Mesh& mesh = s.meshes[inst.mesh];
@@ -91,6 +93,33 @@ EstimatorChoice choose_estimator(const scene::Scene& s, const ReferenceOptions& 
       area[mesh.material] += 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
     }
   }
+  return area;
+}
+
+}  // namespace
+
+EstimatorChoice choose_estimator(const scene::Scene& s, const ReferenceOptions& o) {
+  ReferenceOptions checked = o;
+  checked.estimator = Estimator::Octree;
+  checked.spp = 0;
+  checked.target_error = 0.0;
+  checked.tile = {};
+  detail::check_options(checked);
+  detail::check_scene(s);
+  EstimatorChoice choice;
+  std::vector<double> spacing_of(s.materials.size(), 0.0);
+  for (std::size_t m = 0; m < s.materials.size(); ++m)
+    if (s.materials[m].sss.enabled) spacing_of[m] = o.spacing_mfp * detail::smallest_mfp(s.materials[m].sss.effective_medium());
+  const FootprintSamples samples = sample_footprints(s, o, spacing_of);
+  const std::vector<double>& ratios = samples.ratios;
+  choice.pixels = ratios.size();
+  choice.ratio = median(ratios);
+  choice.footprint_mm = median(samples.footprints);
+  choice.spacing_mm = median(samples.spacings);
+  choice.spacing_mfp = o.spacing_mfp;
+  if (!ratios.empty() && choice.ratio < 1.0) choice.spacing_mfp = o.spacing_mfp * choice.ratio;
+  // The points that spacing plans over every SSS surface (as make_groups plans them).
+  const std::vector<double> area = scattering_area(s, spacing_of);
   for (std::size_t m = 0; m < s.materials.size(); ++m)
     if (spacing_of[m] > 0.0) {
       const double spacing_mm = spacing_of[m] * choice.spacing_mfp / o.spacing_mfp;
