@@ -66,48 +66,48 @@ void note_textures(const json& o, const char* ext, std::initializer_list<const c
     if (o.contains(k)) ignored.push_back(field(ext, k));
 }
 
-}  // namespace
+using MaybeError = std::optional<FieldError>;
 
-std::variant<KhrMedium, FieldError> parse_khr_medium(const json& extensions) {
-  KhrMedium k;
-  if (!extensions.is_object()) return k;
-  if (extensions.contains(kVolume)) {
-    const json& v = extensions[kVolume];
-    k.volume = true;
-    if (v.contains("thicknessFactor"))
-      if (auto e = read_number(v, kVolume, "thicknessFactor", 0.0, HUGE_VAL, false, true, k.thickness_factor)) return *e;
-    if (v.contains("attenuationDistance"))
-      if (auto e = read_number(v, kVolume, "attenuationDistance", 0.0, HUGE_VAL, true, true, k.attenuation_distance))
-        return *e;
-    if (v.contains("attenuationColor"))
-      if (auto e = read_colour(v, kVolume, "attenuationColor", true, k.attenuation_color)) return *e;
-    note_textures(v, kVolume, {"thicknessTexture"}, k.ignored);
+// KHR_materials_volume's thickness and attenuation.
+MaybeError read_volume(const json& v, KhrMedium& k) {
+  k.volume = true;
+  if (v.contains("thicknessFactor"))
+    if (auto e = read_number(v, kVolume, "thicknessFactor", 0.0, HUGE_VAL, false, true, k.thickness_factor)) return e;
+  if (v.contains("attenuationDistance"))
+    if (auto e = read_number(v, kVolume, "attenuationDistance", 0.0, HUGE_VAL, true, true, k.attenuation_distance))
+      return e;
+  if (v.contains("attenuationColor"))
+    if (auto e = read_colour(v, kVolume, "attenuationColor", true, k.attenuation_color)) return e;
+  note_textures(v, kVolume, {"thicknessTexture"}, k.ignored);
+  return std::nullopt;
+}
+
+// The scatter draft `ext` (KHR_materials_scatter or the older volume_scatter), s its block.
+MaybeError read_scatter(const json& s, const char* ext, KhrMedium& k) {
+  const bool newer = ext == std::string_view(kScatter);
+  k.scatter = newer ? KhrMedium::Scatter::Scatter : KhrMedium::Scatter::VolumeScatter;
+  k.multiscatter = newer ? Rgb{1.0, 1.0, 1.0} : Rgb{0.0, 0.0, 0.0};
+  if (const char* key = first_of(s, {"multiscatterColorFactor", "multiscatterColor", "scatterAlbedo"}))
+    if (auto e = read_colour(s, ext, key, false, k.multiscatter)) return e;
+  if (s.contains("scatterAnisotropy"))
+    if (auto e = read_number(s, ext, "scatterAnisotropy", -1.0, 1.0, true, true, k.anisotropy)) return e;
+  if (newer) {
+    k.strength = 0.0;
+    if (const char* key = first_of(s, {"scatterStrengthFactor", "scatterFactor", "scatterWeight"}))
+      if (auto e = read_number(s, ext, key, 0.0, 1.0, false, false, k.strength)) return e;
+    note_textures(s, ext, {"scatterStrengthTexture"}, k.ignored);
   }
-  // The newer draft wins where a file carries both.
-  const char* ext = extensions.contains(kScatter) ? kScatter : extensions.contains(kVolumeScatter) ? kVolumeScatter : nullptr;
-  if (ext != nullptr) {
-    if (extensions.contains(kScatter) && extensions.contains(kVolumeScatter)) k.ignored.push_back(kVolumeScatter);
-    const json& s = extensions[ext];
-    const bool newer = ext == std::string_view(kScatter);
-    k.scatter = newer ? KhrMedium::Scatter::Scatter : KhrMedium::Scatter::VolumeScatter;
-    k.multiscatter = newer ? Rgb{1.0, 1.0, 1.0} : Rgb{0.0, 0.0, 0.0};
-    if (const char* key = first_of(s, {"multiscatterColorFactor", "multiscatterColor", "scatterAlbedo"}))
-      if (auto e = read_colour(s, ext, key, false, k.multiscatter)) return *e;
-    if (s.contains("scatterAnisotropy"))
-      if (auto e = read_number(s, ext, "scatterAnisotropy", -1.0, 1.0, true, true, k.anisotropy)) return *e;
-    if (newer) {
-      k.strength = 0.0;
-      if (const char* key = first_of(s, {"scatterStrengthFactor", "scatterFactor", "scatterWeight"}))
-        if (auto e = read_number(s, ext, key, 0.0, 1.0, false, false, k.strength)) return *e;
-      note_textures(s, ext, {"scatterStrengthTexture"}, k.ignored);
-    }
-    note_textures(s, ext, {"multiscatterColorTexture"}, k.ignored);
-  }
+  note_textures(s, ext, {"multiscatterColorTexture"}, k.ignored);
+  return std::nullopt;
+}
+
+// KHR_materials_transmission and KHR_materials_diffuse_transmission, where present.
+MaybeError read_transmissions(const json& extensions, KhrMedium& k) {
   if (extensions.contains(kTransmission)) {
     const json& t = extensions[kTransmission];
     double f = 0.0;
     if (t.contains("transmissionFactor"))
-      if (auto e = read_number(t, kTransmission, "transmissionFactor", 0.0, 1.0, false, false, f)) return *e;
+      if (auto e = read_number(t, kTransmission, "transmissionFactor", 0.0, 1.0, false, false, f)) return e;
     k.transmission = f;
     note_textures(t, kTransmission, {"transmissionTexture"}, k.ignored);
   }
@@ -116,28 +116,46 @@ std::variant<KhrMedium, FieldError> parse_khr_medium(const json& extensions) {
     double f = 0.0;
     if (t.contains("diffuseTransmissionFactor"))
       if (auto e = read_number(t, kDiffuseTransmission, "diffuseTransmissionFactor", 0.0, 1.0, false, false, f))
-        return *e;
+        return e;
     k.diffuse_transmission = f;
     if (t.contains("diffuseTransmissionColorFactor"))
       if (auto e = read_colour(t, kDiffuseTransmission, "diffuseTransmissionColorFactor", false,
                                k.diffuse_transmission_color))
-        return *e;
+        return e;
     note_textures(t, kDiffuseTransmission, {"diffuseTransmissionTexture", "diffuseTransmissionColorTexture"},
                   k.ignored);
   }
-  if (extensions.contains(kIor)) {
-    const json& i = extensions[kIor];
-    if (i.contains("ior")) {
-      double ior = 1.5;
-      if (!i["ior"].is_number()) return FieldError{field(kIor, "ior"), "must be a number"};
-      ior = i["ior"].get<double>();
-      if (!(std::isfinite(ior) && (ior == 0.0 || ior >= 1.0)))
-        return FieldError{field(kIor, "ior"), "must be 0 or at least 1, got " + str(ior)};
-      k.ior = ior;
-    } else {
-      k.ior = 1.5;
-    }
+  return std::nullopt;
+}
+
+// KHR_materials_ior's block: its ior, 1.5 when left out.
+MaybeError read_ior(const json& i, KhrMedium& k) {
+  k.ior = 1.5;
+  if (!i.contains("ior")) return std::nullopt;
+  if (!i["ior"].is_number()) return FieldError{field(kIor, "ior"), "must be a number"};
+  const double ior = i["ior"].get<double>();
+  if (!(std::isfinite(ior) && (ior == 0.0 || ior >= 1.0)))
+    return FieldError{field(kIor, "ior"), "must be 0 or at least 1, got " + str(ior)};
+  k.ior = ior;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::variant<KhrMedium, FieldError> parse_khr_medium(const json& extensions) {
+  KhrMedium k;
+  if (!extensions.is_object()) return k;
+  if (extensions.contains(kVolume))
+    if (auto e = read_volume(extensions[kVolume], k)) return *e;
+  // The newer draft wins where a file carries both.
+  const char* ext = extensions.contains(kScatter) ? kScatter : extensions.contains(kVolumeScatter) ? kVolumeScatter : nullptr;
+  if (ext != nullptr) {
+    if (extensions.contains(kScatter) && extensions.contains(kVolumeScatter)) k.ignored.push_back(kVolumeScatter);
+    if (auto e = read_scatter(extensions[ext], ext, k)) return *e;
   }
+  if (auto e = read_transmissions(extensions, k)) return *e;
+  if (extensions.contains(kIor))
+    if (auto e = read_ior(extensions[kIor], k)) return *e;
   return k;
 }
 
@@ -193,34 +211,34 @@ double ior_f0(double ior) {
   return r * r;
 }
 
-std::optional<SssMaterial> khr_sss_material(const KhrMedium& khr, double mm_per_unit,
-                                            std::string& why_not) {
-  why_not.clear();
-  if (khr.scatter == KhrMedium::Scatter::None) return std::nullopt;
-  const char* ext = khr.scatter == KhrMedium::Scatter::Scatter ? kScatter : kVolumeScatter;
-  if (!khr.volume || khr.thickness_factor == 0.0) {
-    why_not = std::string(ext) + " without a volume (" + kVolume +
-              ".thicknessFactor 0 or absent) is thin-walled, a surface BSDF rather than a "
-              "medium: not given subsurface scattering";
-    return std::nullopt;
-  }
+namespace {
+
+// Why the extensions describe no scattering medium (empty when they do): thin-walled, no
+// light entering, no extinction, no scattering strength.
+std::string why_not_a_medium(const KhrMedium& khr, const char* ext) {
+  if (!khr.volume || khr.thickness_factor == 0.0)
+    return std::string(ext) + " without a volume (" + kVolume +
+           ".thicknessFactor 0 or absent) is thin-walled, a surface BSDF rather than a "
+           "medium: not given subsurface scattering";
   if ((khr.transmission || khr.diffuse_transmission) && khr.transmission.value_or(0.0) == 0.0 &&
-      khr.diffuse_transmission.value_or(0.0) == 0.0) {
-    why_not = std::string(kTransmission) + ".transmissionFactor and " + kDiffuseTransmission +
-              ".diffuseTransmissionFactor are 0 or absent: no light enters the volume (Khronos' "
-              "sample renderer draws it opaque): not given subsurface scattering";
-    return std::nullopt;
-  }
-  if (khr.attenuation_distance == 0.0) {
-    why_not = std::string(kVolume) + ".attenuationDistance is absent (infinite): the medium has "
-              "no extinction, nothing scatters: not given subsurface scattering";
-    return std::nullopt;
-  }
-  if (khr.scatter == KhrMedium::Scatter::Scatter && khr.strength == 0.0) {
-    why_not = std::string(kScatter) + ".scatterStrengthFactor is 0 (its default): nothing "
-              "scatters: not given subsurface scattering";
-    return std::nullopt;
-  }
+      khr.diffuse_transmission.value_or(0.0) == 0.0)
+    return std::string(kTransmission) + ".transmissionFactor and " + kDiffuseTransmission +
+           ".diffuseTransmissionFactor are 0 or absent: no light enters the volume (Khronos' "
+           "sample renderer draws it opaque): not given subsurface scattering";
+  if (khr.attenuation_distance == 0.0)
+    return std::string(kVolume) + ".attenuationDistance is absent (infinite): the medium has "
+           "no extinction, nothing scatters: not given subsurface scattering";
+  if (khr.scatter == KhrMedium::Scatter::Scatter && khr.strength == 0.0)
+    return std::string(kScatter) + ".scatterStrengthFactor is 0 (its default): nothing "
+           "scatters: not given subsurface scattering";
+  return {};
+}
+
+// The medium's coefficients per mm from the extensions' attenuation and multi-scatter
+// colour, by each draft's own albedo inversion; nullopt (why_not set) for a channel with
+// no extinction or no absorption.
+std::optional<profiles::Medium> khr_coefficients(const KhrMedium& khr, const char* ext, double mm_per_unit,
+                                                 std::string& why_not) {
   profiles::Medium m;
   for (int c = 0; c < 3; ++c) {
     if (khr.attenuation_color[c] >= 1.0) {
@@ -248,7 +266,21 @@ std::optional<SssMaterial> khr_sss_material(const KhrMedium& khr, double mm_per_
     m.g[c] = khr.anisotropy;
     m.eta[c] = khr.ior && *khr.ior >= 1.0 ? *khr.ior : 1.5;  // glTF's default ior
   }
-  auto made = make_sss_material(CoefficientSource{m});
+  return m;
+}
+
+}  // namespace
+
+std::optional<SssMaterial> khr_sss_material(const KhrMedium& khr, double mm_per_unit,
+                                            std::string& why_not) {
+  why_not.clear();
+  if (khr.scatter == KhrMedium::Scatter::None) return std::nullopt;
+  const char* ext = khr.scatter == KhrMedium::Scatter::Scatter ? kScatter : kVolumeScatter;
+  why_not = why_not_a_medium(khr, ext);
+  if (!why_not.empty()) return std::nullopt;
+  const std::optional<profiles::Medium> m = khr_coefficients(khr, ext, mm_per_unit, why_not);
+  if (!m) return std::nullopt;
+  auto made = make_sss_material(CoefficientSource{*m});
   if (auto* e = std::get_if<FieldError>(&made)) {
     // Values the extensions allow that the models cannot take (no absorption at all: a
     // multi-scatter colour of 1; an ior outside the models' η range): the material stays
