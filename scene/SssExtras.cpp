@@ -106,40 +106,86 @@ namespace {
 // extras.sss.openpbr / extras.sss.standard_surface: every key optional (the spec's
 // default), colours as 3 numbers (or one for all), errors named "openpbr.subsurface_color[1]".
 // `enabled` is cleared by a weight of 0.
-std::variant<OpenPbrSource, FieldError> read_openpbr(const json& o, bool standard_surface,
-                                                     bool& enabled) {
-  const char* block = standard_surface ? "standard_surface" : "openpbr";
-  const auto& keys = standard_surface ? kStandardSurfaceKeys : kOpenPbrKeys;
-  const auto named = [&](FieldError e) {
+// A spec block's fields, read with the block's name in their errors
+// ("openpbr.subsurface_radius").
+struct SpecFields {
+  const json& o;
+  const char* block;
+  FieldError named(FieldError e) const {
     e.field = std::string(block) + "." + e.field;
     return e;
-  };
-  if (!o.is_object()) return FieldError{block, "must be a JSON object of the spec's subsurface parameters"};
-  for (const auto& item : o.items())
-    if (std::find(keys.begin(), keys.end(), item.key()) == keys.end()) {
-      std::string list;
-      for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
-      return named({item.key(), "unknown field; expected one of " + list});
-    }
-  const auto number = [&](const char* key, double& out) -> std::optional<FieldError> {
+  }
+  std::optional<FieldError> number(const char* key, double& out) const {
     if (!o.contains(key)) return std::nullopt;
     if (!o[key].is_number() || !std::isfinite(o[key].get<double>()))
       return named({key, "must be a finite number"});
     out = o[key].get<double>();
     return std::nullopt;
-  };
-  const auto colour = [&](const char* key, Rgb& out) -> std::optional<FieldError> {
+  }
+  std::optional<FieldError> colour(const char* key, Rgb& out) const {
     if (!o.contains(key)) return std::nullopt;
     bool scalar = false;
     if (auto e = read_rgb(o, key, out, scalar)) return named(*e);
     return std::nullopt;
-  };
-  double weight = 1.0;
-  if (auto e = number(keys[0], weight)) return *e;
-  if (!(weight >= 0.0 && weight <= 1.0)) return named({keys[0], "must lie in [0, 1], got " + str(weight)});
+  }
+};
+
+// The subsurface weight (keys[0]): 0, no subsurface, or 1.
+std::optional<FieldError> read_weight(const SpecFields& f, const char* key, double& weight) {
+  weight = 1.0;
+  if (auto e = f.number(key, weight)) return e;
+  if (!(weight >= 0.0 && weight <= 1.0)) return f.named({key, "must lie in [0, 1], got " + str(weight)});
   if (weight != 0.0 && weight != 1.0)
-    return named({keys[0], "must be 0 (no subsurface) or 1: the renderer does not mix a diffuse "
-                           "and a subsurface lobe, got " + str(weight)});
+    return f.named({key, "must be 0 (no subsurface) or 1: the renderer does not mix a diffuse "
+                         "and a subsurface lobe, got " + str(weight)});
+  return std::nullopt;
+}
+
+// Standard Surface's parameters, mapped onto OpenPBR's (p); `off`: type-checked only.
+std::optional<FieldError> read_standard_surface(const SpecFields& f, bool off, profiles::OpenPbrSubsurface& p) {
+  const auto& keys = kStandardSurfaceKeys;
+  profiles::StandardSurfaceSubsurface s;
+  if (!off && !f.o.contains(keys[1]))
+    return f.named({keys[1], "is required: Standard Surface's default (1, 1, 1) absorbs nothing, "
+                             "which has no finite diffusion length"});
+  if (auto e = f.colour(keys[1], s.color)) return e;
+  if (auto e = f.colour(keys[2], s.radius)) return e;
+  if (auto e = f.number(keys[3], s.scale)) return e;
+  if (auto e = f.number(keys[4], s.anisotropy)) return e;
+  if (auto e = f.number(keys[5], s.ior)) return e;
+  if (off) return std::nullopt;
+  if (auto e = profiles::validate(s)) return f.named(*e);
+  p = profiles::openpbr_from_standard_surface(s);
+  return std::nullopt;
+}
+
+// OpenPBR's own parameters (p); `off`: type-checked only.
+std::optional<FieldError> read_openpbr_fields(const SpecFields& f, bool off, profiles::OpenPbrSubsurface& p) {
+  const auto& keys = kOpenPbrKeys;
+  if (auto e = f.colour(keys[1], p.color)) return e;
+  if (auto e = f.number(keys[2], p.radius_mm)) return e;
+  if (auto e = f.colour(keys[3], p.radius_scale)) return e;
+  if (auto e = f.number(keys[4], p.anisotropy)) return e;
+  if (auto e = f.number(keys[5], p.ior)) return e;
+  if (off) return std::nullopt;
+  if (auto e = profiles::validate(p)) return f.named(*e);
+  return std::nullopt;
+}
+
+std::variant<OpenPbrSource, FieldError> read_openpbr(const json& o, bool standard_surface,
+                                                     bool& enabled) {
+  const char* block = standard_surface ? "standard_surface" : "openpbr";
+  const auto& keys = standard_surface ? kStandardSurfaceKeys : kOpenPbrKeys;
+  const SpecFields f{o, block};
+  if (!o.is_object()) return FieldError{block, "must be a JSON object of the spec's subsurface parameters"};
+  for (const auto& item : o.items())
+    if (std::find(keys.begin(), keys.end(), item.key()) == keys.end()) {
+      std::string list;
+      for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+      return f.named({item.key(), "unknown field; expected one of " + list});
+    }
+  double weight = 1.0;
+  if (auto e = read_weight(f, keys[0], weight)) return *e;
   // A weight of 0 is no subsurface: every value is still type-checked (a typo is an
   // error), but their ranges are not the renderer's business then (Standard Surface's
   // default colour, 1, describes no finite medium).
@@ -147,30 +193,9 @@ std::variant<OpenPbrSource, FieldError> read_openpbr(const json& o, bool standar
   if (off) enabled = false;
   OpenPbrSource source;
   source.standard_surface = standard_surface;
-  profiles::OpenPbrSubsurface& p = source.parameters;
-  if (standard_surface) {
-    profiles::StandardSurfaceSubsurface s;
-    if (!off && !o.contains(keys[1]))
-      return named({keys[1], "is required: Standard Surface's default (1, 1, 1) absorbs nothing, "
-                             "which has no finite diffusion length"});
-    if (auto e = colour(keys[1], s.color)) return *e;
-    if (auto e = colour(keys[2], s.radius)) return *e;
-    if (auto e = number(keys[3], s.scale)) return *e;
-    if (auto e = number(keys[4], s.anisotropy)) return *e;
-    if (auto e = number(keys[5], s.ior)) return *e;
-    if (off) return source;
-    if (auto e = profiles::validate(s)) return named(*e);
-    p = profiles::openpbr_from_standard_surface(s);
-    return source;
-  } else {
-    if (auto e = colour(keys[1], p.color)) return *e;
-    if (auto e = number(keys[2], p.radius_mm)) return *e;
-    if (auto e = colour(keys[3], p.radius_scale)) return *e;
-    if (auto e = number(keys[4], p.anisotropy)) return *e;
-    if (auto e = number(keys[5], p.ior)) return *e;
-  }
-  if (off) return source;
-  if (auto e = profiles::validate(p)) return named(*e);
+  const auto e = standard_surface ? read_standard_surface(f, off, source.parameters)
+                                  : read_openpbr_fields(f, off, source.parameters);
+  if (e) return *e;
   return source;
 }
 
