@@ -94,6 +94,52 @@ std::string parse_model(FileSandbox& sandbox, bool glb, const std::vector<unsign
   return "tinygltf: " + (what.empty() ? std::string("failed without a message") : what);
 }
 
+// The JSON to check and, for a GLB, the checked chunks as tinygltf will see them. The
+// views point into the file's bytes.
+struct GltfSource {
+  bool glb = false;
+  std::string_view json;
+  std::vector<unsigned char> glb_bytes;
+  std::optional<std::uint64_t> bin_bytes;
+  GlbLayout layout;
+};
+
+// A GLB (by its magic or extension) is split into its chunks; a .gltf is its JSON.
+std::variant<GltfSource, LoadError> split_source(const std::string& path, const std::vector<unsigned char>& bytes,
+                                                 const LoadOptions& options) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  GltfSource src;
+  src.glb = has_glb_magic(bytes) || ext == ".glb";
+  if (src.glb) {
+    auto layout = parse_glb(bytes);
+    if (auto* e = std::get_if<FieldError>(&layout)) return LoadError{path, "glb", e->field, e->message};
+    src.layout = std::get<GlbLayout>(layout);
+    src.json = src.layout.json;
+    src.bin_bytes = src.layout.bin.size();
+    src.glb_bytes = rebuild_glb(src.layout);
+    if (src.glb_bytes.size() > std::numeric_limits<unsigned>::max())
+      return LoadError{path, "", "", "is too large for a GLB"};
+  } else {
+    src.json = std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  }
+  if (src.json.size() > options.max_json_bytes)
+    return LoadError{path, "", "",
+                     "its JSON is " + std::to_string(src.json.size()) + " bytes, more than the limit of " +
+                         std::to_string(options.max_json_bytes) + " (LoadOptions::max_json_bytes)"};
+  return src;
+}
+
+// tinygltf's model into the scene, stage by stage; the first error stops it.
+std::optional<LoadError> convert_model(GltfContext& ctx, tinygltf::Model& model, const GltfJsonFacts& f) {
+  if (auto e = check_extensions(ctx)) return e;
+  if (auto e = decode_meshopt(ctx, model, f)) return e;
+  if (auto e = check_buffer_views(ctx)) return e;
+  if (auto e = convert_materials(ctx, f)) return e;
+  if (auto e = convert_meshes(ctx)) return e;
+  return convert_nodes(ctx);
+}
+
 }  // namespace
 
 std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& options) {
@@ -106,33 +152,14 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   auto read = read_file_capped(path, max_bytes);
   if (auto* msg = std::get_if<std::string>(&read)) return fail("", *msg);
   const std::vector<unsigned char>& bytes = std::get<std::vector<unsigned char>>(read);
-
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  const bool glb = has_glb_magic(bytes) || ext == ".glb";
-  std::string_view json;
-  std::vector<unsigned char> glb_bytes;  // the checked chunks, as tinygltf will see them
-  std::optional<std::uint64_t> bin_bytes;
-  GlbLayout glb_layout;
-  if (glb) {
-    auto layout = parse_glb(bytes);
-    if (auto* e = std::get_if<FieldError>(&layout)) return LoadError{path, "glb", e->field, e->message};
-    glb_layout = std::get<GlbLayout>(layout);
-    json = glb_layout.json;
-    bin_bytes = glb_layout.bin.size();
-    glb_bytes = rebuild_glb(glb_layout);
-    if (glb_bytes.size() > std::numeric_limits<unsigned>::max()) return fail("", "is too large for a GLB");
-  } else {
-    json = std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  }
-  if (json.size() > options.max_json_bytes)
-    return fail("", "its JSON is " + std::to_string(json.size()) + " bytes, more than the limit of " +
-                        std::to_string(options.max_json_bytes) + " (LoadOptions::max_json_bytes)");
-  auto facts = check_gltf_json(json, path, bin_bytes);
+  auto split = split_source(path, bytes, options);
+  if (auto* e = std::get_if<LoadError>(&split)) return *e;
+  GltfSource& src = std::get<GltfSource>(split);
+  auto facts = check_gltf_json(src.json, path, src.bin_bytes);
   if (auto* e = std::get_if<LoadError>(&facts)) return *e;
   if (const auto& parser_json = std::get<GltfJsonFacts>(facts).parser_json) {
-    json = *parser_json;  // placeholder buffers stand in as 1-byte data URIs
-    if (glb) glb_bytes = rebuild_glb(GlbLayout{json, glb_layout.bin});
+    src.json = *parser_json;  // placeholder buffers stand in as 1-byte data URIs
+    if (src.glb) src.glb_bytes = rebuild_glb(GlbLayout{src.json, src.layout.bin});
   }
 
   std::error_code ec;
@@ -144,7 +171,7 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   if (auto e = check_file_uris(path, std::get<GltfJsonFacts>(facts), sandbox)) return *e;
   std::vector<std::vector<unsigned char>> uri_images;
   tinygltf::Model model;
-  if (std::string why = parse_model(sandbox, glb, glb_bytes, json, model, uri_images); !why.empty())
+  if (std::string why = parse_model(sandbox, src.glb, src.glb_bytes, src.json, model, uri_images); !why.empty())
     return fail("", why);
 
   Scene scene;
@@ -154,12 +181,7 @@ std::variant<Scene, LoadError> load(const std::string& path, const LoadOptions& 
   GltfContext ctx{path, options, model, scene, uri_images, f.image_media_type, f.draco, 0, {}, {}, {}, false, {}};
   ctx.mesh_quantization = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
                                     "KHR_mesh_quantization") != model.extensionsUsed.end();
-  if (auto e = check_extensions(ctx)) return *e;
-  if (auto e = decode_meshopt(ctx, model, f)) return *e;
-  if (auto e = check_buffer_views(ctx)) return *e;
-  if (auto e = convert_materials(ctx, f)) return *e;
-  if (auto e = convert_meshes(ctx)) return *e;
-  if (auto e = convert_nodes(ctx)) return *e;
+  if (auto e = convert_model(ctx, model, f)) return *e;
   const Bounds b = scene.bounds();
   if (!b.empty() && !(std::isfinite(b.radius())))
     return fail("", "the scene's extent overflows float precision");
