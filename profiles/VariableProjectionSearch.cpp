@@ -103,75 +103,95 @@ int levenberg_marquardt(VarPro& vp, Point& p, int max_iterations) {
   return it;
 }
 
-SearchResult search_log_variances(VarPro& vp, const FitTarget& target, const FitOptions& opt) {
-  const int n = opt.gaussians;
+namespace {
 
-  // Three starting spreads, log-spaced standard deviations from the radius that holds
-  // q_lo of the energy ∫ 2πr R dr (smallest over channels) to half the radius that
-  // holds q_hi (largest over channels). Each start gets kProbe iterations; the best one
-  // is then run to convergence. The profile's support radius is a poor scale for this:
-  // it is set by a 1e-8 tail and lies 100-300 inner radii out for the presets, and
-  // starts placed from it stick at the upper bound. Measured on the dipole and better
-  // dipole over all presets and N = 2..8 (scratch study, not a test): the first start
-  // alone comes within 1.3% of the best cost of 100 random starts, and probing then
-  // continuing the best gives the same cost as running all three starts to the end,
-  // with 37 instead of 90 iterations on average.
+// Three starting spreads, log-spaced standard deviations from the radius that holds
+// q_lo of the energy ∫ 2πr R dr (smallest over channels) to half the radius that holds
+// q_hi (largest over channels). Each start gets kProbe iterations; the best one is then
+// run to convergence. The profile's support radius is a poor scale for this: it is set by
+// a 1e-8 tail and lies 100-300 inner radii out for the presets, and starts placed from it
+// stick at the upper bound. Measured on the dipole and better dipole over all presets and
+// N = 2..8 (scratch study, not a test): the first start alone comes within 1.3% of the
+// best cost of 100 random starts, and probing then continuing the best gives the same
+// cost as running all three starts to the end, with 37 instead of 90 iterations on
+// average.
+Point best_start(VarPro& vp, const FitTarget& target, const FitOptions& opt, int& iterations) {
   constexpr double kStarts[3][2] = {{0.05, 0.95}, {0.02, 0.99}, {0.1, 0.8}};
   constexpr int kProbe = 5;
   Point best;
-  int iterations = 0;
   for (const auto& q : kStarts) {
     Point p;
-    p.theta = spread(n, energy_radius(target, q[0], true), 0.5 * energy_radius(target, q[1], false))
+    p.theta = spread(opt.gaussians, energy_radius(target, q[0], true), 0.5 * energy_radius(target, q[1], false))
                   .cwiseMax(vp.theta_min())
                   .cwiseMin(vp.theta_max());
     iterations += levenberg_marquardt(vp, p, std::min(kProbe, opt.max_iterations));
     if (p.cost < best.cost) best = p;
   }
   iterations += levenberg_marquardt(vp, best, opt.max_iterations);
+  return best;
+}
 
-  // Re-seed Gaussians that carry no weight in any channel, or that duplicate another:
-  // move each to the variance whose column best matches the remaining residual (the
-  // largest NNLS dual), then run LM again; keep the result if it is better.
+// The Gaussians that carry no weight in any channel, or that duplicate another (the
+// lighter of two within 1e-3 in log variance).
+std::vector<int> dead_gaussians(const Point& best, int n) {
+  std::array<bool, kMaxGaussians> is_dead{};
+  for (int i = 0; i < n; ++i) is_dead[i] = best.W.row(i).isZero(0.0);
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      if (!is_dead[i] && !is_dead[j] && std::fabs(best.theta[i] - best.theta[j]) < 1e-3)
+        is_dead[best.W.row(i).sum() < best.W.row(j).sum() ? i : j] = true;
+  std::vector<int> dead;
+  for (int i = 0; i < n; ++i)
+    if (is_dead[i]) dead.push_back(i);
+  return dead;
+}
+
+// `best` with each dead Gaussian moved to the variance whose column best matches the
+// remaining residual (the largest NNLS dual over 32 candidates, neighbours of a taken one
+// excluded).
+Point reseeded(VarPro& vp, const Point& best, const std::vector<int>& dead, int n) {
+  constexpr int kCandidates = 32;
   const Eigen::Index m = vp.samples();
   Eigen::MatrixXd Adata(m, n);
   Eigen::VectorXd a(m);
-  constexpr int kCandidates = 32;
+  for (int i = 0; i < n; ++i) vp.column(best.theta[i], Adata.col(i));
+  Eigen::MatrixXd residual = vp.targets() - Adata * best.W;
+  std::array<double, kCandidates> score{};
+  std::array<double, kCandidates> cand{};
+  for (int q = 0; q < kCandidates; ++q) {
+    cand[q] = vp.theta_min() + (vp.theta_max() - vp.theta_min()) * q / (kCandidates - 1);
+    vp.column(cand[q], a);
+    const double a2 = a.squaredNorm();
+    for (int c = 0; c < 3; ++c) {
+      const double dual = std::max(0.0, a.dot(residual.col(c)));
+      score[q] += vp.scale(c) * vp.scale(c) * dual * dual / a2;
+    }
+  }
+  Point p = best;
+  for (int i : dead) {
+    const int q = static_cast<int>(std::max_element(score.begin(), score.end()) - score.begin());
+    p.theta[i] = cand[q];
+    for (int d = std::max(0, q - 2); d <= std::min(kCandidates - 1, q + 2); ++d) score[d] = -1.0;
+  }
+  return p;
+}
+
+}  // namespace
+
+SearchResult search_log_variances(VarPro& vp, const FitTarget& target, const FitOptions& opt) {
+  const int n = opt.gaussians;
+  int iterations = 0;
+  Point best = best_start(vp, target, opt, iterations);
+  // Re-seed Gaussians that carry no weight in any channel, or that duplicate another,
+  // then run LM again; keep the result if it is better.
   for (int round = 0; round < 2; ++round) {
-    std::array<bool, kMaxGaussians> is_dead{};
-    for (int i = 0; i < n; ++i) is_dead[i] = best.W.row(i).isZero(0.0);
-    for (int i = 0; i < n; ++i)
-      for (int j = i + 1; j < n; ++j)
-        if (!is_dead[i] && !is_dead[j] && std::fabs(best.theta[i] - best.theta[j]) < 1e-3)
-          is_dead[best.W.row(i).sum() < best.W.row(j).sum() ? i : j] = true;
-    std::vector<int> dead;
-    for (int i = 0; i < n; ++i)
-      if (is_dead[i]) dead.push_back(i);
+    const std::vector<int> dead = dead_gaussians(best, n);
     if (dead.empty()) break;
-    for (int i = 0; i < n; ++i) vp.column(best.theta[i], Adata.col(i));
-    Eigen::MatrixXd residual = vp.targets() - Adata * best.W;
-    std::array<double, kCandidates> score{};
-    std::array<double, kCandidates> cand{};
-    for (int q = 0; q < kCandidates; ++q) {
-      cand[q] = vp.theta_min() + (vp.theta_max() - vp.theta_min()) * q / (kCandidates - 1);
-      vp.column(cand[q], a);
-      const double a2 = a.squaredNorm();
-      for (int c = 0; c < 3; ++c) {
-        const double dual = std::max(0.0, a.dot(residual.col(c)));
-        score[q] += vp.scale(c) * vp.scale(c) * dual * dual / a2;
-      }
-    }
-    Point p = best;
-    for (int i : dead) {
-      const int q = static_cast<int>(std::max_element(score.begin(), score.end()) - score.begin());
-      p.theta[i] = cand[q];
-      for (int d = std::max(0, q - 2); d <= std::min(kCandidates - 1, q + 2); ++d) score[d] = -1.0;
-    }
+    Point p = reseeded(vp, best, dead, n);
     iterations += levenberg_marquardt(vp, p, opt.max_iterations);
     if (!(p.cost < best.cost)) break;
     best = p;
   }
-
   return {best, iterations};
 }
 
