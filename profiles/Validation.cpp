@@ -46,6 +46,45 @@ double annulus_average(const RadialProfile& p, double r0, double r1, bool transm
   return flux / (std::numbers::pi * (r1 * r1 - r0 * r0));
 }
 
+namespace {
+
+// The median relative standard error of the walk's annuli inside the range (log_bin_edges
+// puts the disc [0, lo] first: it is skipped).
+double median_annulus_rel_stderr(const MonteCarloResult& res) {
+  std::vector<double> rel_se;
+  for (std::size_t b = 1; b + 1 < res.bin_edges_mm.size(); ++b)
+    if (res.reflectance.value[b] > 0.0) rel_se.push_back(res.reflectance.stderr_[b] / res.reflectance.value[b]);
+  std::sort(rel_se.begin(), rel_se.end());
+  return rel_se.empty() ? 0.0 : rel_se[rel_se.size() / 2];
+}
+
+// One model's channel against the walk: totals, and R(r)'s relative error over the annuli
+// (RMS and worst) where the walk has reflectance.
+ChannelComparison compare_channel(const RadialProfile& profile, const MonteCarloResult& res) {
+  ChannelComparison out;
+  out.total = profile.total_reflectance();
+  out.total_transmittance = profile.total_transmittance();
+  out.total_rel_error = out.total / res.reflectance.total - 1.0;
+  if (res.transmittance.total > 0.0)
+    out.total_transmittance_rel_error = out.total_transmittance / res.transmittance.total - 1.0;
+  double sum2 = 0.0, worst = 0.0;
+  int n = 0;
+  for (std::size_t b = 1; b + 1 < res.bin_edges_mm.size(); ++b) {
+    const double mc_value = res.reflectance.value[b];
+    if (!(mc_value > 0.0)) continue;
+    const double model_value = annulus_average(profile, res.bin_edges_mm[b], res.bin_edges_mm[b + 1]);
+    const double e = model_value / mc_value - 1.0;
+    sum2 += e * e;
+    worst = std::max(worst, std::fabs(e));
+    ++n;
+  }
+  out.rms_rel_error = n ? std::sqrt(sum2 / n) : 0.0;
+  out.max_rel_error = worst;
+  return out;
+}
+
+}  // namespace
+
 ValidationReport validate_against_monte_carlo(const Medium& medium,
                                               const ValidationOptions& opt) {
   if (auto e = medium.validate()) throw std::invalid_argument(e->what());
@@ -74,40 +113,10 @@ ValidationReport validate_against_monte_carlo(const Medium& medium,
     if (opt.progress)
       mc.progress = [&, c](double f) { opt.progress((c + f) / 3.0); };
     report.monte_carlo[c] = run_monte_carlo(k, mc);
-    const MonteCarloResult& res = report.monte_carlo[c];
-
-    // Annuli inside the range: log_bin_edges puts the disc [0, lo] first, skip it.
-    std::vector<double> rel_se;
-    for (std::size_t b = 1; b + 1 < res.bin_edges_mm.size(); ++b)
-      if (res.reflectance.value[b] > 0.0)
-        rel_se.push_back(res.reflectance.stderr_[b] / res.reflectance.value[b]);
-    std::sort(rel_se.begin(), rel_se.end());
-    report.median_bin_rel_stderr[c] = rel_se.empty() ? 0.0 : rel_se[rel_se.size() / 2];
-
-    for (ModelComparison& mcmp : report.models) {
-      const auto profile = make_profile(mcmp.model, k, medium.thickness_mm, opt.model_options);
-      ChannelComparison& out = mcmp.channels[c];
-      out.total = profile->total_reflectance();
-      out.total_transmittance = profile->total_transmittance();
-      out.total_rel_error = out.total / res.reflectance.total - 1.0;
-      if (res.transmittance.total > 0.0)
-        out.total_transmittance_rel_error =
-            out.total_transmittance / res.transmittance.total - 1.0;
-      double sum2 = 0.0, worst = 0.0;
-      int n = 0;
-      for (std::size_t b = 1; b + 1 < res.bin_edges_mm.size(); ++b) {
-        const double mc_value = res.reflectance.value[b];
-        if (!(mc_value > 0.0)) continue;
-        const double model_value =
-            annulus_average(*profile, res.bin_edges_mm[b], res.bin_edges_mm[b + 1]);
-        const double e = model_value / mc_value - 1.0;
-        sum2 += e * e;
-        worst = std::max(worst, std::fabs(e));
-        ++n;
-      }
-      out.rms_rel_error = n ? std::sqrt(sum2 / n) : 0.0;
-      out.max_rel_error = worst;
-    }
+    report.median_bin_rel_stderr[c] = median_annulus_rel_stderr(report.monte_carlo[c]);
+    for (ModelComparison& mcmp : report.models)
+      mcmp.channels[c] = compare_channel(*make_profile(mcmp.model, k, medium.thickness_mm, opt.model_options),
+                                         report.monte_carlo[c]);
   }
   report.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
