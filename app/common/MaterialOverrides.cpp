@@ -89,6 +89,61 @@ std::variant<std::vector<std::size_t>, FieldError> match_target(const scene::Sce
   return out;
 }
 
+// Keep the source as the user gave it, so that the panel shows it and Export writes it:
+// a preset by name, an artist colour and mfp as such (mc inverts through mc-table, see
+// resolve_medium, so it keeps the coefficients), OpenPBR's parameters, coefficients
+// otherwise.
+scene::SssSource source_as_given(const MediumArgs& a, profiles::Model use, const ResolvedMedium& r) {
+  if (!a.preset.empty() && a.eta.empty() && a.thickness.empty()) return scene::PresetSource{a.preset};
+  if (!a.color.empty() && use != profiles::Model::MonteCarlo) {
+    profiles::ArtistParameters p;
+    p.color = std::get<Rgb>(parse_rgb("color", a.color));  // resolve_medium parsed them
+    p.mfp_mm = std::get<Rgb>(parse_rgb("mfp", a.mfp));
+    p.eta = r.medium.eta[0];
+    p.g = r.medium.g[0];
+    p.thickness_mm = r.medium.thickness_mm;
+    return scene::ArtistSource{p};
+  }
+  if (r.openpbr) return openpbr_source(r);
+  return scene::CoefficientSource{r.medium};
+}
+
+// One key=value item of a spec into `spec`; an error names the key.
+std::optional<FieldError> set_spec_key(SssMaterialSpec& spec, const std::string& field, const std::string& key,
+                                       const std::string& value) {
+  MediumArgs& m = spec.medium;
+  if (key == "preset") m.preset = value;
+  else if (key == "sigma-a") m.sigma_a = value;
+  else if (key == "sigma-s") m.sigma_s = value;
+  else if (key == "color") m.color = value;
+  else if (key == "mfp") m.mfp = value;
+  else if (key == "g") m.g = value;
+  else if (key == "eta") m.eta = value;
+  else if (key == "thickness") m.thickness = value;
+  else if (key == "subsurface-color") m.subsurface_color = value;
+  else if (key == "subsurface-radius") m.subsurface_radius = value;
+  else if (key == "subsurface-radius-scale") m.subsurface_radius_scale = value;
+  else if (key == "subsurface-scale") m.subsurface_scale = value;
+  else if (key == "albedo-inversion") m.albedo_inversion = value;
+  else if (key == "model") spec.model = value;
+  else if (key == "albedo") spec.albedo = value;
+  else if (key == "scale") {
+    auto v = parse_scale(field + ": scale", value);
+    if (auto* e = std::get_if<FieldError>(&v)) return *e;
+    spec.scale = std::get<double>(v);
+  } else if (key == "gaussians") {
+    auto v = parse_number(field + ": gaussians", value);
+    if (auto* e = std::get_if<FieldError>(&v)) return *e;
+    const double n = std::get<double>(v);
+    if (!profiles::valid_gaussian_count(n))
+      return FieldError{field + ": gaussians", profiles::gaussian_count_rule() + ", got '" + value + "'"};
+    spec.gaussians = int(n);
+  } else {
+    return FieldError{field + ": " + key, std::string("unknown key (keys: ") + kSpecKeys + ")"};
+  }
+  return std::nullopt;
+}
+
 // The material a spec makes of `m`: its keys, then the global options, then m's own
 // values (when it scatters already), then the defaults.
 std::variant<scene::SssMaterial, FieldError> material_from_spec(
@@ -121,12 +176,10 @@ std::variant<scene::SssMaterial, FieldError> material_from_spec(
     if (!had)
       return FieldError{field, "material '" + m.name + "' has no subsurface medium yet: give a "
                                "preset, sigma-a and sigma-s, or color and mfp"};
-    if (!m.sss.layers.empty() && !model) {  // a stack keeps its layers
-      auto made = scene::make_layered_sss_material(m.sss.layers, gaussians, scale, albedo_mode);
-      if (auto* e = std::get_if<FieldError>(&made)) return named(*e);
-      return std::get<scene::SssMaterial>(std::move(made));
-    }
-    auto made = scene::make_sss_material(m.sss.source, model_for(m.sss, model), gaussians, scale, albedo_mode);
+    // Its own medium, with the spec's model and settings; a stack keeps its layers.
+    auto made = !m.sss.layers.empty() && !model
+                    ? scene::make_layered_sss_material(m.sss.layers, gaussians, scale, albedo_mode)
+                    : scene::make_sss_material(m.sss.source, model_for(m.sss, model), gaussians, scale, albedo_mode);
     if (auto* e = std::get_if<FieldError>(&made)) return named(*e);
     return std::get<scene::SssMaterial>(std::move(made));
   }
@@ -134,26 +187,8 @@ std::variant<scene::SssMaterial, FieldError> material_from_spec(
   const profiles::Model use = model_for(m.sss, model);
   auto resolved = resolve_medium(spec.medium, use, profiles::ModelOptions{});
   if (auto* e = std::get_if<FieldError>(&resolved)) return named(*e);
-  // Keep the source as the user gave it, so that the panel shows it and Export writes it:
-  // a preset by name, an artist colour and mfp as such (mc inverts through mc-table, see
-  // resolve_medium, so it keeps the coefficients), coefficients otherwise.
-  const MediumArgs& a = spec.medium;
-  scene::SssSource source = scene::CoefficientSource{std::get<ResolvedMedium>(resolved).medium};
-  if (!a.preset.empty() && a.eta.empty() && a.thickness.empty()) {
-    source = scene::PresetSource{a.preset};
-  } else if (!a.color.empty() && use != profiles::Model::MonteCarlo) {
-    profiles::ArtistParameters p;
-    p.color = std::get<Rgb>(parse_rgb("color", a.color));  // resolve_medium parsed them
-    p.mfp_mm = std::get<Rgb>(parse_rgb("mfp", a.mfp));
-    const profiles::Medium& r = std::get<ResolvedMedium>(resolved).medium;
-    p.eta = r.eta[0];
-    p.g = r.g[0];
-    p.thickness_mm = r.thickness_mm;
-    source = scene::ArtistSource{p};
-  } else if (const auto& r = std::get<ResolvedMedium>(resolved); r.openpbr) {
-    source = openpbr_source(r);
-  }
-  auto made = scene::make_sss_material(std::move(source), use, gaussians, scale, albedo_mode);
+  auto made = scene::make_sss_material(source_as_given(spec.medium, use, std::get<ResolvedMedium>(resolved)), use,
+                                       gaussians, scale, albedo_mode);
   if (auto* e = std::get_if<FieldError>(&made)) return named(*e);
   return std::get<scene::SssMaterial>(std::move(made));
 }
@@ -191,36 +226,7 @@ std::variant<SssMaterialSpec, FieldError> parse_sss_material_spec(const std::str
     }
     if (!seen.insert(key).second) return FieldError{field + ": " + key, "given twice"};
     if (value.empty()) return FieldError{field + ": " + key, "has no value"};
-    MediumArgs& m = spec.medium;
-    if (key == "preset") m.preset = value;
-    else if (key == "sigma-a") m.sigma_a = value;
-    else if (key == "sigma-s") m.sigma_s = value;
-    else if (key == "color") m.color = value;
-    else if (key == "mfp") m.mfp = value;
-    else if (key == "g") m.g = value;
-    else if (key == "eta") m.eta = value;
-    else if (key == "thickness") m.thickness = value;
-    else if (key == "subsurface-color") m.subsurface_color = value;
-    else if (key == "subsurface-radius") m.subsurface_radius = value;
-    else if (key == "subsurface-radius-scale") m.subsurface_radius_scale = value;
-    else if (key == "subsurface-scale") m.subsurface_scale = value;
-    else if (key == "albedo-inversion") m.albedo_inversion = value;
-    else if (key == "model") spec.model = value;
-    else if (key == "albedo") spec.albedo = value;
-    else if (key == "scale") {
-      auto v = parse_scale(field + ": scale", value);
-      if (auto* e = std::get_if<FieldError>(&v)) return *e;
-      spec.scale = std::get<double>(v);
-    } else if (key == "gaussians") {
-      auto v = parse_number(field + ": gaussians", value);
-      if (auto* e = std::get_if<FieldError>(&v)) return *e;
-      const double n = std::get<double>(v);
-      if (!profiles::valid_gaussian_count(n))
-        return FieldError{field + ": gaussians", profiles::gaussian_count_rule() + ", got '" + value + "'"};
-      spec.gaussians = int(n);
-    } else {
-      return FieldError{field + ": " + key, std::string("unknown key (keys: ") + kSpecKeys + ")"};
-    }
+    if (auto e = set_spec_key(spec, field, key, value)) return *e;
   }
   return spec;
 }
