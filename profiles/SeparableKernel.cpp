@@ -88,6 +88,30 @@ bool tabulate(Model model, KernelQuadrature q) {
 
 }  // namespace
 
+namespace {
+
+// Each half-cell's weight: the marginal's integral over the cell around positive[i], a
+// difference of the edge response M at the midpoints to the neighbouring taps, over the
+// total. Cell i >= 1 spans [b_{i-1}, b_i] with b_i the midpoint to the next tap and
+// b_half = ∞; the centre cell is [-b_0, b_0]; the telescoping sum is exactly the total.
+template <typename Edge>
+std::vector<Rgb> cell_weights(const std::vector<double>& positive, const Rgb& total, Edge&& edge) {
+  const int half = static_cast<int>(positive.size()) - 1;
+  std::vector<Rgb> boundary_m(half + 1);  // M(b_i), with M(∞) = 0 last
+  for (int i = 0; i < half; ++i) boundary_m[i] = edge(0.5 * (positive[i] + positive[i + 1]));
+  boundary_m[half] = Rgb{};
+  std::vector<Rgb> weight(half + 1);
+  for (int c = 0; c < 3; ++c) {
+    const double T = total[c];
+    const double inv = T > 0.0 ? 1.0 / T : 0.0;
+    weight[0][c] = (T - 2.0 * boundary_m[0][c]) * inv;
+    for (int i = 1; i <= half; ++i) weight[i][c] = (boundary_m[i - 1][c] - boundary_m[i][c]) * inv;
+  }
+  return weight;
+}
+
+}  // namespace
+
 SeparableKernel make_separable_kernel(const RgbProfile& profile, int taps, double range_mm,
                                       KernelQuadrature quadrature) {
   if (taps < 3 || taps % 2 == 0) {
@@ -105,11 +129,6 @@ SeparableKernel make_separable_kernel(const RgbProfile& profile, int taps, doubl
       tables[c] = std::make_unique<LogGridProfile>(profile.channel(c));
     channel[c] = tables[c] ? tables[c].get() : &profile.channel(c);
   }
-  auto edge = [&](double x) {
-    Rgb m{};
-    for (int c = 0; c < 3; ++c) m[c] = edge_response(*channel[c], x);
-    return m;
-  };
   SeparableKernel k;
   k.total_reflectance = profile.total_reflectance();
   if (range_mm <= 0.0) {
@@ -127,20 +146,11 @@ SeparableKernel make_separable_kernel(const RgbProfile& profile, int taps, doubl
     const double t = static_cast<double>(i) / half;
     positive[i] = range_mm * t * t;
   }
-  // Cell i >= 1 spans [b_{i-1}, b_i] with b_i the midpoint to the next tap and b_half = ∞;
-  // the centre cell is [-b_0, b_0]. A cell's weight is the marginal's integral over it,
-  // a difference of the edge response M; the telescoping sum is exactly the total.
-  std::vector<Rgb> boundary_m(half + 1);  // M(b_i), with M(∞) = 0 last
-  for (int i = 0; i < half; ++i)
-    boundary_m[i] = edge(0.5 * (positive[i] + positive[i + 1]));
-  boundary_m[half] = Rgb{};
-  std::vector<Rgb> weight(half + 1);
-  for (int c = 0; c < 3; ++c) {
-    const double T = k.total_reflectance[c];
-    const double inv = T > 0.0 ? 1.0 / T : 0.0;
-    weight[0][c] = (T - 2.0 * boundary_m[0][c]) * inv;
-    for (int i = 1; i <= half; ++i) weight[i][c] = (boundary_m[i - 1][c] - boundary_m[i][c]) * inv;
-  }
+  const std::vector<Rgb> weight = cell_weights(positive, k.total_reflectance, [&](double x) {
+    Rgb m{};
+    for (int c = 0; c < 3; ++c) m[c] = edge_response(*channel[c], x);
+    return m;
+  });
   k.offsets_mm.resize(taps);
   k.weights.resize(taps);
   for (int i = 0; i <= half; ++i) {
