@@ -116,27 +116,25 @@ std::vector<float> luma(const Image& display) {
   return y;
 }
 
-double ssim(const Image& a_display, const Image& b_display, const std::vector<std::uint8_t>& mask,
-            std::vector<float>* map) {
-  require_same_size(a_display, b_display);
-  require_mask(a_display, mask);
-  const std::size_t compared = count_compared(mask);
-  if (compared == 0) throw std::invalid_argument("SSIM: no pixel to compare");
-  const int w = a_display.width, h = a_display.height, r = kSsimWindow / 2;
-  const std::vector<float> X = luma(a_display), Y = luma(b_display);
-  const std::array<double, kSsimWindow> k = ssim_kernel();
-  if (map) map->assign(mask.size(), 0.0f);
+namespace {
 
-  // The window sums of m, m·x, m·y, m·x², m·y², m·x·y, where m is the mask: a horizontal
-  // pass per row into a ring of kSsimWindow rows, then a vertical pass per output pixel.
-  // Products are formed as x·y before the weight so that swapping A and B, or passing the
-  // same image twice, gives bit-identical sums (SSIM exactly symmetric, exactly 1).
-  constexpr int kQ = 6;
-  std::vector<double> ring(static_cast<std::size_t>(kSsimWindow) * kQ * w);
-  auto ring_row = [&](int row) { return &ring[static_cast<std::size_t>(row % kSsimWindow) * kQ * w]; };
-  auto horizontal = [&](int row) {
-    double* out = ring_row(row);
-    const std::size_t base = static_cast<std::size_t>(row) * w;
+// The window sums of m, m·x, m·y, m·x², m·y², m·x·y, where m is the mask: a horizontal
+// pass per row into a ring of kSsimWindow rows, which the vertical pass per output pixel
+// reads. Products are formed as x·y before the weight so that swapping A and B, or passing
+// the same image twice, gives bit-identical sums (SSIM exactly symmetric, exactly 1).
+struct SsimRows {
+  static constexpr int kQ = 6;
+  const std::vector<float>& X;
+  const std::vector<float>& Y;
+  const std::vector<std::uint8_t>& mask;
+  const std::array<double, kSsimWindow>& k;
+  int w, r;
+  std::vector<double> ring = std::vector<double>(static_cast<std::size_t>(kSsimWindow) * kQ * w);
+
+  double* row(int y) { return &ring[static_cast<std::size_t>(y % kSsimWindow) * kQ * w]; }
+  void horizontal(int y) {
+    double* out = row(y);
+    const std::size_t base = static_cast<std::size_t>(y) * w;
     for (int x = 0; x < w; ++x) {
       double s[kQ] = {};
       for (int j = std::max(0, x - r); j <= std::min(w - 1, x + r); ++j) {
@@ -151,13 +149,36 @@ double ssim(const Image& a_display, const Image& b_display, const std::vector<st
       }
       for (int q = 0; q < kQ; ++q) out[static_cast<std::size_t>(q) * w + x] = s[q];
     }
-  };
+  }
+};
 
+// One window's SSIM from its sums (s[0] > 0).
+double window_ssim(const double (&s)[SsimRows::kQ]) {
   const double c1 = (kSsimK1 * 1.0) * (kSsimK1 * 1.0), c2 = (kSsimK2 * 1.0) * (kSsimK2 * 1.0);
+  const double mx = s[1] / s[0], my = s[2] / s[0];
+  const double vx = s[3] / s[0] - mx * mx, vy = s[4] / s[0] - my * my;
+  const double cxy = s[5] / s[0] - mx * my;
+  return ((2.0 * mx * my + c1) * (2.0 * cxy + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
+}
+
+}  // namespace
+
+double ssim(const Image& a_display, const Image& b_display, const std::vector<std::uint8_t>& mask,
+            std::vector<float>* map) {
+  require_same_size(a_display, b_display);
+  require_mask(a_display, mask);
+  const std::size_t compared = count_compared(mask);
+  if (compared == 0) throw std::invalid_argument("SSIM: no pixel to compare");
+  const int w = a_display.width, h = a_display.height, r = kSsimWindow / 2;
+  const std::vector<float> X = luma(a_display), Y = luma(b_display);
+  const std::array<double, kSsimWindow> k = ssim_kernel();
+  if (map) map->assign(mask.size(), 0.0f);
+  constexpr int kQ = SsimRows::kQ;
+  SsimRows rows{X, Y, mask, k, w, r};
   double total = 0.0;
-  for (int row = 0; row < std::min(h, r); ++row) horizontal(row);
+  for (int row = 0; row < std::min(h, r); ++row) rows.horizontal(row);
   for (int y = 0; y < h; ++y) {
-    if (y + r < h) horizontal(y + r);
+    if (y + r < h) rows.horizontal(y + r);
     const int y0 = std::max(0, y - r), y1 = std::min(h - 1, y + r);
     for (int x = 0; x < w; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * w + x;
@@ -165,15 +186,11 @@ double ssim(const Image& a_display, const Image& b_display, const std::vector<st
       double s[kQ] = {};
       for (int yy = y0; yy <= y1; ++yy) {
         const double kw = k[yy - y + r];
-        const double* in = ring_row(yy);
+        const double* in = rows.row(yy);
         for (int q = 0; q < kQ; ++q) s[q] += kw * in[static_cast<std::size_t>(q) * w + x];
       }
       // s[0] > 0: the window's centre is a compared pixel with the largest weight.
-      const double mx = s[1] / s[0], my = s[2] / s[0];
-      const double vx = s[3] / s[0] - mx * mx, vy = s[4] / s[0] - my * my;
-      const double cxy = s[5] / s[0] - mx * my;
-      const double v = ((2.0 * mx * my + c1) * (2.0 * cxy + c2)) /
-                       ((mx * mx + my * my + c1) * (vx + vy + c2));
+      const double v = window_ssim(s);
       total += v;
       if (map) (*map)[i] = static_cast<float>(v);
     }
