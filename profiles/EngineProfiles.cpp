@@ -45,6 +45,43 @@ std::uint64_t fnv1a64(const std::string& s, std::uint64_t h) {
 
 double mean(const Rgb& v) { return (v[0] + v[1] + v[2]) / 3.0; }
 
+// The minimum of f over [u0, u1]: a scan of 200 steps brackets it, golden section refines
+// the bracket to 1e-12 (at most 100 steps); the bracket's midpoint.
+template <typename F>
+double scan_then_golden_section(F&& f, double u0, double u1) {
+  constexpr int kScan = 200;
+  int best = 0;
+  double best_e = HUGE_VAL;
+  for (int k = 0; k <= kScan; ++k) {
+    const double e = f(u0 + (u1 - u0) * k / kScan);
+    if (e < best_e) {
+      best_e = e;
+      best = k;
+    }
+  }
+  double a = u0 + (u1 - u0) * std::max(best - 1, 0) / kScan;
+  double b = u0 + (u1 - u0) * std::min(best + 1, kScan) / kScan;
+  const double phi = (std::sqrt(5.0) - 1.0) / 2.0;
+  double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
+  double f1 = f(x1), f2 = f(x2);
+  for (int it = 0; it < 100 && b - a > 1e-12; ++it) {
+    if (f1 < f2) {
+      b = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = b - phi * (b - a);
+      f1 = f(x1);
+    } else {
+      a = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = a + phi * (b - a);
+      f2 = f(x2);
+    }
+  }
+  return 0.5 * (a + b);
+}
+
 }  // namespace
 
 std::string engine_asset_name(const std::string& name) {
@@ -78,39 +115,7 @@ BurleyShapeFit fit_burley_shape(const RgbProfile& profile) {
       }
       return e / norm;
     };
-    // A scan over d in [r_lo, r_hi] brackets the minimum; golden section refines it.
-    constexpr int kScan = 200;
-    const double u0 = std::log(r_lo), u1 = std::log(r_hi);
-    int best = 0;
-    double best_e = HUGE_VAL;
-    for (int k = 0; k <= kScan; ++k) {
-      const double e = error2(u0 + (u1 - u0) * k / kScan);
-      if (e < best_e) {
-        best_e = e;
-        best = k;
-      }
-    }
-    double a = u0 + (u1 - u0) * std::max(best - 1, 0) / kScan;
-    double b = u0 + (u1 - u0) * std::min(best + 1, kScan) / kScan;
-    const double phi = (std::sqrt(5.0) - 1.0) / 2.0;
-    double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
-    double f1 = error2(x1), f2 = error2(x2);
-    for (int it = 0; it < 100 && b - a > 1e-12; ++it) {
-      if (f1 < f2) {
-        b = x2;
-        x2 = x1;
-        f2 = f1;
-        x1 = b - phi * (b - a);
-        f1 = error2(x1);
-      } else {
-        a = x1;
-        x1 = x2;
-        f1 = f2;
-        x2 = a + phi * (b - a);
-        f2 = error2(x2);
-      }
-    }
-    const double u = 0.5 * (a + b);
+    const double u = scan_then_golden_section(error2, std::log(r_lo), std::log(r_hi));
     fit.d_mm[c] = std::exp(u);
     fit.relative_error[c] = std::sqrt(std::max(error2(u), 0.0));
   }
