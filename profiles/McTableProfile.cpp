@@ -70,6 +70,50 @@ void parabola_slope(const std::vector<double>& xs, std::size_t a, std::size_t b,
   }
 }
 
+// The parabola through the first three nodes at x (Lagrange weights).
+AxisWeights first_parabola(const std::vector<double>& xs, double x) {
+  AxisWeights out;
+  for (std::size_t j = 0; j < 3; ++j) {
+    double l = 1.0;
+    for (std::size_t m = 0; m < 3; ++m)
+      if (m != j) l *= (x - xs[m]) / (xs[j] - xs[m]);
+    out.node[j] = j;
+    out.weight[j] = l;
+  }
+  out.count = 3;
+  return out;
+}
+
+// The cubic Hermite weights at t in segment i over nodes base .. base+3 (base = i - 1, or
+// i at the first segment); the tangents are the parabolas' slopes through the neighbours,
+// or the secant (`linear`, or only two nodes).
+std::array<double, 4> hermite_weights(const std::vector<double>& xs, std::size_t i, double t, bool linear,
+                                      std::size_t base) {
+  const std::size_t n = xs.size();
+  const double h = xs[i + 1] - xs[i];
+  const double h00 = (2.0 * t - 3.0) * t * t + 1.0, h01 = (3.0 - 2.0 * t) * t * t;
+  const double h10 = ((t - 2.0) * t + 1.0) * t, h11 = (t - 1.0) * t * t;
+  std::array<double, 4> w{};
+  w[i - base] += h00;
+  w[i + 1 - base] += h01;
+  if (n == 2 || linear) {  // linear: both tangents are the secant
+    w[i - base] -= h10 + h11;
+    w[i + 1 - base] += h10 + h11;
+    return w;
+  }
+  // Tangent at xs[i], times h (the Hermite form uses h m).
+  if (i > 0)
+    parabola_slope(xs, i - 1, i, i + 1, i, h10 * h, w, base);
+  else
+    parabola_slope(xs, i, i + 1, i + 2, i, h10 * h, w, base);
+  // Tangent at xs[i+1].
+  if (i + 2 < n)
+    parabola_slope(xs, i, i + 1, i + 2, i + 1, h11 * h, w, base);
+  else
+    parabola_slope(xs, i - 1, i, i + 1, i + 1, h11 * h, w, base);
+  return w;
+}
+
 AxisWeights axis_weights(const std::vector<double>& xs, double x, bool linear = false) {
   AxisWeights out;
   const std::size_t n = xs.size();
@@ -82,48 +126,17 @@ AxisWeights axis_weights(const std::vector<double>& xs, double x, bool linear = 
   // The segment [xs[i], xs[i+1]] with xs[i] <= x (the last segment holds x = xs.back()).
   std::size_t i = static_cast<std::size_t>(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin());
   i = std::min(i == 0 ? 0 : i - 1, n - 2);
-  const double h = xs[i + 1] - xs[i];
-  const double t = (x - xs[i]) / h;
+  const double t = (x - xs[i]) / (xs[i + 1] - xs[i]);
   // Before the first node (only the α' axis goes there: u below the last albedo node, a
-  // medium brighter than the table): the parabola through the first three nodes (Lagrange
-  // weights), or the secant of the first two for the bilinear stencil. The quantities
-  // interpolated there are smooth in u = √(1 - α') at u = 0: the total is 1 - a u + b u²
-  // + O(u³) (the secant alone left the exact η = 1 total 0.12% low as α' -> 1), and
-  // ln flux has its exp(-√3 u r) tail factor and a prefactor smooth in u.
-  if (t < 0.0 && !linear && n >= 3) {
-    for (std::size_t j = 0; j < 3; ++j) {
-      double l = 1.0;
-      for (std::size_t m = 0; m < 3; ++m)
-        if (m != j) l *= (x - xs[m]) / (xs[j] - xs[m]);
-      out.node[j] = j;
-      out.weight[j] = l;
-    }
-    out.count = 3;
-    return out;
-  }
+  // medium brighter than the table): the parabola through the first three nodes, or the
+  // secant of the first two for the bilinear stencil. The quantities interpolated there
+  // are smooth in u = √(1 - α') at u = 0: the total is 1 - a u + b u² + O(u³) (the secant
+  // alone left the exact η = 1 total 0.12% low as α' -> 1), and ln flux has its
+  // exp(-√3 u r) tail factor and a prefactor smooth in u.
+  if (t < 0.0 && !linear && n >= 3) return first_parabola(xs, x);
   if (t < 0.0) linear = true;
-  const double h00 = (2.0 * t - 3.0) * t * t + 1.0, h01 = (3.0 - 2.0 * t) * t * t;
-  const double h10 = ((t - 2.0) * t + 1.0) * t, h11 = (t - 1.0) * t * t;
-  // Weights over nodes base .. base+3, base = i - 1 (or i at the first segment).
   const std::size_t base = i == 0 ? 0 : i - 1;
-  std::array<double, 4> w{};
-  w[i - base] += h00;
-  w[i + 1 - base] += h01;
-  if (n == 2 || linear) {  // linear: both tangents are the secant
-    w[i - base] -= h10 + h11;
-    w[i + 1 - base] += h10 + h11;
-  } else {
-    // Tangent at xs[i], times h (the Hermite form uses h m).
-    if (i > 0)
-      parabola_slope(xs, i - 1, i, i + 1, i, h10 * h, w, base);
-    else
-      parabola_slope(xs, i, i + 1, i + 2, i, h10 * h, w, base);
-    // Tangent at xs[i+1].
-    if (i + 2 < n)
-      parabola_slope(xs, i, i + 1, i + 2, i + 1, h11 * h, w, base);
-    else
-      parabola_slope(xs, i - 1, i, i + 1, i + 1, h11 * h, w, base);
-  }
+  const std::array<double, 4> w = hermite_weights(xs, i, t, linear, base);
   for (std::size_t j = 0; j < 4; ++j) {
     if (w[j] == 0.0 || base + j >= n) continue;  // exactly 0 at a node: not contributing
     out.node[static_cast<std::size_t>(out.count)] = base + j;
