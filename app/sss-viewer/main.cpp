@@ -90,7 +90,8 @@ void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
 }
 
 // The scene and how it is drawn.
-void add_render_options(CLI::App& app, ViewerArgs& a) {
+// The scene, the output, the frame's size and the technique, materials and lights.
+void add_frame_options(CLI::App& app, ViewerArgs& a) {
   app.add_option("scene", a.scene, "A glTF/GLB file or builtin:NAME (default builtin:bunny)");
   app.add_flag("--headless", a.headless, "Render without a window and write --out");
   app.add_option("--out", a.out, "Output image: FILE.png (tonemapped) or FILE.exr (linear)");
@@ -107,6 +108,10 @@ void add_render_options(CLI::App& app, ViewerArgs& a) {
                  "Shadow map texels a side, per light (16..8192; default 1024). The golden suite "
                  "renders at 512 (tests/golden/REPORT.md)")
       ->check(CLI::Range(16, 8192));
+}
+
+// How the image is shown: exposure, anti-aliasing, background, the debug views.
+void add_image_options(CLI::App& app, ViewerArgs& a) {
   app.add_option("--exposure", a.exposure, "Exposure of the PNG (default 1, in [1e-6, 1e6])");
   app.add_option("--aa", a.aa,
                  "auto | off | fxaa: anti-aliasing of the displayed frame and the PNG, FXAA over "
@@ -125,6 +130,11 @@ void add_render_options(CLI::App& app, ViewerArgs& a) {
                  "view's automatic range")
       ->delimiter(',')
       ->expected(2);
+}
+
+// The subsurface terms (transmission, Fresnel, single scattering), texture space's
+// settings, and the scattered light alone.
+void add_sss_term_options(CLI::App& app, ViewerArgs& a) {
   app.add_option("--transmission", a.transmission,
                  "on | off: light through thin parts of SSS materials, thickness from the "
                  "shadow maps (default on)");
@@ -153,6 +163,13 @@ void add_render_options(CLI::App& app, ViewerArgs& a) {
                "Headless, EXR --out: write the frame less its specular, the light that scattered (with its "
                "albedo) and the opaque diffuse; compare with sss-reference --no-specular (the error budget's "
                "scattered light)");
+}
+
+// Every option of the frame, in --help's order.
+void add_render_options(CLI::App& app, ViewerArgs& a) {
+  add_frame_options(app, a);
+  add_image_options(app, a);
+  add_sss_term_options(app, a);
 }
 
 // How the viewer runs: statistics, the device, the window, the soak, and the tests' hooks.
