@@ -119,62 +119,68 @@ T load(const unsigned char* p) {
 
 }  // namespace
 
+namespace {
+
+// Whether the rule takes the accessor's component type (FLOAT; normalized 8/16-bit where
+// the rule allows; signed and integer types only with KHR_mesh_quantization); if not, the
+// message that says what it expects.
+std::optional<std::string> component_type_refused(const AttributeRule& rule, const Located& at, bool q) {
+  const int ct = at.component_type;
+  const bool small_int = ct != TINYGLTF_COMPONENT_TYPE_FLOAT && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  const bool signed_int = ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT;
+  const bool ok = (ct == TINYGLTF_COMPONENT_TYPE_FLOAT && !at.normalized) ||
+                  (rule.unorm8 && ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && at.normalized) ||
+                  (rule.unorm16 && ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && at.normalized) ||
+                  (q && rule.snorm && signed_int && at.normalized) || (q && rule.integers && small_int);
+  if (ok) return std::nullopt;
+  return std::string(rule.semantic) + " cannot be " + (at.normalized ? "normalized " : "") + component_name(ct) +
+         "; expected FLOAT" + (rule.unorm8 ? ", normalized UNSIGNED_BYTE" : "") +
+         (rule.unorm16 ? ", normalized UNSIGNED_SHORT" : "") + (q && rule.snorm ? ", normalized BYTE or SHORT" : "") +
+         (q && rule.integers ? ", any 8- or 16-bit integer" : "") +
+         (!q && (rule.snorm || rule.integers) && small_int
+              ? " (quantized attributes need KHR_mesh_quantization in extensionsUsed)"
+              : "");
+}
+
+// Component c of the element at p as a float. glTF 2.0 §3.11 (animation samplers'
+// normalized integers, which KHR_mesh_quantization uses too): f = c / 255, c / 65535;
+// max(c / 127, -1), max(c / 32767, -1). Unnormalized integers are their value.
+float component_value(const unsigned char* p, int c, int ct, bool normalized) {
+  switch (ct) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p + 4 * c);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? float(p[c]) / 255.0f : float(p[c]);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      const float u = float(load<std::uint16_t>(p + 2 * c));
+      return normalized ? u / 65535.0f : u;
+    }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const float b = float(load<std::int8_t>(p + c));
+      return normalized ? std::max(b / 127.0f, -1.0f) : b;
+    }
+    default: {  // SHORT
+      const float h = float(load<std::int16_t>(p + 2 * c));
+      return normalized ? std::max(h / 32767.0f, -1.0f) : h;
+    }
+  }
+}
+
+}  // namespace
+
 Status read_attribute(GltfContext& ctx, int index, const AttributeRule& rule,
                       const std::string& object, const std::string& field,
                       std::vector<float>& out) {
   Located at;
   if (auto e = locate(ctx, index, rule.components, object, field, at)) return e;
   const std::string name = indexed("accessors", std::size_t(index));
-  const int ct = at.component_type;
-  const bool small_int = ct != TINYGLTF_COMPONENT_TYPE_FLOAT && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  const bool signed_int = ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT;
-  const bool q = ctx.mesh_quantization;
-  const bool ok = (ct == TINYGLTF_COMPONENT_TYPE_FLOAT && !at.normalized) ||
-                  (rule.unorm8 && ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && at.normalized) ||
-                  (rule.unorm16 && ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && at.normalized) ||
-                  (q && rule.snorm && signed_int && at.normalized) || (q && rule.integers && small_int);
-  if (!ok)
-    return ctx.fail(name, "componentType",
-                    std::string(rule.semantic) + " cannot be " + (at.normalized ? "normalized " : "") +
-                        component_name(ct) + "; expected FLOAT" +
-                        (rule.unorm8 ? ", normalized UNSIGNED_BYTE" : "") +
-                        (rule.unorm16 ? ", normalized UNSIGNED_SHORT" : "") +
-                        (q && rule.snorm ? ", normalized BYTE or SHORT" : "") +
-                        (q && rule.integers ? ", any 8- or 16-bit integer" : "") +
-                        (!q && (rule.snorm || rule.integers) && small_int
-                             ? " (quantized attributes need KHR_mesh_quantization in extensionsUsed)"
-                             : ""));
+  if (auto why = component_type_refused(rule, at, ctx.mesh_quantization))
+    return ctx.fail(name, "componentType", *why);
   const std::uint64_t n = at.count * std::uint64_t(rule.components);
   if (auto e = ctx.charge(n * sizeof(float), name)) return e;
   out.resize(n);
   for (std::uint64_t i = 0; i < at.count; ++i) {
     const unsigned char* p = at.data + i * at.stride;
     for (int c = 0; c < rule.components; ++c) {
-      float v = 0.0f;
-      // glTF 2.0 §3.11 (animation samplers' normalized integers, which
-      // KHR_mesh_quantization uses too): f = c / 255, c / 65535; max(c / 127, -1),
-      // max(c / 32767, -1). Unnormalized integers are their value.
-      switch (ct) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: v = load<float>(p + 4 * c); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-          v = at.normalized ? float(p[c]) / 255.0f : float(p[c]);
-          break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-          const float u = float(load<std::uint16_t>(p + 2 * c));
-          v = at.normalized ? u / 65535.0f : u;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: {
-          const float b = float(load<std::int8_t>(p + c));
-          v = at.normalized ? std::max(b / 127.0f, -1.0f) : b;
-          break;
-        }
-        default: {  // SHORT
-          const float h = float(load<std::int16_t>(p + 2 * c));
-          v = at.normalized ? std::max(h / 32767.0f, -1.0f) : h;
-          break;
-        }
-      }
+      const float v = component_value(p, c, at.component_type, at.normalized);
       if (!std::isfinite(v))
         return ctx.fail(object, field, name + " element " + std::to_string(i) + " component " +
                                            std::to_string(c) + " is " + number_text(v) +
