@@ -263,6 +263,17 @@ void copy_string_attributes(const EXRHeader& header, Image& img) {
   }
 }
 
+// The header's R, G, B and A channels into idx (-1 where absent); HALF channels are asked
+// for as FLOAT.
+void find_rgba_channels(EXRHeader& header, int (&idx)[4]) {
+  static const char* const kNames[4] = {"R", "G", "B", "A"};
+  for (int c = 0; c < header.num_channels; ++c) {
+    for (int k = 0; k < 4; ++k)
+      if (std::strcmp(header.channels[c].name, kNames[k]) == 0) idx[k] = c;
+    if (header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF) header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+  }
+}
+
 std::variant<Image, ImageError> decode_exr(const std::vector<unsigned char>& bytes, const std::string& path) {
   // dataWindow's max - min + 1 of hostile 32-bit corners overflows an int: in 64 bits
   // (found by fuzzing, fuzz/regressions/image/exr_data_window_int_overflow.exr).
@@ -293,13 +304,7 @@ std::variant<Image, ImageError> decode_exr(const std::vector<unsigned char>& byt
       TINYEXR_SUCCESS)
     return fail("corrupt EXR header");
   int idx[4] = {-1, -1, -1, -1};  // R, G, B, A
-  static const char* const kNames[4] = {"R", "G", "B", "A"};
-  for (int c = 0; c < header.num_channels; ++c) {
-    for (int k = 0; k < 4; ++k)
-      if (std::strcmp(header.channels[c].name, kNames[k]) == 0) idx[k] = c;
-    if (header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
-      header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
-  }
+  find_rgba_channels(header, idx);
   const bool gray = header.num_channels == 1;
   if (!gray && (idx[0] < 0 || idx[1] < 0 || idx[2] < 0))
     return ImageError{path, "EXR has no R, G and B channels (and is not one-channel)"};
