@@ -34,8 +34,8 @@ constexpr UsageFeature kUsageFeatures[] = {
      "a transfer destination"},
 };
 
-void validate(const Context& context, const ImageDesc& d) {
-  const std::string what = "Image \"" + d.name + "\": ";
+// The description on its own: sizes, format, usage, layers and view type.
+void validate_desc(const ImageDesc& d, const std::string& what) {
   if (d.width == 0 || d.height == 0) throw std::invalid_argument(what + "width or height is 0");
   if (d.format == VK_FORMAT_UNDEFINED) throw std::invalid_argument(what + "no format");
   if (d.usage == 0) throw std::invalid_argument(what + "no usage");
@@ -48,7 +48,10 @@ void validate(const Context& context, const ImageDesc& d) {
   if (d.view_type == VK_IMAGE_VIEW_TYPE_2D && d.array_layers != 1) {
     throw std::invalid_argument(what + "several layers need VK_IMAGE_VIEW_TYPE_2D_ARRAY");
   }
+}
 
+// The device's limits on image sides and layers.
+void validate_limits(const Context& context, const ImageDesc& d, const std::string& what) {
   const VkPhysicalDeviceLimits& limits = context.info().limits;
   const uint32_t max_side =
       is_cube(d.view_type) ? limits.maxImageDimensionCube : limits.maxImageDimension2D;
@@ -66,6 +69,12 @@ void validate(const Context& context, const ImageDesc& d) {
                           std::to_string(limits.maxImageArrayLayers) + ") of " +
                           context.info().name);
   }
+}
+
+void validate(const Context& context, const ImageDesc& d) {
+  const std::string what = "Image \"" + d.name + "\": ";
+  validate_desc(d, what);
+  validate_limits(context, d, what);
   // The format's features for optimal tiling first: a missing one is named (and the
   // query below is then not made: best practices reports every error result).
   VkFormatProperties format_props{};

@@ -72,9 +72,11 @@ uint32_t find_memory_type(const VkPhysicalDeviceMemoryProperties& memory, uint32
   return best;
 }
 
-Allocation allocate_memory(const Context& context, const VkMemoryRequirements& requirements,
-                           MemoryUsage usage, VkBuffer dedicated_buffer, VkImage dedicated_image) {
-  const DeviceInfo& info = context.info();
+namespace {
+
+// The memory type for the requirements and usage, checked against the device's largest
+// allocation and the type's heap; a VulkanError that says which limit otherwise.
+uint32_t checked_memory_type(const DeviceInfo& info, const VkMemoryRequirements& requirements, MemoryUsage usage) {
   const uint32_t type =
       find_memory_type(info.memory, requirements.memoryTypeBits, memory_preference(usage));
   if (type == UINT32_MAX) {
@@ -96,7 +98,33 @@ Allocation allocate_memory(const Context& context, const VkMemoryRequirements& r
                           " bytes exceeds the size of memory heap (" + std::to_string(heap.size) +
                           " bytes) of " + info.name);
   }
+  return type;
+}
 
+// What a failed vkAllocateMemory says: the size, usage, type, heap and flags, and the
+// result (or that the failure was simulated).
+std::string allocation_failure(const Context& context, VkDeviceSize size, MemoryUsage usage, uint32_t type,
+                               bool simulated, VkResult allocated) {
+  const DeviceInfo& info = context.info();
+  const VkMemoryType& memory_type = info.memory.memoryTypes[type];
+  std::string message;
+  if (simulated) {
+    message = "simulated allocation failure (fail after " + std::to_string(*context.fail_allocation_after()) +
+              " allocations, SSS_FAIL_ALLOCATION_AFTER): ";
+  }
+  message += "vkAllocateMemory of " + std::to_string(size) + " bytes of " + std::string(memory_usage_name(usage)) +
+             " memory (memory type " + std::to_string(type) + ", heap " + std::to_string(memory_type.heapIndex) +
+             ", property flags 0x" + hex(memory_type.propertyFlags) + ") on " + info.name + " failed with " +
+             result_name(allocated);
+  return message;
+}
+
+}  // namespace
+
+Allocation allocate_memory(const Context& context, const VkMemoryRequirements& requirements,
+                           MemoryUsage usage, VkBuffer dedicated_buffer, VkImage dedicated_image) {
+  const DeviceInfo& info = context.info();
+  const uint32_t type = checked_memory_type(info, requirements, usage);
   VkMemoryDedicatedAllocateInfo dedicated{};
   dedicated.sType = VK_STRUCTURE_TYPE_MEMORY_DEDICATED_ALLOCATE_INFO;
   dedicated.buffer = dedicated_buffer;
@@ -113,21 +141,8 @@ Allocation allocate_memory(const Context& context, const VkMemoryRequirements& r
   const VkResult allocated = simulated
                               ? VK_ERROR_OUT_OF_DEVICE_MEMORY
                               : vkAllocateMemory(context.device(), &allocate, nullptr, &memory);
-  if (allocated < 0) {
-    const VkMemoryType& memory_type = info.memory.memoryTypes[type];
-    std::string message;
-    if (simulated) {
-      message = "simulated allocation failure (fail after " +
-                std::to_string(*context.fail_allocation_after()) +
-                " allocations, SSS_FAIL_ALLOCATION_AFTER): ";
-    }
-    message += "vkAllocateMemory of " + std::to_string(requirements.size) + " bytes of " +
-               std::string(memory_usage_name(usage)) + " memory (memory type " +
-               std::to_string(type) + ", heap " + std::to_string(memory_type.heapIndex) +
-               ", property flags 0x" + hex(memory_type.propertyFlags) + ") on " + info.name +
-               " failed with " + result_name(allocated);
-    throw VulkanError(allocated, message);
-  }
+  if (allocated < 0)
+    throw VulkanError(allocated, allocation_failure(context, requirements.size, usage, type, simulated, allocated));
   context.count_successful_allocation();
 
   Allocation result;
