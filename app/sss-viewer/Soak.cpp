@@ -92,24 +92,13 @@ long resident_kb() {
   return -1;
 }
 
-SoakVerdict judge_soak(const std::vector<SoakSample>& samples, int every, int cycle,
-                       long max_growth_kb) {
-  SoakVerdict v;
-  v.warmup_frames = every * cycle;
-  const SoakSample* warm = nullptr;
-  for (const SoakSample& s : samples)
-    if (s.frame == v.warmup_frames) warm = &s;
-  if (warm == nullptr || samples.empty() || samples.back().frame <= v.warmup_frames) {
-    v.objects_detail = "too few frames: the soak must run past its warm-up of " +
-                       std::to_string(v.warmup_frames) + " frames (one material cycle)";
-    return v;
-  }
-  // The same point of every cycle after warm-up holds the same objects.
-  const int period = every * cycle;
-  v.rss_end_minus_warmup_kb = samples.back().rss_kb - warm->rss_kb;
-  v.heap_growth_kb = samples.back().heap_kb - warm->heap_kb;
-  // Peaks of each cycle after warm-up, (warm-up + k period, warm-up + (k + 1) period]; the
-  // last may be partial.
+namespace {
+
+// The resident set's growth per cycle after warm-up: the peaks of each cycle, (warm-up +
+// k period, warm-up + (k + 1) period] (the last may be partial), and the lower median of
+// their rises times the number of rises, into v.rss_growth_kb. Returns whether every
+// cycle was measured.
+bool judge_rss(const std::vector<SoakSample>& samples, int period, SoakVerdict& v) {
   std::vector<long> peaks;
   for (const SoakSample& s : samples) {
     if (s.frame <= v.warmup_frames) continue;
@@ -120,16 +109,20 @@ SoakVerdict judge_soak(const std::vector<SoakSample>& samples, int every, int cy
   const bool measured = std::all_of(peaks.begin(), peaks.end(), [](long p) { return p > 0; });
   if (peaks.size() == 1) {
     v.rss_growth_kb = 0;  // one cycle: nothing to compare, the objects decide
-  } else {
-    std::vector<long> rises;
-    for (std::size_t k = 1; k < peaks.size(); ++k) rises.push_back(peaks[k] - peaks[k - 1]);
-    // The lower median: the smallest of two rises, the 3rd smallest of six.
-    const std::size_t m = (rises.size() - 1) / 2;
-    std::nth_element(rises.begin(), rises.begin() + std::ptrdiff_t(m), rises.end());
-    v.rss_growth_kb = rises[m] * long(rises.size());
+    return measured;
   }
-  v.rss_ok = warm->rss_kb > 0 && measured && v.rss_growth_kb < max_growth_kb;
+  std::vector<long> rises;
+  for (std::size_t k = 1; k < peaks.size(); ++k) rises.push_back(peaks[k] - peaks[k - 1]);
+  // The lower median: the smallest of two rises, the 3rd smallest of six.
+  const std::size_t m = (rises.size() - 1) / 2;
+  std::nth_element(rises.begin(), rises.begin() + std::ptrdiff_t(m), rises.end());
+  v.rss_growth_kb = rises[m] * long(rises.size());
+  return measured;
+}
 
+// The same point of every cycle after warm-up holds the same number of live Vulkan
+// objects; the first frame where it does not is named.
+void judge_objects(const std::vector<SoakSample>& samples, int period, SoakVerdict& v) {
   std::map<int, std::int64_t> first;  // cycle phase -> count in the first cycle after warm-up
   v.objects_ok = true;
   for (const SoakSample& s : samples) {
@@ -151,6 +144,29 @@ SoakVerdict judge_soak(const std::vector<SoakSample>& samples, int every, int cy
     for (const auto& [phase, count] : first) d << " +" << phase << ": " << count << ";";
     v.objects_detail = d.str();
   }
+}
+
+}  // namespace
+
+SoakVerdict judge_soak(const std::vector<SoakSample>& samples, int every, int cycle,
+                       long max_growth_kb) {
+  SoakVerdict v;
+  v.warmup_frames = every * cycle;
+  const SoakSample* warm = nullptr;
+  for (const SoakSample& s : samples)
+    if (s.frame == v.warmup_frames) warm = &s;
+  if (warm == nullptr || samples.empty() || samples.back().frame <= v.warmup_frames) {
+    v.objects_detail = "too few frames: the soak must run past its warm-up of " +
+                       std::to_string(v.warmup_frames) + " frames (one material cycle)";
+    return v;
+  }
+  // The same point of every cycle after warm-up holds the same objects.
+  const int period = every * cycle;
+  v.rss_end_minus_warmup_kb = samples.back().rss_kb - warm->rss_kb;
+  v.heap_growth_kb = samples.back().heap_kb - warm->heap_kb;
+  const bool measured = judge_rss(samples, period, v);
+  v.rss_ok = warm->rss_kb > 0 && measured && v.rss_growth_kb < max_growth_kb;
+  judge_objects(samples, period, v);
   return v;
 }
 
