@@ -149,6 +149,28 @@ GraphicsPipelineBuilder& GraphicsPipelineBuilder::samples(VkSampleCountFlagBits 
   return *this;
 }
 
+namespace {
+
+// The blend state over `attachments` (which must outlive it).
+VkPipelineColorBlendStateCreateInfo color_blend(const std::vector<VkPipelineColorBlendAttachmentState>& attachments) {
+  VkPipelineColorBlendStateCreateInfo blend{};
+  blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+  blend.attachmentCount = static_cast<uint32_t>(attachments.size());
+  blend.pAttachments = attachments.data();
+  return blend;
+}
+
+// The dynamic states `dynamic` (which must outlive it).
+VkPipelineDynamicStateCreateInfo dynamic_states(const std::vector<VkDynamicState>& dynamic) {
+  VkPipelineDynamicStateCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
+  info.dynamicStateCount = static_cast<uint32_t>(dynamic.size());
+  info.pDynamicStates = dynamic.data();
+  return info;
+}
+
+}  // namespace
+
 PipelineHandle GraphicsPipelineBuilder::build(const Context& context, VkPipelineLayout layout,
                                               std::string_view name) const {
   if (vertex_.empty()) throw std::logic_error("graphics pipeline: no vertex shader");
@@ -169,33 +191,21 @@ PipelineHandle GraphicsPipelineBuilder::build(const Context& context, VkPipeline
   VkPipelineInputAssemblyStateCreateInfo assembly{};
   assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
   assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-
   VkPipelineViewportStateCreateInfo viewport{};
   viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
   viewport.viewportCount = 1;  // dynamic
   viewport.scissorCount = 1;
-
   const VkPipelineRasterizationStateCreateInfo raster = rasterization(cull_, front_, dynamic_depth_bias_);
-
   VkPipelineMultisampleStateCreateInfo multisample{};
   multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
   multisample.rasterizationSamples = samples_;
-
   const VkPipelineDepthStencilStateCreateInfo depth = depth_stencil(depth_test_, depth_compare_);
-
   std::vector<VkPipelineColorBlendAttachmentState> attachments;
   for (Blend b : blends_) attachments.push_back(blend_state(b));
-  VkPipelineColorBlendStateCreateInfo blend{};
-  blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-  blend.attachmentCount = static_cast<uint32_t>(attachments.size());
-  blend.pAttachments = attachments.data();
-
+  const VkPipelineColorBlendStateCreateInfo blend = color_blend(attachments);
   std::vector<VkDynamicState> dynamic = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
   if (dynamic_depth_bias_) dynamic.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
-  VkPipelineDynamicStateCreateInfo dynamic_state{};
-  dynamic_state.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
-  dynamic_state.dynamicStateCount = static_cast<uint32_t>(dynamic.size());
-  dynamic_state.pDynamicStates = dynamic.data();
+  const VkPipelineDynamicStateCreateInfo dynamic_state = dynamic_states(dynamic);
 
   const VkPipelineRenderingCreateInfo rendering = rendering_formats(color_formats_, depth_format_);
 
