@@ -192,6 +192,43 @@ ViewerTools::PairResult compare_pair(const image::Image& a_display, const image:
 
 }  // namespace
 
+ViewerTools::PairImages ViewerTools::pair_images(Pair pair, bool reference_current) const {
+  PairImages im;
+  if (pair != Pair::ReferenceVsTruth) {
+    im.a_display = &frame_display_;
+    im.a_hdr = &frame_hdr_;
+  } else if (reference_) {
+    im.a_display = &reference_->display;
+    im.a_hdr = &reference_->hdr;
+  }
+  if (pair == Pair::FrameVsReference) {
+    if (reference_current) {
+      im.b_display = &reference_->display;
+      im.b_hdr = &reference_->hdr;
+    }
+  } else if (truth_) {
+    im.b_display = &truth_display_;
+    im.b_hdr = &*truth_;
+  }
+  return im;
+}
+
+std::string ViewerTools::compare_one(Pair pair, const PairImages& im) {
+  const image::Image &a = *im.a_display, &b = *im.b_display;
+  if (a.width != b.width || a.height != b.height)
+    return pair == Pair::FrameVsReference
+               ? "the window was resized since the reference: render it again"
+               : pair_name(pair) + ": the ground truth (" + truth_source_ + ") is " + size_text(b.width, b.height) +
+                     ", the " + (pair == Pair::FrameVsTruth ? "frame" : "reference") + " is " +
+                     size_text(a.width, a.height);
+  try {
+    results_[int(pair)] = compare_pair(a, *im.a_hdr, b, *im.b_hdr);
+  } catch (const std::exception& e) {
+    return pair_name(pair) + ": " + e.what();
+  }
+  return "";
+}
+
 void ViewerTools::compare_now(renderer::Renderer& r, const LiveState& live) {
   compare_error_.clear();
   metrics_.reset();
@@ -211,42 +248,11 @@ void ViewerTools::compare_now(renderer::Renderer& r, const LiveState& live) {
   }
   for (int p = 0; p < kPairs; ++p) {
     const Pair pair = Pair(p);
-    const bool uses_truth = pair != Pair::FrameVsReference;
-    const image::Image *a_display = nullptr, *a_hdr = nullptr, *b_display = nullptr, *b_hdr = nullptr;
-    if (pair != Pair::ReferenceVsTruth) {
-      a_display = &frame_display_;
-      a_hdr = &frame_hdr_;
-    } else if (reference_) {
-      a_display = &reference_->display;
-      a_hdr = &reference_->hdr;
-    }
-    if (pair == Pair::FrameVsReference) {
-      if (reference_current) {
-        b_display = &reference_->display;
-        b_hdr = &reference_->hdr;
-      }
-    } else if (truth_) {
-      b_display = &truth_display_;
-      b_hdr = &*truth_;
-    }
-    if (!a_display || !b_display) continue;
-    std::string error;
-    if (a_display->width != b_display->width || a_display->height != b_display->height) {
-      error = pair == Pair::FrameVsReference
-                  ? "the window was resized since the reference: render it again"
-                  : pair_name(pair) + ": the ground truth (" + truth_source_ + ") is " +
-                        size_text(b_display->width, b_display->height) + ", the " +
-                        (pair == Pair::FrameVsTruth ? "frame" : "reference") + " is " +
-                        size_text(a_display->width, a_display->height);
-    } else {
-      try {
-        results_[p] = compare_pair(*a_display, *a_hdr, *b_display, *b_hdr);
-      } catch (const std::exception& e) {
-        error = pair_name(pair) + ": " + e.what();
-      }
-    }
+    const PairImages im = pair_images(pair, reference_current);
+    if (!im.a_display || !im.b_display) continue;
+    const std::string error = compare_one(pair, im);
     if (error.empty()) continue;
-    if (uses_truth) {
+    if (pair != Pair::FrameVsReference) {  // it uses the truth
       truth_message_ = error;
       truth_error_ = true;
     } else {

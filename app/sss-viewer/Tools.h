@@ -198,6 +198,13 @@ class ViewerTools {
   // Compares every pair whose images are there (frame vs reference only while the
   // reference is of the current view), then draws the chosen map.
   void compare_now(renderer::Renderer& r, const LiveState& live);
+  // One pair's test (a) and reference (b) images, display and HDR; null where absent.
+  struct PairImages {
+    const image::Image *a_display = nullptr, *a_hdr = nullptr, *b_display = nullptr, *b_hdr = nullptr;
+  };
+  PairImages pair_images(Pair pair, bool reference_current) const;
+  // Compares one pair into results_; the error to show ("" when compared).
+  std::string compare_one(Pair pair, const PairImages& im);
   void render_map();  // results_[pair_] -> map_image_, heat_image_
   void show_truth(float exposure);  // truth_ -> truth_display_, truth_image_
   vk::Image upload(const image::Image& img, const char* name) const;
