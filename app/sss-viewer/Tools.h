@@ -195,6 +195,12 @@ class ViewerTools {
   void draw_metrics();
   void draw_map_controls();
   void draw_export(const renderer::Renderer& r, const LiveState& live);
+  // The kernel's material (one of `sss`, the scattering materials), its file path and the
+  // kernel and engine buttons; which were pressed.
+  struct KernelSaves {
+    bool json = false, header = false, hdrp = false, unreal = false;
+  };
+  KernelSaves draw_kernel_exports(const LiveState& live, const std::vector<int>& sss);
   // Compares every pair whose images are there (frame vs reference only while the
   // reference is of the current view), then draws the chosen map.
   void compare_now(renderer::Renderer& r, const LiveState& live);

@@ -186,6 +186,40 @@ std::string export_engine_profile(const LiveState& live, std::size_t material, c
   return "saved " + first + " and " + second + err;
 }
 
+ViewerTools::KernelSaves ViewerTools::draw_kernel_exports(const LiveState& live, const std::vector<int>& sss) {
+  KernelSaves saves;
+  if (sss.empty()) return saves;
+  kernel_material_ = std::clamp(kernel_material_, 0, int(sss.size()) - 1);
+  const scene::Material& km = live.materials[std::size_t(sss[std::size_t(kernel_material_)])];
+  if (ImGui::BeginCombo("kernel of", km.name.c_str())) {
+    for (int k = 0; k < int(sss.size()); ++k)
+      if (ImGui::Selectable(live.materials[std::size_t(sss[std::size_t(k)])].name.c_str(),
+                            k == kernel_material_)) {
+        kernel_material_ = k;
+        kernel_path_[0] = '\0';
+      }
+    ImGui::EndCombo();
+  }
+  if (kernel_path_[0] == '\0')
+    copy_to(kernel_path_, sizeof kernel_path_,
+            scene::unused_path(sanitized(file_stem(live.source) + "-" + km.name) + "-kernel"));
+  ImGui::InputText("##kernel", kernel_path_, sizeof kernel_path_);
+  ImGui::TextDisabled("(.json and .h are added)");
+  saves.json = ImGui::Button("Save kernel JSON");
+  ImGui::SameLine();
+  saves.header = ImGui::Button("Save C header");
+  saves.hdrp = ImGui::Button("Save HDRP profile");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Unity HDRP Diffusion Profile (.asset + .meta): Burley's d fitted to this "
+                      "material's profile, its ior, and for a slab its thickness and tint");
+  ImGui::SameLine();
+  saves.unreal = ImGui::Button("Save Unreal profile");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Unreal Subsurface Profile settings (-unreal.json) and an editor Python "
+                      "script that creates the asset (-unreal.py)");
+  return saves;
+}
+
 void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live) {
   if (!ImGui::CollapsingHeader("Export")) return;
   const bool builtin = is_builtin(live.source);
@@ -198,37 +232,7 @@ void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live
   std::vector<int> sss;
   for (std::size_t i = 0; i < live.materials.size(); ++i)
     if (live.materials[i].sss.enabled) sss.push_back(int(i));
-  bool save_json = false, save_header = false, save_hdrp = false, save_unreal = false;
-  if (!sss.empty()) {
-    kernel_material_ = std::clamp(kernel_material_, 0, int(sss.size()) - 1);
-    const scene::Material& km = live.materials[std::size_t(sss[std::size_t(kernel_material_)])];
-    if (ImGui::BeginCombo("kernel of", km.name.c_str())) {
-      for (int k = 0; k < int(sss.size()); ++k)
-        if (ImGui::Selectable(live.materials[std::size_t(sss[std::size_t(k)])].name.c_str(),
-                              k == kernel_material_)) {
-          kernel_material_ = k;
-          kernel_path_[0] = '\0';
-        }
-      ImGui::EndCombo();
-    }
-    if (kernel_path_[0] == '\0')
-      copy_to(kernel_path_, sizeof kernel_path_,
-              scene::unused_path(sanitized(file_stem(live.source) + "-" + km.name) + "-kernel"));
-    ImGui::InputText("##kernel", kernel_path_, sizeof kernel_path_);
-    ImGui::TextDisabled("(.json and .h are added)");
-    save_json = ImGui::Button("Save kernel JSON");
-    ImGui::SameLine();
-    save_header = ImGui::Button("Save C header");
-    save_hdrp = ImGui::Button("Save HDRP profile");
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Unity HDRP Diffusion Profile (.asset + .meta): Burley's d fitted to this "
-                        "material's profile, its ior, and for a slab its thickness and tint");
-    ImGui::SameLine();
-    save_unreal = ImGui::Button("Save Unreal profile");
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Unreal Subsurface Profile settings (-unreal.json) and an editor Python "
-                        "script that creates the asset (-unreal.py)");
-  }
+  const KernelSaves saves = draw_kernel_exports(live, sss);
   ImGui::Checkbox("replace existing files", &replace_);
 
   if (save_gltf) {
@@ -238,14 +242,14 @@ void ViewerTools::draw_export(const renderer::Renderer& r, const LiveState& live
       copy_to(gltf_path_, sizeof gltf_path_,
               builtin ? scene::unused_path(out) : scene::default_export_path(live.source));
   }
-  if (save_json || save_header) {
+  if (saves.json || saves.header) {
     const std::size_t index = std::size_t(sss[std::size_t(kernel_material_)]);
     export_message_ = export_kernel(r, live, index,
-                                    std::string(kernel_path_) + (save_json ? ".json" : ".h"), replace_);
+                                    std::string(kernel_path_) + (saves.json ? ".json" : ".h"), replace_);
   }
-  if (save_hdrp || save_unreal)
+  if (saves.hdrp || saves.unreal)
     export_message_ = export_engine_profile(live, std::size_t(sss[std::size_t(kernel_material_)]),
-                                            kernel_path_, save_hdrp, replace_);
+                                            kernel_path_, saves.hdrp, replace_);
   if (!export_message_.empty()) ImGui::TextWrapped("%s", export_message_.c_str());
 }
 
