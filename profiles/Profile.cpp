@@ -56,6 +56,7 @@ std::unique_ptr<RadialProfile> make_monte_carlo(const Coefficients& c, double th
   mc.photons = opt.mc_photons;
   mc.seed = opt.mc_seed;
   mc.threads = opt.mc_threads;
+  mc.progress = opt.mc_progress;
   mc.thickness_mm = thickness_mm;
   const double mfp = c.mfp_reduced();
   const double outer = 20.0 / c.sigma_tr_classical() + 10.0 * mfp;
@@ -123,8 +124,10 @@ RgbProfile::RgbProfile(Model model, const Medium& medium, const ModelOptions& op
     : model_(model) {
   if (auto e = medium.validate()) throw std::invalid_argument(e->what());
   for (int c = 0; c < 3; ++c) {
+    ModelOptions channel_opt = opt;  // a channel's walk is a third of the progress
+    if (opt.mc_progress) channel_opt.mc_progress = [&opt, c](double f) { opt.mc_progress((c + f) / 3.0); };
     try {
-      channels_[c] = make_profile(model, medium.channel(c), medium.thickness_mm, opt);
+      channels_[c] = make_profile(model, medium.channel(c), medium.thickness_mm, channel_opt);
     } catch (const std::invalid_argument& e) {
       // mc-table's range errors name a field of one channel ("albedo: ...", "eta: ..."):
       // say which channel ("albedo[R]: ...", as Medium::validate does).

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -62,6 +63,11 @@ struct ModelOptions {
   std::uint64_t mc_photons = 1u << 20;
   std::uint64_t mc_seed = 1;
   int mc_threads = 0;  // 0: all hardware threads
+  // Model mc: called with the fraction of the walk done, from its worker threads (never
+  // overlapping, rising; MonteCarloOptions::progress). RgbProfile passes each channel's
+  // run as a third of the whole. An exception it throws (a cancellation) stops the walk
+  // and leaves the profile's constructor. Empty: silent.
+  std::function<void(double)> mc_progress;
   // Leave out the light that leaves after exactly one scattering event: the renderers add
   // single scattering S(1) apart, in closed form with the real g and the exit direction
   // (profiles/SingleScattering.h), so a profile that contains it must not count it again

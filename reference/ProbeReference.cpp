@@ -288,7 +288,12 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
   std::unique_ptr<ShadowMaps> maps;
   arena.execute([&] {
     if (o.shadows == Shadows::ShadowMap) maps = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size);
-    estimator = std::make_unique<ProbeEstimator>(s, rays, o, maps.get());
+    ReferenceOptions with_progress = o;  // model mc's walk: each material's, 0 to 1
+    with_progress.model_options.mc_progress = [&](double f) {
+      report("profiles", f);
+      if (cancelled()) throw Cancelled();
+    };
+    estimator = std::make_unique<ProbeEstimator>(s, rays, with_progress, maps.get());
   });
   stats.profile_ms = ms_since(t0);
   report("profiles", 1.0);

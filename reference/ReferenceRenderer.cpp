@@ -133,7 +133,12 @@ std::vector<Group> make_groups(const scene::Scene& s, const RayScene& rays, cons
     Group& g = groups[k];
     const scene::SssMaterial& sss = s.materials[g.material].sss;
     const profiles::Medium medium = sss.effective_medium();
-    g.profile = reference_profile(sss, o.kernel, o.profile_options());
+    profiles::ModelOptions profile_options = o.profile_options();
+    profile_options.mc_progress = [&reporter, k, n = groups.size()](double f) {  // model mc's walk
+      reporter.report("profiles", (double(k) + f) / double(n));
+      reporter.check();
+    };
+    g.profile = reference_profile(sss, o.kernel, profile_options);
     g.spacing_mm = o.spacing_mfp * detail::smallest_mfp(medium);
     g.planned_points = g.area_mm2 / (g.spacing_mm * g.spacing_mm);
     reporter.report("profiles", double(k + 1) / double(groups.size()));
@@ -155,6 +160,7 @@ std::unique_ptr<profiles::RgbProfile> reference_profile(const scene::SssMaterial
   if (kernel == KernelSource::Exact) return std::make_unique<profiles::RgbProfile>(sss.profile(model_options));
   profiles::ModelOptions fit_options;  // the GPU's: defaults but for the S(1) switch
   fit_options.single_scattering_apart = model_options.single_scattering_apart;
+  fit_options.mc_progress = model_options.mc_progress;  // model mc's walk: progress, cancel
   const profiles::RgbProfile exact = sss.profile(fit_options);
   return std::make_unique<profiles::RgbProfile>(
       profiles::make_kernel_profile(profiles::fit_kernel(exact, sss.gaussians, sss.transmits()), sss.model));

@@ -28,6 +28,8 @@ profiles::ModelOptions model_options(const CommonArgs& a) {
   o.mc_photons = a.photons;
   o.mc_seed = a.seed;
   o.mc_threads = a.threads;
+  // Model mc's walk takes seconds to minutes (2^20 photons of cream: 4 min on 2 cores).
+  o.mc_progress = [](double f) { progress_bar("Monte Carlo profile", f); };
   return o;
 }
 

@@ -5,6 +5,8 @@
 #include "profiles/HFunction.h"
 #include "profiles/Integrate.h"
 #include "profiles/MonteCarlo.h"
+#include "profiles/Presets.h"
+#include "profiles/Profile.h"
 #include "profiles/Random.h"
 #include "profiles/SingleScattering.h"
 #include "profiles/TabulatedProfile.h"
@@ -309,6 +311,31 @@ TEST(MonteCarlo, ProgressIsMonotoneAndErrorsPropagate) {
   EXPECT_EQ(seen.back(), 1.0);
   o.progress = [](double) { throw std::runtime_error("cancelled"); };
   EXPECT_THROW(run_monte_carlo(index_matched(0.5), o), std::runtime_error);
+}
+
+// Model mc's walk reports through ModelOptions::mc_progress: RgbProfile gives each
+// channel's run a third, so the fractions rise through (0, 1/3], (1/3, 2/3], (2/3, 1],
+// one call per chunk of each channel, and end at exactly 1. A callback that throws (how
+// sss-reference cancels) leaves the constructor with its exception.
+TEST(MonteCarlo, TheMcModelReportsEachChannelAsAThirdAndCanBeStopped) {
+  ModelOptions o;
+  o.mc_photons = 3 * kMonteCarloChunkPhotons;
+  o.mc_threads = 2;
+  std::vector<double> seen;  // calls never overlap within a run; channels run one by one
+  o.mc_progress = [&](double f) { seen.push_back(f); };
+  const Medium skin = preset_medium(*find_preset("skin1"));
+  const RgbProfile profile(Model::MonteCarlo, skin, o);
+  ASSERT_EQ(seen.size(), 9u);
+  for (std::size_t i = 1; i < seen.size(); ++i) EXPECT_GT(seen[i], seen[i - 1]) << i;
+  for (std::size_t i = 0; i < 9; ++i) {
+    EXPECT_GT(seen[i], double(i / 3) / 3.0) << i;
+    EXPECT_LE(seen[i], double(i / 3 + 1) / 3.0 + 1e-15) << i;
+  }
+  EXPECT_EQ(seen.back(), 1.0);
+  o.mc_progress = [](double f) {
+    if (f > 0.1) throw std::runtime_error("cancelled");
+  };
+  EXPECT_THROW(RgbProfile(Model::MonteCarlo, skin, o), std::runtime_error);
 }
 
 // ---------------------------------------------------------------------------------------

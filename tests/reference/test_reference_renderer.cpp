@@ -4,6 +4,7 @@
 #include "reference/ReferenceRenderer.h"
 
 #include "profiles/Fresnel.h"
+#include "profiles/MonteCarlo.h"
 #include "profiles/Presets.h"
 #include "profiles/SingleScattering.h"
 #include "reference/SingleScatter.h"
@@ -318,6 +319,44 @@ TEST(ReferenceRenderer, CancellingStopsTheRender) {
   EXPECT_LT(render_reports_after_cancel, 36 * 3 / 4);
   std::atomic<bool> already{true};
   EXPECT_THROW(render_reference(std::get<scene::Scene>(loaded), o, {}, &already), Cancelled);
+}
+
+// Model mc's walk is the slow part of the profile stage (2^20 photons of cream: minutes).
+// Both estimators report it as it runs ("profiles" below 1) and stop it when cancelled:
+// cancelled at the first report, the walk runs at most the chunks its threads had begun
+// (two threads here), not the 3 x 8 chunks of the whole profile.
+TEST(ReferenceRenderer, TheMonteCarloModelsWalkReportsProgressAndCancels) {
+  auto loaded = scene::load_scene("builtin:sphere");
+  ASSERT_TRUE(std::holds_alternative<scene::Scene>(loaded));
+  for (scene::Material& m : std::get<scene::Scene>(loaded).materials)  // the exact kernel reads the model
+    if (m.sss.enabled) m.sss.model = profiles::Model::MonteCarlo;
+  for (const Estimator estimator : {Estimator::Octree, Estimator::Probe}) {
+    ReferenceOptions o = small(32, 18);
+    o.estimator = estimator;
+    o.spp = estimator == Estimator::Probe ? 2 : 0;
+    o.spacing_mfp = 2.0;
+    o.threads = 2;
+    o.model_options.mc_photons = 8 * profiles::kMonteCarloChunkPhotons;
+    o.model_options.mc_threads = 2;
+    std::vector<double> during;  // "profiles" reports below 1
+    render_reference(std::get<scene::Scene>(loaded), o, [&](const char* stage, double f) {
+      if (std::string(stage) == "profiles" && f < 1.0) during.push_back(f);
+    });
+    EXPECT_GE(during.size(), 8u) << estimator_name(estimator);
+
+    std::atomic<bool> cancel{false};
+    int after = 0;
+    EXPECT_THROW(render_reference(std::get<scene::Scene>(loaded), o,
+                                  [&](const char* stage, double f) {
+                                    if (std::string(stage) != "profiles" || !(f < 1.0)) return;
+                                    if (cancel) ++after;
+                                    cancel = true;
+                                  },
+                                  &cancel),
+                 Cancelled)
+        << estimator_name(estimator);
+    EXPECT_LE(after, 2) << estimator_name(estimator);
+  }
 }
 
 TEST(ReferenceRenderer, RejectsBadOptionsNamingThem) {
