@@ -415,6 +415,7 @@ graph::FrameGraph Renderer::build_graph() {
 }
 
 std::string Renderer::describe_frame() { return build_graph().describe(); }
+std::string Renderer::frame_pass_order() { return build_graph().pass_order(); }
 
 void Renderer::record(VkCommandBuffer cmd) {
   timer_.reset(cmd);

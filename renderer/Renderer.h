@@ -109,6 +109,8 @@ class Renderer {
   // The frame's passes, in order, with the images each step reads and writes
   // (graph::FrameGraph::describe; docs/ARCHITECTURE.md's frame table).
   std::string describe_frame();
+  // The same passes' names only, "clear -> shadow -> ..." (renderer/README.md).
+  std::string frame_pass_order();
   const FrameStats& stats() const { return stats_; }
   // The device memory of the frame's targets (FrameTargets: the technique's and the view's
   // images, the shadow maps), without the scene's buffers and the texture path's atlases.

@@ -209,4 +209,10 @@ std::string FrameGraph::describe() const {
   return out;
 }
 
+std::string FrameGraph::pass_order() const {
+  std::string out;
+  for (const Pass& pass : passes_) out += (out.empty() ? "" : " -> ") + pass.name;
+  return out;
+}
+
 }  // namespace sss::renderer::graph

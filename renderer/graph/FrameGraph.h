@@ -171,6 +171,8 @@ class FrameGraph {
 
   // One line per step: the pass, then each image it reads or writes and how.
   std::string describe() const;
+  // The passes' names in order, joined by " -> " (renderer/README.md's pass lists).
+  std::string pass_order() const;
 
   struct Step {
     std::vector<ImageUse> uses;

@@ -195,5 +195,52 @@ TEST_F(FrameGraphTest, TheArchitectureDocsFrameTableIsTheGraphsDescription) {
   EXPECT_LT(described.find("lighting | "), described.find("composite | "));
 }
 
+// renderer/README.md's pass lists, between the markers, are each technique's pass_order()
+// (and the two optional passes'), so that the list cannot drift from the graph. On a
+// mismatch the expected block is printed: paste it between the markers.
+TEST_F(FrameGraphTest, TheRendererReadmesPassListsAreTheGraphsPassOrder) {
+  struct Case {
+    std::string label;
+    RenderOptions options;
+  };
+  std::vector<Case> cases;
+  for (const SssTechnique t :
+       {SssTechnique::Off, SssTechnique::Separable, SssTechnique::Gaussians, SssTechnique::Texture}) {
+    RenderOptions o;
+    o.technique = t;
+    cases.push_back({std::string(technique_name(t)), o});
+  }
+  RenderOptions fxaa;
+  fxaa.antialias = Antialias::Fxaa;
+  cases.push_back({"separable, --aa fxaa", fxaa});
+  RenderOptions debug;
+  debug.debug_view = DebugView::Irradiance;
+  cases.push_back({"separable, --debug-view irradiance", debug});
+  std::string expected;
+  for (Case& c : cases) {
+    c.options.width = 64;
+    c.options.height = 36;
+    Renderer renderer(ctx(), scene::sphere_scene(), c.options);
+    std::string label = c.label + ":";
+    label.resize(std::max<std::size_t>(label.size() + 1, 36), ' ');
+    expected += label + renderer.frame_pass_order() + "\n";
+  }
+  std::ifstream in(std::string(SSS_SOURCE_DIR) + "/renderer/README.md");
+  ASSERT_TRUE(in) << "renderer/README.md";
+  std::stringstream doc;
+  doc << in.rdbuf();
+  const std::string text = doc.str();
+  const std::string begin = "<!-- pass order: begin -->\n```\n", end = "```\n<!-- pass order: end -->";
+  const std::size_t b = text.find(begin), e = text.find(end);
+  ASSERT_NE(b, std::string::npos);
+  ASSERT_NE(e, std::string::npos);
+  EXPECT_EQ(text.substr(b + begin.size(), e - b - begin.size()), expected)
+      << "renderer/README.md's pass lists are stale; the graph's, to paste between the markers:\n"
+      << expected;
+  // Each technique's blur is in its own list, between lighting and composite.
+  EXPECT_NE(expected.find("lighting -> sss separable"), std::string::npos);
+  EXPECT_NE(expected.find("sss gaussians"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sss::renderer::testing
