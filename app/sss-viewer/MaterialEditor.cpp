@@ -384,6 +384,7 @@ bool MaterialEditor::set_enabled(std::size_t edit, bool on) {
 bool MaterialEditor::apply(std::size_t edit) {
   const auto edited = Clock::now();
   MaterialEdit& e = edits_.at(edit);
+  e.eta_offer.reset();
   std::optional<SssSpec> spec;
   if (!e.enabled) {  // the fields are not read: they wait for the switch
     spec.emplace();

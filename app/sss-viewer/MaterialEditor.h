@@ -69,6 +69,15 @@ struct MaterialEdit {
   bool pbr_standard_surface = false;
   Rgb total_reflectance{};          // of the material the frame shows (0: not known yet)
   std::string error;                // the last edit's FieldError, shown in red
+  // Set while `error` is a layer preset refused for its η: the choice, which
+  // set_layer_preset(edit, layer, preset, true) makes with the preset's η for the whole
+  // stack (the panel's button under the refusal). Cleared by the next apply().
+  struct EtaOffer {
+    std::size_t layer = 0;
+    int preset = -1;
+    std::array<float, 3> eta{};
+  };
+  std::optional<EtaOffer> eta_offer;
   // The material's scale against its object (issue 20): the bounding diameter of what it
   // is drawn on, mm (0: not drawn), and for the material the frame shows the readout
   // (scene::scatter_scale_readout) and the warnings (SssMaterial::model_warnings, a
@@ -143,8 +152,10 @@ class MaterialEditor {
   // entry), keeping its thickness. Refused, with the layer as it was, when the preset's η
   // is not the stack's (the interfaces are index-matched), or when the stack it makes is
   // not valid (spectralon absorbs nothing; a layer thinner than the preset's 1/σt'): the
-  // error names layers[at] and the field.
-  bool set_layer_preset(std::size_t edit, std::size_t at, int preset);
+  // error names layers[at] and the field. With `adopt_eta`, a preset whose η differs
+  // gives its η to every layer of the stack instead (the interfaces stay index-matched);
+  // on any refusal the stack's η is restored with the layer.
+  bool set_layer_preset(std::size_t edit, std::size_t at, int preset, bool adopt_eta = false);
 
   // After the widgets changed the edit's fields (coefficients, artist values, gaussians,
   // scale, albedo): checks and queues a refit. Editing a coefficient of a preset makes

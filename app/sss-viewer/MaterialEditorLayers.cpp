@@ -111,8 +111,9 @@ bool MaterialEditor::set_layers(std::size_t edit, const profiles::LayerStack& st
   return apply(edit);
 }
 
-bool MaterialEditor::set_layer_preset(std::size_t edit, std::size_t at, int preset) {
+bool MaterialEditor::set_layer_preset(std::size_t edit, std::size_t at, int preset, bool adopt_eta) {
   MaterialEdit& e = edits_.at(edit);
+  e.eta_offer.reset();
   const auto all = profiles::presets();
   if (at >= e.layers.size()) {
     e.error = "layer preset: no layer " + std::to_string(at);
@@ -125,14 +126,19 @@ bool MaterialEditor::set_layer_preset(std::size_t edit, std::size_t at, int pres
   }
   const profiles::Preset& p = all[static_cast<std::size_t>(preset)];
   const profiles::Medium m = profiles::preset_medium(p);
-  for (int c = 0; c < 3; ++c)
-    if (static_cast<float>(m.eta[c]) != e.eta[c]) {
-      e.error = field + ": preset " + std::string(p.name) + " has eta " + message_number(m.eta[c]) +
-                " but the stack's is " + message_number(e.eta[c]) +
-                ": every layer of a stack has the same eta (set \"eta (all)\" first)";
-      return false;
-    }
+  std::array<float, 3> eta{};
+  for (int c = 0; c < 3; ++c) eta[c] = static_cast<float>(m.eta[c]);
+  if (eta != e.eta && !adopt_eta) {
+    const std::size_t c = eta[0] != e.eta[0] ? 0 : eta[1] != e.eta[1] ? 1 : 2;  // the first that differs
+    e.error = field + ": preset " + std::string(p.name) + " has eta " + message_number(m.eta[c]) +
+              " but the stack's is " + message_number(e.eta[c]) +
+              ": every layer of a stack has the same eta (set \"eta (all)\" first, or give the whole stack "
+              "the preset's with the button above)";
+    e.eta_offer = MaterialEdit::EtaOffer{at, preset, eta};
+    return false;
+  }
   const LayerEdit before = e.layers[at];
+  const std::array<float, 3> eta_before = e.eta;
   LayerEdit& l = e.layers[at];
   for (int c = 0; c < 3; ++c) {
     l.sigma_a[c] = static_cast<float>(m.sigma_a[c]);
@@ -140,8 +146,10 @@ bool MaterialEditor::set_layer_preset(std::size_t edit, std::size_t at, int pres
     l.g[c] = static_cast<float>(m.g[c]);
   }
   l.preset = preset;
+  e.eta = eta;
   if (apply(edit)) return true;
   e.layers[at] = before;  // apply() set the error and submitted nothing
+  e.eta = eta_before;
   return false;
 }
 

@@ -415,7 +415,7 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
   } else if (ImGui::Button("Render reference of this view")) {
     start_reference(r, live);
   }
-  if (!compare_error_.empty()) ImGui::TextColored(kErrorColor, "%s", compare_error_.c_str());
+  if (!compare_error_.empty()) colored_text_wrapped(kErrorColor, compare_error_.c_str());
   if (const std::string chose = job_.chosen(); !chose.empty()) ImGui::TextWrapped("auto chose %s", chose.c_str());
   bool stale = false;
   if (reference_) {
@@ -426,7 +426,7 @@ void ViewerTools::draw_compare(renderer::Renderer& r, const LiveState& live) {
     else
       ImGui::Text("reference: %zu points, %.1f s", st.points, st.total_ms / 1000.0);
     stale = live_key(r, live) != reference_key_;
-    if (stale) ImGui::TextColored(kWarningColor, "The view or a material changed since: render again.");
+    if (stale) colored_text_wrapped(kWarningColor, "The view or a material changed since: render again.");
   }
   draw_truth(r, live);
   if (!reference_ && !truth_) return;
@@ -478,7 +478,7 @@ void ViewerTools::draw_truth(const renderer::Renderer& r, const LiveState& live)
     ImGui::TextWrapped("%s", truth_message_.c_str());
     if (truth_error_) ImGui::PopStyleColor();
   }
-  if (!truth_warning_.empty()) ImGui::TextColored(kWarningColor, "%s", truth_warning_.c_str());
+  if (!truth_warning_.empty()) colored_text_wrapped(kWarningColor, truth_warning_.c_str());
 }
 
 }  // namespace sss::app

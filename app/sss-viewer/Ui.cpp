@@ -145,7 +145,7 @@ void ViewerUi::draw(renderer::Renderer& r, double frame_ms) {
   draw_environment(r);
   draw_stats(r, frame_ms);
   draw_screenshot(r);
-  if (!error_.empty()) ImGui::TextColored(kErrorColor, "%s", error_.c_str());
+  if (!error_.empty()) colored_text_wrapped(kErrorColor, error_.c_str());
   ImGui::PopItemWidth();
   ImGui::End();
 }
@@ -360,7 +360,7 @@ bool ViewerUi::draw_texture_objects(const renderer::Renderer& r, renderer::Rende
       *it = t;
     changed = true;
   }
-  for (const std::string& w : texture->warnings()) ImGui::TextColored(kErrorColor, "%s", w.c_str());
+  for (const std::string& w : texture->warnings()) colored_text_wrapped(kErrorColor, w.c_str());
   return changed;
 }
 

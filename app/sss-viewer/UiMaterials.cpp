@@ -167,7 +167,7 @@ void ViewerUi::draw_materials(renderer::Renderer& /*r*/) {
       if (e.enabled)
         draw_material(e, i);
       else if (!e.error.empty())
-        ImGui::TextColored(kErrorColor, "%s", e.error.c_str());
+        colored_text_wrapped(kErrorColor, e.error.c_str());
       ImGui::TreePop();
     }
     ImGui::PopID();
@@ -179,7 +179,7 @@ namespace {
 // What a layer row's button or menu asks for; done after the rows are drawn (the loop
 // walks the stack it would change).
 struct LayerOp {
-  enum class Kind { None, Split, Remove, Up, Down, Preset } kind = Kind::None;
+  enum class Kind { None, Split, Remove, Up, Down, Preset, PresetWithItsEta } kind = Kind::None;
   std::size_t at = 0;
   int preset = -1;  // Kind::Preset's
 };
@@ -240,12 +240,21 @@ bool ViewerUi::draw_layers(MaterialEdit& e, std::size_t i) {
   ImGui::InputFloat3("eta (all)", e.eta.data(), "%.3g", ImGuiInputTextFlags_CharsScientific);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("every layer's: the interfaces are index-matched");
   apply |= ImGui::IsItemDeactivatedAfterEdit();
+  if (e.eta_offer) {  // a layer preset refused for its eta: offer it with its eta for all
+    const MaterialEdit::EtaOffer& offer = *e.eta_offer;
+    const std::string label = "use " + preset_label(offer.preset) + " with eta " +
+                              message_number(offer.eta[0]) + " for every layer";
+    if (ImGui::SmallButton(label.c_str())) op = {LayerOp::Kind::PresetWithItsEta, offer.layer, offer.preset};
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("the stack's interfaces are index-matched: every layer takes the preset's eta");
+  }
   switch (op.kind) {  // each applies the stack itself
     case LayerOp::Kind::Split: editor_.add_layer(i, op.at); return false;
     case LayerOp::Kind::Remove: editor_.remove_layer(i, op.at); return false;
     case LayerOp::Kind::Up: editor_.move_layer(i, op.at, -1); return false;
     case LayerOp::Kind::Down: editor_.move_layer(i, op.at, +1); return false;
     case LayerOp::Kind::Preset: editor_.set_layer_preset(i, op.at, op.preset); return false;
+    case LayerOp::Kind::PresetWithItsEta: editor_.set_layer_preset(i, op.at, op.preset, true); return false;
     case LayerOp::Kind::None: break;
   }
   return apply;
@@ -335,7 +344,7 @@ bool ViewerUi::draw_medium(MaterialEdit& e, std::size_t i, bool layered) {
 
 // The fit's error, the scale's note, the warnings and the profile plot.
 void ViewerUi::draw_material_status(MaterialEdit& e) {
-  if (!e.error.empty()) ImGui::TextColored(kErrorColor, "%s", e.error.c_str());
+  if (!e.error.empty()) colored_text_wrapped(kErrorColor, e.error.c_str());
   if (!e.scale_note.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
     ImGui::TextWrapped("%s", e.scale_note.c_str());
@@ -347,7 +356,7 @@ void ViewerUi::draw_material_status(MaterialEdit& e) {
                         "lower scale scatters further");
   }
   ImGui::PushTextWrapPos(0.0f);  // a warning is a sentence: wrap it at the panel's edge
-  for (const std::string& w : e.warnings) ImGui::TextColored(kWarningColor, "%s", w.c_str());
+  for (const std::string& w : e.warnings) colored_text_wrapped(kWarningColor, w.c_str());
   ImGui::PopTextWrapPos();
   if (e.plot) {
     ImGui::Checkbox("plot error", &plot_error_);

@@ -714,12 +714,64 @@ TEST(LayerEditor, ALayerTakesAPresetAndKeepsItsThickness) {
   EXPECT_NE(f.edit().error.find("layers[0].preset: preset marble has eta 1.5 but the stack's is 1.3"),
             std::string::npos) << f.edit().error;
   EXPECT_EQ(f.edit().layers[0].sigma_s, before.sigma_s);
+  ASSERT_TRUE(f.edit().eta_offer.has_value());  // the panel's "use marble with eta 1.5" button
+  EXPECT_EQ(f.edit().eta_offer->layer, 0u);
+  EXPECT_EQ(f.edit().eta_offer->preset, preset("marble"));
+  EXPECT_EQ(f.edit().eta_offer->eta, (std::array<float, 3>{1.5f, 1.5f, 1.5f}));
   EXPECT_FALSE(f.ed->set_layer_preset(0, 2, preset("skin2")));
   EXPECT_NE(f.edit().error.find("no layer 2"), std::string::npos) << f.edit().error;
   EXPECT_FALSE(f.ed->set_layer_preset(0, 0, 99));
   EXPECT_NE(f.edit().error.find("layers[0].preset: no preset 99"), std::string::npos) << f.edit().error;
+  EXPECT_FALSE(f.edit().eta_offer.has_value());  // the next choice withdraws the offer
   ASSERT_TRUE(f.ed->wait_idle(120s));
   EXPECT_EQ(f.computed, computed);  // none of the refused choices reached the worker
+}
+
+// The refusal's offer taken (set_layer_preset with adopt_eta): marble's coefficients on
+// layer 0 and its eta 1.5 on every layer, the stack the JSON parser builds from
+// {"preset": "marble"} over skin2's coefficients at eta 1.5, to the fields' float rounding
+// (1e-6 relative, as above). A stack the preset cannot make (spectralon) restores the
+// layer and the stack's eta.
+TEST(LayerEditor, ARefusedPresetCanBringItsEtaToTheWholeStack) {
+  LayerEditorFixture f;  // skin1, eta 1.3
+  ASSERT_TRUE(f.ed->add_layer(0, 0)) << f.edit().error;
+  ASSERT_TRUE(f.ed->set_layer_preset(0, 1, preset("skin2"))) << f.edit().error;
+  const float top = f.edit().layers[0].thickness_mm;
+  ASSERT_FALSE(f.ed->set_layer_preset(0, 0, preset("marble")));
+  ASSERT_TRUE(f.edit().eta_offer.has_value());
+  ASSERT_TRUE(f.ed->set_layer_preset(0, 0, preset("marble"), true)) << f.edit().error;
+  EXPECT_TRUE(f.edit().error.empty()) << f.edit().error;
+  EXPECT_FALSE(f.edit().eta_offer.has_value());
+  EXPECT_EQ(f.edit().eta, (std::array<float, 3>{1.5f, 1.5f, 1.5f}));
+  const scene::SssMaterial built = f.resolved();
+  ASSERT_EQ(built.layers.size(), 2u);
+  const profiles::Medium skin2 = profiles::preset_medium(profiles::presets()[std::size_t(preset("skin2"))]);
+  auto rgb = [](const auto& v) {  // every digit of the doubles
+    char text[128];
+    std::snprintf(text, sizeof text, "[%.17g, %.17g, %.17g]", double(v[0]), double(v[1]), double(v[2]));
+    return std::string(text);
+  };
+  const std::string text = R"({"layers": [{"preset": "marble", "thickness_mm": )" + std::to_string(top) +
+                           R"(}, {"sigma_a": )" + rgb(skin2.sigma_a) + R"(, "sigma_s": )" + rgb(skin2.sigma_s) +
+                           R"(, "g": )" + rgb(skin2.g) + R"(, "eta": 1.5}]})";
+  const auto parsed = scene::parse_sss_extras_text(text);
+  ASSERT_TRUE(std::holds_alternative<scene::SssMaterial>(parsed)) << text;
+  const scene::SssMaterial& file = std::get<scene::SssMaterial>(parsed);
+  ASSERT_EQ(file.layers.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k)
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(built.layers[k].sigma_a[c], file.layers[k].sigma_a[c], 1e-6 * file.layers[k].sigma_a[c]) << k;
+      EXPECT_NEAR(built.layers[k].sigma_s[c], file.layers[k].sigma_s[c], 1e-6 * file.layers[k].sigma_s[c]) << k;
+      EXPECT_EQ(built.layers[k].g[c], file.layers[k].g[c]) << k;
+      EXPECT_NEAR(built.layers[k].eta[c], 1.5, 1e-6) << k;
+    }
+
+  const app::LayerEdit before = f.edit().layers[1];
+  EXPECT_FALSE(f.ed->set_layer_preset(0, 1, preset("spectralon"), true));  // eta 1.3, absorbs nothing
+  EXPECT_NE(f.edit().error.find("layers[1].sigma_a"), std::string::npos) << f.edit().error;
+  EXPECT_EQ(f.edit().eta, (std::array<float, 3>{1.5f, 1.5f, 1.5f}));
+  EXPECT_EQ(f.edit().layers[1].sigma_a, before.sigma_a);
+  EXPECT_EQ(f.edit().layers[1].preset, before.preset);
 }
 
 // The panel draws a stack's rows (ImGui checks its ID and disabled stacks in debug
