@@ -118,9 +118,9 @@ struct GpuMaterial {
 // Push constants.
 struct DrawPush {  // G-buffer and shadow draws (view_proj comes from the uniforms)
   mat4 model;
-  vec4 material;    // x material index, y light index (shadow draws), z 0 (roughness
-                    // reaches lighting through GpuMaterial::surface), w the texture
-                    // path's object index (its irradiance atlas; -1 elsewhere)
+  vec4 material;    // x material index, y light index (shadow draws), z 0 (unused:
+                    // roughness reaches lighting through GpuMaterial::roughness), w the
+                    // texture path's object index (its irradiance atlas; -1 elsewhere)
   vec4 base_color;  // linear RGBA factor
   vec4 textures;    // x base colour slot, y normal map slot (-1: none), z normal scale
 };
