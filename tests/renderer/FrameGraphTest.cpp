@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace sss::renderer::testing {
@@ -172,6 +173,21 @@ TEST_F(FrameGraphTest, AStepThatUsesAnImageInTwoLayoutsIsRefused) {
   EXPECT_THROW(tracker.begin({&both}, kBefore), std::logic_error);
 }
 
+// The code block of the source file `path` (from the source root) between the markers
+// "<!-- NAME: begin -->" and "<!-- NAME: end -->": the docs' parts that the graph generates.
+// Empty when the file or a marker is missing.
+std::optional<std::string> generated_block(const std::string& path, const std::string& name) {
+  std::ifstream in(std::string(SSS_SOURCE_DIR) + "/" + path);
+  if (!in) return std::nullopt;
+  std::stringstream doc;
+  doc << in.rdbuf();
+  const std::string text = doc.str();
+  const std::string begin = "<!-- " + name + ": begin -->\n```\n", end = "```\n<!-- " + name + ": end -->";
+  const std::size_t b = text.find(begin), e = text.find(end);
+  if (b == std::string::npos || e == std::string::npos || e < b + begin.size()) return std::nullopt;
+  return text.substr(b + begin.size(), e - b - begin.size());
+}
+
 // The frame table in docs/ARCHITECTURE.md is the default frame's describe(), between
 // the markers (regenerate: `sss-viewer builtin:bunny --describe-frame`).
 TEST_F(FrameGraphTest, TheArchitectureDocsFrameTableIsTheGraphsDescription) {
@@ -180,16 +196,9 @@ TEST_F(FrameGraphTest, TheArchitectureDocsFrameTableIsTheGraphsDescription) {
   options.height = 36;
   Renderer renderer(ctx(), scene::sphere_scene(), options);
   const std::string described = renderer.describe_frame();
-  std::ifstream in(std::string(SSS_SOURCE_DIR) + "/docs/ARCHITECTURE.md");
-  ASSERT_TRUE(in) << "docs/ARCHITECTURE.md";
-  std::stringstream doc;
-  doc << in.rdbuf();
-  const std::string text = doc.str();
-  const std::string begin = "<!-- frame graph: begin -->\n```\n", end = "```\n<!-- frame graph: end -->";
-  const std::size_t b = text.find(begin), e = text.find(end);
-  ASSERT_NE(b, std::string::npos);
-  ASSERT_NE(e, std::string::npos);
-  EXPECT_EQ(text.substr(b + begin.size(), e - b - begin.size()), described);
+  const std::optional<std::string> table = generated_block("docs/ARCHITECTURE.md", "frame graph");
+  ASSERT_TRUE(table) << "docs/ARCHITECTURE.md: no '<!-- frame graph: begin/end -->' code block";
+  EXPECT_EQ(*table, described);
   // Every pass the frame times is in it, in order.
   EXPECT_NE(described.find("shadow | "), std::string::npos);
   EXPECT_LT(described.find("lighting | "), described.find("composite | "));
@@ -225,16 +234,9 @@ TEST_F(FrameGraphTest, TheRendererReadmesPassListsAreTheGraphsPassOrder) {
     label.resize(std::max<std::size_t>(label.size() + 1, 36), ' ');
     expected += label + renderer.frame_pass_order() + "\n";
   }
-  std::ifstream in(std::string(SSS_SOURCE_DIR) + "/renderer/README.md");
-  ASSERT_TRUE(in) << "renderer/README.md";
-  std::stringstream doc;
-  doc << in.rdbuf();
-  const std::string text = doc.str();
-  const std::string begin = "<!-- pass order: begin -->\n```\n", end = "```\n<!-- pass order: end -->";
-  const std::size_t b = text.find(begin), e = text.find(end);
-  ASSERT_NE(b, std::string::npos);
-  ASSERT_NE(e, std::string::npos);
-  EXPECT_EQ(text.substr(b + begin.size(), e - b - begin.size()), expected)
+  const std::optional<std::string> lists = generated_block("renderer/README.md", "pass order");
+  ASSERT_TRUE(lists) << "renderer/README.md: no '<!-- pass order: begin/end -->' code block";
+  EXPECT_EQ(*lists, expected)
       << "renderer/README.md's pass lists are stale; the graph's, to paste between the markers:\n"
       << expected;
   // Each technique's blur is in its own list, between lighting and composite.
