@@ -21,6 +21,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 namespace sss::app {
 
@@ -92,32 +93,94 @@ long resident_kb() {
   return -1;
 }
 
+// Student's t by Abramowitz & Stegun 26.7.3 (odd dof) and 26.7.4 (even dof): with
+// theta = atan(t / sqrt(dof)), A(t | dof) = P(|T| <= t) is a finite sum in cos(theta), and
+// P(T <= t) = (1 + A) / 2. The quantile: bisection on theta in (0, pi/2), where A rises
+// from 0 to 1.
+double student_t_quantile(double p, int dof) {
+  if (!(p > 0.5 && p < 1.0) || dof < 1)
+    throw std::invalid_argument("student_t_quantile: needs 0.5 < p < 1 and dof >= 1");
+  const double pi = std::acos(-1.0);
+  const auto a_of = [dof, pi](double theta) {
+    const double c2 = std::cos(theta) * std::cos(theta), sn = std::sin(theta);
+    if (dof % 2 == 1) {
+      double sum = 0.0, term = std::cos(theta);  // cos + (2/3) cos^3 + (2 4)/(3 5) cos^5 ...
+      for (int k = 1; 2 * k - 1 <= dof - 2; ++k) {
+        sum += term;
+        term *= c2 * (2.0 * k) / (2.0 * k + 1.0);
+      }
+      return 2.0 / pi * (theta + sn * sum);
+    }
+    double sum = 0.0, term = 1.0;  // 1 + (1/2) cos^2 + (1 3)/(2 4) cos^4 ...
+    for (int k = 0; 2 * k <= dof - 2; ++k) {
+      sum += term;
+      term *= c2 * (2.0 * k + 1.0) / (2.0 * k + 2.0);
+    }
+    return sn * sum;
+  };
+  const double target = 2.0 * p - 1.0;  // A at the quantile
+  double lo = 0.0, hi = pi / 2.0;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (a_of(mid) < target ? lo : hi) = mid;
+  }
+  return std::sqrt(double(dof)) * std::tan(0.5 * (lo + hi));
+}
+
 namespace {
 
-// The resident set's growth per cycle after warm-up: the peaks of each cycle, (warm-up +
-// k period, warm-up + (k + 1) period] (the last may be partial), and the lower median of
-// their rises times the number of rises, into v.rss_growth_kb. Returns whether every
-// cycle was measured.
-bool judge_rss(const std::vector<SoakSample>& samples, int period, SoakVerdict& v) {
-  std::vector<long> peaks;
-  for (const SoakSample& s : samples) {
-    if (s.frame <= v.warmup_frames) continue;
-    const std::size_t k = std::size_t((s.frame - v.warmup_frames - 1) / period);
-    if (peaks.size() <= k) peaks.resize(k + 1, -1);
-    peaks[k] = std::max(peaks[k], s.rss_kb);
+double median_of(std::vector<long> v) {
+  if (v.empty()) return 0.0;
+  const std::size_t m = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(m), v.end());
+  if (v.size() % 2 == 1) return double(v[m]);
+  const long below = *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(m));
+  return 0.5 * (double(below) + double(v[m]));
+}
+
+// The readings after frames first + 1 .. last (frame_rss_kb[i] is after frame i + 1).
+std::vector<long> readings(const std::vector<long>& frame_rss_kb, int first, int last) {
+  last = std::min(last, int(frame_rss_kb.size()));
+  if (first >= last) return {};
+  return {frame_rss_kb.begin() + first, frame_rss_kb.begin() + last};
+}
+
+// The memory criterion (SoakVerdict::rss_growth_kb): the medians of the full cycles after
+// warm-up, their least-squares growth, its standard error and the verdict.
+void judge_rss(const std::vector<long>& frame_rss_kb, int period, long max_growth_kb,
+               SoakVerdict& v) {
+  for (int start = v.warmup_frames; start + period <= int(frame_rss_kb.size()); start += period)
+    v.cycle_median_kb.push_back(std::lround(median_of(readings(frame_rss_kb, start, start + period))));
+  const bool read = std::all_of(frame_rss_kb.begin(), frame_rss_kb.end(), [](long r) { return r > 0; });
+  const std::vector<long>& y = v.cycle_median_kb;
+  const std::size_t n = y.size();
+  if (n < 3) {
+    v.rss_growth_kb = n == 2 ? y[1] - y[0] : 0;  // one cycle: nothing to compare
+    v.rss_detectable_kb = max_growth_kb;
+    v.rss_ok = read && n >= 1 && v.rss_growth_kb < max_growth_kb;
+    return;
   }
-  const bool measured = std::all_of(peaks.begin(), peaks.end(), [](long p) { return p > 0; });
-  if (peaks.size() == 1) {
-    v.rss_growth_kb = 0;  // one cycle: nothing to compare, the objects decide
-    return measured;
+  // Least squares y = a + b (k - k_mean) over k = 0 .. n - 1.
+  const double k_mean = double(n - 1) / 2.0;
+  double y_mean = 0.0, sxx = 0.0, sxy = 0.0;
+  for (long m : y) y_mean += double(m) / double(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    sxx += (double(k) - k_mean) * (double(k) - k_mean);
+    sxy += (double(k) - k_mean) * (double(y[k]) - y_mean);
   }
-  std::vector<long> rises;
-  for (std::size_t k = 1; k < peaks.size(); ++k) rises.push_back(peaks[k] - peaks[k - 1]);
-  // The lower median: the smallest of two rises, the 3rd smallest of six.
-  const std::size_t m = (rises.size() - 1) / 2;
-  std::nth_element(rises.begin(), rises.begin() + std::ptrdiff_t(m), rises.end());
-  v.rss_growth_kb = rises[m] * long(rises.size());
-  return measured;
+  const double b = sxy / sxx;
+  double ssr = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double r = double(y[k]) - (y_mean + b * (double(k) - k_mean));
+    ssr += r * r;
+  }
+  const double span = double(n - 1);
+  const double growth = b * span, se = span * std::sqrt(ssr / double(n - 2) / sxx);
+  v.rss_t = student_t_quantile(0.999, int(n) - 2);
+  v.rss_growth_kb = std::lround(growth);
+  v.rss_growth_se_kb = std::lround(se);
+  v.rss_detectable_kb = std::lround(double(max_growth_kb) + v.rss_t * se);
+  v.rss_ok = read && growth - v.rss_t * se < double(max_growth_kb);
 }
 
 // The same point of every cycle after warm-up holds the same number of live Vulkan
@@ -148,7 +211,8 @@ void judge_objects(const std::vector<SoakSample>& samples, int period, SoakVerdi
 
 }  // namespace
 
-SoakVerdict judge_soak(const std::vector<SoakSample>& samples, int every, int cycle,
+SoakVerdict judge_soak(const std::vector<SoakSample>& samples,
+                       const std::vector<long>& frame_rss_kb, int every, int cycle,
                        long max_growth_kb) {
   SoakVerdict v;
   v.warmup_frames = every * cycle;
@@ -164,85 +228,133 @@ SoakVerdict judge_soak(const std::vector<SoakSample>& samples, int every, int cy
   const int period = every * cycle;
   v.rss_end_minus_warmup_kb = samples.back().rss_kb - warm->rss_kb;
   v.heap_growth_kb = samples.back().heap_kb - warm->heap_kb;
-  const bool measured = judge_rss(samples, period, v);
-  v.rss_ok = warm->rss_kb > 0 && measured && v.rss_growth_kb < max_growth_kb;
+  judge_rss(frame_rss_kb, period, max_growth_kb, v);
   judge_objects(samples, period, v);
   return v;
 }
 
-std::string soak_csv(const std::vector<SoakSample>& samples) {
+std::string soak_csv(const std::vector<SoakSample>& samples, const std::vector<long>& frame_rss_kb) {
   std::ostringstream out;
-  out << "frame,rss_kb,vk_objects,heap_kb,material\n";
-  for (const SoakSample& s : samples)
-    out << s.frame << ',' << s.rss_kb << ',' << s.vk_objects << ',' << s.heap_kb << ','
-        << s.material << '\n';
+  out << "frame,rss_kb,rss_median_kb,vk_objects,heap_kb,material\n";
+  int previous = 0;
+  for (const SoakSample& s : samples) {
+    // The median of the readings after the frames since the previous sample (none at 0).
+    const std::vector<long> since = readings(frame_rss_kb, previous, s.frame);
+    out << s.frame << ',' << s.rss_kb << ',';
+    if (!since.empty()) out << std::lround(median_of(since));
+    out << ',' << s.vk_objects << ',' << s.heap_kb << ',' << s.material << '\n';
+    previous = s.frame;
+  }
   return out.str();
 }
 
-std::string soak_svg(const std::vector<SoakSample>& samples, const SoakVerdict& verdict,
-                     const std::string& title) {
-  constexpr double kW = 900, kLeft = 90, kRight = 30, kTop = 50, kPanel = 220, kGap = 70;
-  const double kH = kTop + 2 * kPanel + kGap + 80;
+namespace {
+
+using Points = std::vector<std::pair<double, double>>;  // (frame, value)
+
+// The soak plot's layout: panels one above the other over frames 0 .. x_max, each with its own
+// y axis.
+struct SoakPlot {
+  static constexpr double kW = 900, kLeft = 90, kRight = 30, kTop = 50, kPanel = 220, kGap = 70;
+  double x_max = 1.0;
+  int warmup_frames = 0;
+  double px(double frame) const { return kLeft + frame / x_max * (kW - kLeft - kRight); }
+};
+
+// One panel at `top`: a line through `points` with its own linear axis; overlay(py) draws
+// more in the panel's coordinates.
+template <class Overlay>
+void svg_panel(std::ostringstream& svg, const SoakPlot& plot, double top, const std::string& y_label,
+               const std::string& color, const Points& points, Overlay overlay) {
+  using P = SoakPlot;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& [x, y] : points) {
+    lo = std::min(lo, y);
+    hi = std::max(hi, y);
+  }
+  if (!(hi > lo)) {  // a flat line (the object count, ideally): give it room to show
+    const double pad = std::max(1.0, 0.05 * std::abs(lo));
+    lo -= pad;
+    hi += pad;
+  }
+  const double step = tick_step(lo, hi);
+  lo = std::floor(lo / step) * step;
+  hi = std::max(std::ceil(hi / step) * step, lo + step);
+  const auto py = [&](double y) { return top + P::kPanel - (y - lo) / (hi - lo) * P::kPanel; };
+  svg << "<rect x=\"" << P::kLeft << "\" y=\"" << top << "\" width=\"" << P::kW - P::kLeft - P::kRight
+      << "\" height=\"" << P::kPanel << "\" fill=\"none\" stroke=\"#444\"/>\n";
+  for (double y = lo; y <= hi + step * 1e-6; y += step)
+    svg << "<line x1=\"" << P::kLeft - 4 << "\" x2=\"" << P::kW - P::kRight << "\" y1=\"" << num(py(y))
+        << "\" y2=\"" << num(py(y)) << "\" stroke=\"#ddd\"/><text x=\"" << P::kLeft - 8
+        << "\" y=\"" << num(py(y) + 4) << "\" text-anchor=\"end\">" << label(y) << "</text>\n";
+  const double xs = tick_step(0.0, plot.x_max);
+  for (double x = 0.0; x <= plot.x_max + 1e-6; x += xs)
+    svg << "<text x=\"" << num(plot.px(x)) << "\" y=\"" << top + P::kPanel + 16
+        << "\" text-anchor=\"middle\">" << label(x) << "</text>\n";
+  svg << "<text x=\"18\" y=\"" << top + P::kPanel / 2 << "\" transform=\"rotate(-90 18 "
+      << top + P::kPanel / 2 << ")\" text-anchor=\"middle\">" << y_label << "</text>\n";
+  const double warm = plot.px(plot.warmup_frames);
+  if (plot.warmup_frames > 0 && plot.warmup_frames <= plot.x_max)
+    svg << "<line x1=\"" << num(warm) << "\" x2=\"" << num(warm) << "\" y1=\"" << top << "\" y2=\""
+        << top + P::kPanel << "\" stroke=\"#888\" stroke-dasharray=\"5,4\"/><text x=\""
+        << num(warm + 4) << "\" y=\"" << top + 14 << "\" fill=\"#666\">end of warm-up</text>\n";
+  svg << "<polyline fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1\" points=\"";
+  for (const auto& [x, y] : points) svg << num(plot.px(x)) << ',' << num(py(y)) << ' ';
+  svg << "\"/>\n";
+  overlay(py);
+}
+
+}  // namespace
+
+std::string soak_svg(const std::vector<SoakSample>& samples, const std::vector<long>& frame_rss_kb,
+                     const SoakVerdict& verdict, const std::string& title) {
+  using P = SoakPlot;
+  const double kH = P::kTop + 2 * P::kPanel + P::kGap + 100;
   std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kW << "\" height=\"" << kH
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << P::kW << "\" height=\"" << kH
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << kW / 2 << "\" y=\"28\" text-anchor=\"middle\" font-size=\"15\">" << title
+      << "<text x=\"" << P::kW / 2 << "\" y=\"28\" text-anchor=\"middle\" font-size=\"15\">" << title
       << "</text>\n";
   if (samples.empty()) {
     svg << "</svg>\n";
     return svg.str();
   }
-  const double x_max = std::max(1, samples.back().frame);
-  const auto px = [&](double f) { return kLeft + f / x_max * (kW - kLeft - kRight); };
-  // One panel: a line of y(sample) with its own linear axis.
-  const auto panel = [&](double top, const std::string& y_label, const std::string& color,
-                         auto value) {
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const SoakSample& s : samples) {
-      lo = std::min(lo, value(s));
-      hi = std::max(hi, value(s));
+  const SoakPlot plot{double(std::max(1, samples.back().frame)), verdict.warmup_frames};
+  // RSS after every frame, with each cycle's median (a dot at the cycle's middle) and the
+  // least-squares line through them that the verdict judges.
+  Points rss;
+  for (std::size_t i = 0; i < frame_rss_kb.size(); ++i)
+    rss.emplace_back(double(i + 1), double(frame_rss_kb[i]) / 1024.0);
+  if (rss.empty())
+    for (const SoakSample& s : samples) rss.emplace_back(s.frame, double(s.rss_kb) / 1024.0);
+  const std::vector<long>& med = verdict.cycle_median_kb;
+  const double period = double(verdict.warmup_frames);  // the warm-up is one cycle
+  const auto mid = [&](std::size_t k) { return double(verdict.warmup_frames) + (double(k) + 0.5) * period; };
+  svg_panel(svg, plot, P::kTop, "resident memory (MB)", "#e3a59c", rss, [&](auto py) {
+    for (std::size_t k = 0; k < med.size(); ++k)
+      svg << "<circle cx=\"" << num(plot.px(mid(k))) << "\" cy=\"" << num(py(double(med[k]) / 1024.0))
+          << "\" r=\"4\" fill=\"#8e1b10\"/>\n";
+    if (med.size() >= 2) {  // the fit: through the medians' mean with the judged slope
+      double mean = 0.0;
+      for (long m : med) mean += double(m) / double(med.size());
+      const double half = double(verdict.rss_growth_kb) / 2.0;
+      svg << "<line x1=\"" << num(plot.px(mid(0))) << "\" y1=\"" << num(py((mean - half) / 1024.0))
+          << "\" x2=\"" << num(plot.px(mid(med.size() - 1))) << "\" y2=\""
+          << num(py((mean + half) / 1024.0)) << "\" stroke=\"#8e1b10\" stroke-width=\"2\"/>\n";
     }
-    if (!(hi > lo)) {  // a flat line (the object count, ideally): give it room to show
-      const double pad = std::max(1.0, 0.05 * std::abs(lo));
-      lo -= pad;
-      hi += pad;
-    }
-    const double step = tick_step(lo, hi);
-    lo = std::floor(lo / step) * step;
-    hi = std::max(std::ceil(hi / step) * step, lo + step);
-    const auto py = [&](double y) { return top + kPanel - (y - lo) / (hi - lo) * kPanel; };
-    svg << "<rect x=\"" << kLeft << "\" y=\"" << top << "\" width=\"" << kW - kLeft - kRight
-        << "\" height=\"" << kPanel << "\" fill=\"none\" stroke=\"#444\"/>\n";
-    for (double y = lo; y <= hi + step * 1e-6; y += step)
-      svg << "<line x1=\"" << kLeft - 4 << "\" x2=\"" << kW - kRight << "\" y1=\"" << num(py(y))
-          << "\" y2=\"" << num(py(y)) << "\" stroke=\"#ddd\"/><text x=\"" << kLeft - 8
-          << "\" y=\"" << num(py(y) + 4) << "\" text-anchor=\"end\">" << label(y) << "</text>\n";
-    const double xs = tick_step(0.0, x_max);
-    for (double x = 0.0; x <= x_max + 1e-6; x += xs)
-      svg << "<text x=\"" << num(px(x)) << "\" y=\"" << top + kPanel + 16
-          << "\" text-anchor=\"middle\">" << label(x) << "</text>\n";
-    svg << "<text x=\"18\" y=\"" << top + kPanel / 2 << "\" transform=\"rotate(-90 18 "
-        << top + kPanel / 2 << ")\" text-anchor=\"middle\">" << y_label << "</text>\n";
-    if (verdict.warmup_frames > 0 && verdict.warmup_frames <= x_max)
-      svg << "<line x1=\"" << num(px(verdict.warmup_frames)) << "\" x2=\""
-          << num(px(verdict.warmup_frames)) << "\" y1=\"" << top << "\" y2=\"" << top + kPanel
-          << "\" stroke=\"#888\" stroke-dasharray=\"5,4\"/><text x=\""
-          << num(px(verdict.warmup_frames) + 4) << "\" y=\"" << top + 14
-          << "\" fill=\"#666\">end of warm-up</text>\n";
-    svg << "<polyline fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1.5\" points=\"";
-    for (const SoakSample& s : samples) svg << num(px(s.frame)) << ',' << num(py(value(s))) << ' ';
-    svg << "\"/>\n";
-  };
-  panel(kTop, "resident memory (MB)", "#c0392b",
-        [](const SoakSample& s) { return double(s.rss_kb) / 1024.0; });
-  panel(kTop + kPanel + kGap, "live Vulkan objects", "#2c6fbb",
-        [](const SoakSample& s) { return double(s.vk_objects); });
-  svg << "<text x=\"" << (kLeft + kW - kRight) / 2 << "\" y=\"" << kH - 40
+  });
+  Points objects;
+  for (const SoakSample& s : samples) objects.emplace_back(s.frame, double(s.vk_objects));
+  svg_panel(svg, plot, P::kTop + P::kPanel + P::kGap, "live Vulkan objects", "#2c6fbb", objects,
+            [](auto) {});
+  svg << "<text x=\"" << (P::kLeft + P::kW - P::kRight) / 2 << "\" y=\"" << kH - 60
       << "\" text-anchor=\"middle\">frame</text>\n"
-      << "<text x=\"" << kLeft << "\" y=\"" << kH - 14 << "\">RSS peak growth after warm-up "
-      << verdict.rss_growth_kb << " kB (end minus warm-up " << verdict.rss_end_minus_warmup_kb
-      << " kB, live heap " << verdict.heap_growth_kb << " kB); "
+      << "<text x=\"" << P::kLeft << "\" y=\"" << kH - 34 << "\">RSS growth over the cycles after "
+      << "warm-up (dots: each cycle's median; line: least squares) " << verdict.rss_growth_kb
+      << " kB, standard error " << verdict.rss_growth_se_kb << " kB"
+      << "</text>\n<text x=\"" << P::kLeft << "\" y=\"" << kH - 14 << "\">(end minus warm-up "
+      << verdict.rss_end_minus_warmup_kb << " kB, live heap " << verdict.heap_growth_kb << " kB); "
       << (verdict.objects_ok ? "Vulkan objects: no leak" : "Vulkan objects: LEAK") << "</text>\n"
       << "</svg>\n";
   return svg.str();
@@ -259,7 +371,7 @@ struct SoakTimes {
 // The frames: every --soak-every frames a sample (read back as a screenshot would), then
 // the next step of the material cycle through the panel's code, refit and applied.
 SoakTimes soak_frames(const ViewerArgs& a, renderer::Renderer& r, MaterialEditor& editor,
-                      std::vector<SoakSample>& samples) {
+                      std::vector<SoakSample>& samples, std::vector<long>& frame_rss_kb) {
   const std::vector<int> presets = accepted_presets(editor.edits()[0]);
   if (presets.empty()) throw std::runtime_error("--soak: the material panel accepts no preset");
   const auto all = profiles::presets();
@@ -301,6 +413,7 @@ SoakTimes soak_frames(const ViewerArgs& a, renderer::Renderer& r, MaterialEditor
     r.render_frame();
     times.render_ms += ms_since(t);
     editor.frame_presented();
+    frame_rss_kb.push_back(resident_kb());  // a read of /proc: ~30 us against ~20 ms a frame
   }
   times.total_s = ms_since(start) / 1000.0;
   return times;
@@ -337,10 +450,22 @@ void print_soak_report(const ViewerArgs& a, const renderer::RenderOptions& optio
   rss_state = "not judged under AddressSanitizer";
   v.rss_ok = true;
 #endif
-  std::printf("RSS after warm-up: the cycle peaks' median rise x rises %+ld kB, "
-              "limit %ld kB: %s (end minus warm-up %+ld kB; live heap %+ld kB)\n",
-              v.rss_growth_kb, a.soak_max_growth_kb, rss_state,
-              v.rss_end_minus_warmup_kb, v.heap_growth_kb);
+  std::printf("RSS medians of the %zu full cycles after warm-up (kB):", v.cycle_median_kb.size());
+  for (long m : v.cycle_median_kb) std::printf(" %ld", m);
+  std::printf("\n");
+  if (v.cycle_median_kb.empty())
+    std::printf("RSS: no full cycle after warm-up to judge: %s\n", rss_state);
+  else if (v.rss_t > 0.0)
+    std::printf("RSS growth over them (least squares) %+ld kB, standard error %ld kB; fails when "
+                "growth - %.2f x error >= %ld kB (t, one-sided 99.9%%, %zu degrees of freedom), "
+                "i.e. this run detects a growth of about %ld kB or more: %s\n",
+                v.rss_growth_kb, v.rss_growth_se_kb, v.rss_t, a.soak_max_growth_kb,
+                v.cycle_median_kb.size() - 2, v.rss_detectable_kb, rss_state);
+  else
+    std::printf("RSS growth over them %+ld kB, limit %ld kB: %s\n", v.rss_growth_kb,
+                a.soak_max_growth_kb, rss_state);
+  std::printf("(end minus warm-up %+ld kB; live heap %+ld kB)\n", v.rss_end_minus_warmup_kb,
+              v.heap_growth_kb);
   std::printf("Vulkan objects: %s: %s\n", v.objects_detail.c_str(), v.objects_ok ? "ok" : "FAIL");
   if (!a.soak_csv.empty()) std::printf("wrote %s\n", a.soak_csv.c_str());
   if (!a.soak_svg.empty()) std::printf("wrote %s\n", a.soak_svg.c_str());
@@ -365,15 +490,17 @@ int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::Ren
   editor.update(r);
 
   std::vector<SoakSample> samples;
-  const SoakTimes times = soak_frames(a, r, editor, samples);
-  SoakVerdict v = judge_soak(samples, a.soak_every, a.soak_cycle, a.soak_max_growth_kb);
-  if (!a.soak_csv.empty()) image::write_file_atomically(a.soak_csv, soak_csv(samples));
+  std::vector<long> frame_rss_kb;
+  frame_rss_kb.reserve(std::size_t(a.soak));
+  const SoakTimes times = soak_frames(a, r, editor, samples, frame_rss_kb);
+  SoakVerdict v = judge_soak(samples, frame_rss_kb, a.soak_every, a.soak_cycle, a.soak_max_growth_kb);
+  if (!a.soak_csv.empty()) image::write_file_atomically(a.soak_csv, soak_csv(samples, frame_rss_kb));
   if (!a.soak_svg.empty()) {
     std::ostringstream title;
     title << "sss-viewer --soak " << a.soak << ": " << a.scene << " " << options.width << "x"
           << options.height << ", material changed every " << a.soak_every << " frames, cycle of "
           << a.soak_cycle;
-    image::write_file_atomically(a.soak_svg, soak_svg(samples, v, title.str()));
+    image::write_file_atomically(a.soak_svg, soak_svg(samples, frame_rss_kb, v, title.str()));
   }
   if (!a.out.empty()) write_frame(r, a.out);
   print_soak_report(a, options, samples, v, times);

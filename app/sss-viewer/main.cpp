@@ -205,8 +205,9 @@ void add_run_options(CLI::App& app, ViewerArgs& a) {
   app.add_option("--soak", a.soak,
                  "Headless soak: render N frames, changing the first SSS material every "
                  "--soak-every frames through the material panel's code; record resident "
-                 "memory and live Vulkan objects; exit 1 if memory grows by --soak-max-growth-kb "
-                 "or more after the first material cycle, or an object leaks (scripts/soak.sh)")
+                 "memory after every frame and live Vulkan objects; exit 1 if memory grows "
+                 "significantly by --soak-max-growth-kb or more after the first material cycle, "
+                 "or an object leaks (scripts/soak.sh)")
       ->check(CLI::Range(1, 10000000));
   app.add_option("--soak-every", a.soak_every, "--soak: frames between material changes (default 100)")
       ->check(CLI::Range(1, 1000000));
@@ -215,9 +216,9 @@ void add_run_options(CLI::App& app, ViewerArgs& a) {
                  "step a coefficient edit (default 10); warm-up is one cycle")
       ->check(CLI::Range(1, 1000));
   app.add_option("--soak-max-growth-kb", a.soak_max_growth_kb,
-                 "--soak: allowed RSS growth from the end of warm-up to the end (default 1024)")
+                 "--soak: allowed RSS growth over the cycles after warm-up (default 1024)")
       ->check(CLI::Range(0L, 1L << 30));
-  app.add_option("--soak-csv", a.soak_csv, "--soak: write frame,rss_kb,vk_objects,material here");
+  app.add_option("--soak-csv", a.soak_csv, "--soak: write frame,rss_kb,rss_median_kb,vk_objects,heap_kb,material here");
   app.add_option("--soak-svg", a.soak_svg, "--soak: plot resident memory and objects here (SVG)");
 }
 

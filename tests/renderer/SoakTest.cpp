@@ -14,6 +14,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
+#include <stdexcept>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -51,88 +53,143 @@ TEST_F(LiveObjects, HandlesCountWhatTheyOwn) {
   EXPECT_EQ(sss::vk::live_object_count(), total);
 }
 
-// A soak of 10 samples every 100 frames, cycle of 2 steps (warm-up 200 frames).
-std::vector<SoakSample> curve(long rss_step_kb, std::int64_t objects_step_per_cycle) {
+// A soak's samples every `every` frames up to `frames`, the live objects alternating with
+// the phase of a 2-step cycle plus objects_per_cycle more each cycle.
+std::vector<SoakSample> samples(int frames, int every, std::int64_t objects_per_cycle = 0) {
   std::vector<SoakSample> s;
-  for (int f = 0; f <= 1000; f += 100)
-    s.push_back({f, 100000 + rss_step_kb * (f / 100),
-                 500 + (f / 100) % 2 + objects_step_per_cycle * (f / 200), 2000, "m"});
+  for (int f = 0; f <= frames; f += every)
+    s.push_back({f, 100000, 500 + (f / every) % 2 + objects_per_cycle * (f / (2 * every)), 2000, "m"});
   return s;
 }
 
+// VmRSS after each of `frames` frames: rss(f) for the reading after frame f (1-based).
+template <class F>
+std::vector<long> readings(int frames, F rss) {
+  std::vector<long> r;
+  for (int f = 1; f <= frames; ++f) r.push_back(rss(f));
+  return r;
+}
+
+// The t quantiles the verdict uses against published tables (Abramowitz & Stegun table
+// 26.10; NIST/SEMATECH e-Handbook 1.3.6.7.2), to their 3 or 4 significant digits.
+TEST(SoakVerdict, StudentTQuantilesMatchTheTables) {
+  using sss::app::student_t_quantile;
+  EXPECT_NEAR(student_t_quantile(0.999, 1), 318.309, 0.01);
+  EXPECT_NEAR(student_t_quantile(0.999, 2), 22.327, 0.001);
+  EXPECT_NEAR(student_t_quantile(0.999, 5), 5.893, 0.001);
+  EXPECT_NEAR(student_t_quantile(0.999, 13), 3.852, 0.001);
+  EXPECT_NEAR(student_t_quantile(0.999, 30), 3.385, 0.001);
+  EXPECT_NEAR(student_t_quantile(0.975, 10), 2.228, 0.001);
+  EXPECT_NEAR(student_t_quantile(0.95, 1), 6.314, 0.001);
+  EXPECT_NEAR(student_t_quantile(0.95, 4), 2.132, 0.001);
+  EXPECT_THROW(student_t_quantile(0.4, 3), std::invalid_argument);
+  EXPECT_THROW(student_t_quantile(0.99, 0), std::invalid_argument);
+}
+
+// 1,000 frames sampled every 100, cycles of 2 steps: warm-up 200 frames, then 4 cycles.
 TEST(SoakVerdict, ASteadyCurvePasses) {
-  const auto v = judge_soak(curve(0, 0), 100, 2, 1024);
+  const auto v = judge_soak(samples(1000, 100), readings(1000, [](int) { return 100000L; }), 100, 2, 1024);
   EXPECT_EQ(v.warmup_frames, 200);
+  EXPECT_EQ(v.cycle_median_kb.size(), 4u);
   EXPECT_TRUE(v.rss_ok);
   EXPECT_TRUE(v.objects_ok) << v.objects_detail;
   EXPECT_EQ(v.rss_growth_kb, 0);
+  EXPECT_EQ(v.rss_growth_se_kb, 0);
 }
 
 TEST(SoakVerdict, OneObjectPerCycleIsALeak) {
-  const auto v = judge_soak(curve(0, 1), 100, 2, 1024);
+  const auto v = judge_soak(samples(1000, 100, 1), readings(1000, [](int) { return 100000L; }), 100, 2, 1024);
   EXPECT_FALSE(v.objects_ok);
   EXPECT_NE(v.objects_detail.find("frame 400"), std::string::npos) << v.objects_detail;
 }
 
+// A leak of 1 kB a frame: the medians of the 6 cycles after warm-up (1,400 frames) lie on
+// a line 200 kB a cycle apart, 1,000 kB from the first to the last, with no scatter. It
+// fails a limit of 1,000 kB and passes one of 1,001.
 TEST(SoakVerdict, MemoryGrowingPastTheLimitFails) {
-  // Rising by `step` per sample, the peak of the first cycle after warm-up is at frame
-  // 400 and that of the last at 1000: 6 steps apart. 6 x 171 = 1026 kB is not below
-  // the limit, 6 x 170 = 1020 is.
-  const auto v = judge_soak(curve(171, 0), 100, 2, 1024);
-  EXPECT_EQ(v.rss_growth_kb, 1026);
-  EXPECT_EQ(v.rss_end_minus_warmup_kb, 8 * 171);
+  const auto rss = readings(1400, [](int f) { return 100000L + f; });
+  auto v = judge_soak(samples(1400, 100), rss, 100, 2, 1000);
+  EXPECT_EQ(v.rss_growth_kb, 1000);
+  EXPECT_EQ(v.rss_growth_se_kb, 0);
   EXPECT_FALSE(v.rss_ok);
-  EXPECT_TRUE(judge_soak(curve(170, 0), 100, 2, 1024).rss_ok);
+  EXPECT_TRUE(judge_soak(samples(1400, 100), rss, 100, 2, 1001).rss_ok);
 }
 
-// The allocator's swing (a block freed and kept, then handed back) is not growth: RSS
-// alternating by 1.4 MB between samples, as measured on the bunny, passes.
-TEST(SoakVerdict, ASwingingRssWithTheSamePeaksPasses) {
-  std::vector<SoakSample> s = curve(0, 0);
-  for (SoakSample& x : s) x.rss_kb += (x.frame / 100) % 3 == 0 ? 1400 : 0;
-  const auto v = judge_soak(s, 100, 2, 1024);
-  EXPECT_TRUE(v.rss_ok) << v.rss_growth_kb;
-}
-
-// A one-time step (an allocator arena or a validation layer's cache growing once: a CI
-// run measured +3.1 MB between two samples) is not a leak: RSS 3.1 MB up from frame 500 on
-// rises in one cycle only. The same step every cycle is one.
-TEST(SoakVerdict, AOneTimeStepPassesAStepEveryCycleFails) {
-  std::vector<SoakSample> s = curve(0, 0);
-  for (SoakSample& x : s) x.rss_kb += x.frame >= 500 ? 3100 : 0;
-  auto v = judge_soak(s, 100, 2, 1024);
+// What the frames themselves do is not growth: RSS up by 8 MB after one frame in three
+// (lavapipe's binning, the allocator), or down by 3 MB for 40 frames of a 200-frame cycle
+// (a trim), leaves every cycle's median where it was.
+TEST(SoakVerdict, TheFramesSwingIsNotGrowth) {
+  auto v = judge_soak(samples(1400, 100),
+                      readings(1400, [](int f) { return 100000L + (f % 3 == 0 ? 8000 : 0); }), 100, 2, 1024);
   EXPECT_TRUE(v.rss_ok) << v.rss_growth_kb;
   EXPECT_EQ(v.rss_growth_kb, 0);
-  s = curve(0, 0);
-  for (SoakSample& x : s) x.rss_kb += 600 * ((x.frame + 100) / 200);  // +600 kB each cycle
-  v = judge_soak(s, 100, 2, 1024);
-  EXPECT_EQ(v.rss_growth_kb, 3 * 600);
-  EXPECT_FALSE(v.rss_ok);
-}
-
-// The CI soak's shape (every 50 frames, cycles of 2 steps, 800 frames: 7 cycles after the
-// warm-up, 6 rises). RSS rising in two cycles running by +2,244 and +2,784 kB, as one CI
-// run under the best-practices layer measured (a rerun of 1,600 frames rose in none), is
-// not a leak: the lower median of the 6 rises is 0. A leak of 200 kB per cycle under a
-// +-400 kB swing from sample to sample is one: 6 x 200 = 1,200 kB.
-TEST(SoakVerdict, TwoStepsInARowPassALeakUnderNoiseFails) {
-  std::vector<SoakSample> s;
-  for (int f = 0; f <= 800; f += 50)
-    s.push_back({f, 100000 + (f > 300 ? 2244 : 0) + (f > 400 ? 2784 : 0), 500, 2000, "m"});
-  auto v = judge_soak(s, 50, 2, 1024);
+  v = judge_soak(samples(1400, 100),
+                 readings(1400, [](int f) { return 100000L - (f % 200 < 40 ? 3000 : 0); }), 100, 2, 1024);
   EXPECT_TRUE(v.rss_ok) << v.rss_growth_kb;
   EXPECT_EQ(v.rss_growth_kb, 0);
-  for (SoakSample& x : s)
-    x.rss_kb = 100000 + 200 * (x.frame / 100) + ((x.frame / 50) % 3 == 0 ? 400 : -400);
-  v = judge_soak(s, 50, 2, 1024);
+}
+
+// The CI soak's old shape (every 50 frames, cycles of 2, 800 frames: 7 cycles after
+// warm-up). A one-time step (a CI run measured +3.1 MB once under the synchronization
+// layer) is not a line: the residuals it leaves give the growth (3,986 kB) an error of
+// 1,029 kB, and 3,986 - 5.89 x 1,029 is below the limit. RSS rising in two cycles running
+// (+2,244 then +2,784 kB, as a CI run under best practices measured) passes the same way.
+// 600 kB more every cycle is a line (3,600 kB, no error) and fails, also under a
+// +-400 kB swing from frame to frame.
+TEST(SoakVerdict, StepsPassALeakUnderNoiseFails) {
+  auto v = judge_soak(samples(800, 50),
+                      readings(800, [](int f) { return 100000L + (f > 500 ? 3100 : 0); }), 50, 2, 1024);
+  EXPECT_TRUE(v.rss_ok) << v.rss_growth_kb;
+  EXPECT_NEAR(v.rss_growth_kb, 3986, 1);
+  EXPECT_NEAR(v.rss_growth_se_kb, 1029, 1);
+  v = judge_soak(samples(800, 50), readings(800, [](int f) {
+                   return 100000L + (f > 300 ? 2244 : 0) + (f > 400 ? 2784 : 0);
+                 }), 50, 2, 1024);
+  EXPECT_TRUE(v.rss_ok) << v.rss_growth_kb << " +- " << v.rss_growth_se_kb;
+  v = judge_soak(samples(800, 50),
+                 readings(800, [](int f) { return 100000L + 6 * f + (f % 2 == 0 ? 400 : -400); }),
+                 50, 2, 1024);
+  EXPECT_NEAR(v.rss_growth_kb, 3600, 1);
   EXPECT_FALSE(v.rss_ok) << v.rss_growth_kb;
-  EXPECT_GE(v.rss_growth_kb, 1024);
+}
+
+// The verdict's level, by simulation: 100,000 soaks of 7 cycles whose medians scatter as
+// Gaussians (sigma 1 MB) about a line. The growth's error is then 6 sigma / sqrt(28) =
+// 1.134 sigma, estimated from 5 degrees of freedom, and the chance that a run fails is
+//   P(fail) = integral over chi-square_5 x of Q((limit - growth) / 1.134 sigma + t sqrt(x / 5))
+// (Q the Gaussian upper tail, t = 5.893), integrated numerically (midpoint rule, 200,000
+// steps): 0.001000 where the growth is exactly the limit (the test's level, by
+// construction), 1.04e-4 with no growth, and 0.9879 for a growth of limit + 12 sigma.
+// Expected failures of 100,000 with their binomial bounds at 4.5 standard deviations: 100
+// (55 to 145), 10.4 (at most 25), 98,792 (at least 98,640).
+TEST(SoakVerdict, TheGrowthTestFailsAtItsLevel) {
+  constexpr int kRuns = 100000, kCycles = 7;
+  constexpr double kSigma = 1000.0, kLimit = 1024.0;
+  std::mt19937_64 rng(20261207);
+  std::normal_distribution<double> noise(0.0, kSigma);
+  const std::vector<SoakSample> s = samples(2 * (kCycles + 1), 1);  // a cycle = 2 frames
+  const auto failures = [&](double growth) {
+    int failed = 0;
+    for (int run = 0; run < kRuns; ++run) {
+      std::vector<double> median(kCycles);
+      for (int k = 0; k < kCycles; ++k) median[k] = 1e6 + growth * k / (kCycles - 1) + noise(rng);
+      // Both readings of cycle k (frames 2k + 3, 2k + 4) at its median.
+      const auto rss = readings(2 * (kCycles + 1), [&](int f) {
+        return f <= 2 ? 1000000L : std::lround(median[std::size_t((f - 3) / 2)]);
+      });
+      if (!judge_soak(s, rss, 1, 2, long(kLimit)).rss_ok) ++failed;
+    }
+    return failed;
+  };
+  const int at_limit = failures(kLimit);
+  EXPECT_GE(at_limit, 55);
+  EXPECT_LE(at_limit, 145);
+  EXPECT_LE(failures(0.0), 25);
+  EXPECT_GE(failures(kLimit + 12.0 * kSigma), 98640);
 }
 
 TEST(SoakVerdict, TooShortToPassItsWarmUp) {
-  std::vector<SoakSample> s = curve(0, 0);
-  s.resize(3);  // frames 0..200: nothing after warm-up
-  EXPECT_FALSE(judge_soak(s, 100, 2, 1024).ok());
+  EXPECT_FALSE(judge_soak(samples(200, 100), readings(200, [](int) { return 100000L; }), 100, 2, 1024).ok());
 }
 
 #ifdef SSS_VIEWER_EXE
@@ -151,9 +208,10 @@ std::map<int, Row> read_csv(const std::string& path) {
   std::getline(in, line);  // header
   while (std::getline(in, line)) {
     std::istringstream s(line);
-    std::string frame, rss, objects, heap, material;
+    std::string frame, rss, median, objects, heap, material;
     std::getline(s, frame, ',');
     std::getline(s, rss, ',');
+    std::getline(s, median, ',');  // empty at frame 0
     std::getline(s, objects, ',');
     std::getline(s, heap, ',');
     std::getline(s, material);
@@ -162,24 +220,28 @@ std::map<int, Row> read_csv(const std::string& path) {
   return rows;
 }
 
-// The CI soak: 800 frames of builtin:sphere at 160x90, the material changed every 50
+// The CI soak: 800 frames of builtin:sphere at 160x90, the material changed every 25
 // frames through the material panel's code, alternating a preset (apple) and a
-// coefficient edit: a cycle of 2 steps = 100 frames, which is the warm-up (each step's
-// first fit, upload and pipelines happen in it), then seven cycles. Criteria:
-//   - the program's verdict on RSS (Soak.h): the peak of each cycle after warm-up, the
-//     lower median of the 6 rises from one peak to the next times the 6 rises, below
-//     1 MB (1024 kB). Peaks, not single samples of different phase: the two steps keep
-//     different amounts of memory alive (a CI run measured 'coefficients' 1.7 MB under
-//     'apple'). The median, not one rise: steps that are not leaks rise in some cycles
-//     and not in the others (CI runs measured +3.1 MB once under the synchronization
-//     layer, and +2.2 then +2.8 MB in two cycles running under best practices with three
-//     cycles, where 1,600 frames of the same build rose in none); a leak rises in every
-//     cycle. Nothing in a frame or a material change should keep memory, so the expected
-//     growth is 0. 1 MB is the bound for the 10,000-frame soak and catches any
-//     per-frame leak of 1.8 kB or more here (1 MB over 6 cycles of 100 frames) and any
-//     per-change leak of 86 kB or more (1 MB over 6 cycles of 2 changes);
-//   - the live Vulkan objects at every sample from frame 200 on equal those at the same
-//     point of the first cycle after warm-up (100 or 150): one leaked object per change
+// coefficient edit: a cycle of 2 steps = 50 frames, which is the warm-up (each step's
+// first fit, upload and pipelines happen in it), then fifteen cycles. Criteria:
+//   - the program's verdict on RSS (SoakVerdict in Soak.h): the median RSS of each cycle
+//     after warm-up (VmRSS after each of its 50 frames), the least-squares growth over the
+//     15 medians with its standard error, failing when growth - 3.85 x error >= 1 MB
+//     (3.85: Student's t, one-sided 99.9%, 13 degrees of freedom). Nothing in a frame or
+//     a material change should keep memory, so the expected growth is 0. The medians of
+//     runs without a leak scatter so that the error is 0.6 to 1.3 MB (six runs under the
+//     best-practices layer on 2 cores: 611 to 1,261 kB; the error is 0.84 x the medians'
+//     scatter with 15 cycles, so a scatter of 0.73 to 1.55 MB), so a run without a leak
+//     fails 3e-6 to 9e-5 of the time (the integral in TheGrowthTestFailsAtItsLevel with 15
+//     cycles and 13 degrees of freedom, for these scatters), and this run detects (fails with
+//     probability 1/2) a growth over the 700 frames of about 3.4 to 5.9 MB: a leak of 8 kB
+//     a frame, or of 400 kB a material change. Smaller leaks are for
+//     scripts/soak.sh's 10,000 frames. Fifteen cycles of 50 frames rather than seven of 100
+//     for the same frames: 13 degrees of freedom (t 3.85) instead of 5 (t 5.89), and a
+//     smaller error (two traces of 800 frames gave 0.7 and 1.1 MB with 50-frame cycles
+//     against 0.9 and 1.6 MB with 100-frame cycles);
+//   - the live Vulkan objects at every sample from frame 100 on equal those at the same
+//     point of the first cycle after warm-up (50 or 75): one leaked object per change
 //     fails it.
 TEST(Soak, EightHundredFramesKeepMemoryAndVulkanObjects) {
   const std::string csv = sss::testing::viewer_temp_path("soak_test", "soak.csv");
@@ -188,18 +250,19 @@ TEST(Soak, EightHundredFramesKeepMemoryAndVulkanObjects) {
   std::filesystem::remove(svg);
   const sss::testing::CliRun r = sss::testing::run_shell(
       std::string(SSS_VIEWER_EXE) +
-      " builtin:sphere --headless --width 160 --height 90 --soak 800 --soak-every 50"
+      " builtin:sphere --headless --width 160 --height 90 --soak 800 --soak-every 25"
       " --soak-cycle 2 --soak-csv " + csv + " --soak-svg " + svg);
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("soak: pass"), std::string::npos) << r.out;
   const std::map<int, Row> rows = read_csv(csv);
-  ASSERT_EQ(rows.size(), 17u) << r.out;
-  for (int f = 0; f <= 800; f += 50) ASSERT_TRUE(rows.count(f)) << f;
-  EXPECT_EQ(rows.at(100).material, "coefficients");
-  EXPECT_EQ(rows.at(150).material, "apple");
-  EXPECT_GT(rows.at(100).objects, 0);
-  for (int f = 200; f <= 800; f += 50)
-    EXPECT_EQ(rows.at(f).objects, rows.at(f % 100 == 0 ? 100 : 150).objects) << f << "\n" << r.out;
+  ASSERT_EQ(rows.size(), 33u) << r.out;
+  for (int f = 0; f <= 800; f += 25) ASSERT_TRUE(rows.count(f)) << f;
+  EXPECT_EQ(rows.at(50).material, "coefficients");
+  EXPECT_EQ(rows.at(75).material, "apple");
+  EXPECT_GT(rows.at(50).objects, 0);
+  for (int f = 100; f <= 800; f += 25)
+    EXPECT_EQ(rows.at(f).objects, rows.at(f % 50 == 0 ? 50 : 75).objects) << f << "\n" << r.out;
+  EXPECT_NE(r.out.find("RSS medians of the 15 full cycles"), std::string::npos) << r.out;
   std::ifstream plot(svg);
   std::string head;
   std::getline(plot, head);
