@@ -104,12 +104,21 @@ ProbeEstimator::ProbeEstimator(const scene::Scene& s, const RayScene& rays, cons
     : scene_(s), rays_(rays), maps_(maps), group_of_(s.materials.size(), -1) {
   std::vector<bool> used(s.materials.size(), false);
   for (const scene::Instance& inst : s.instances) used[s.meshes[inst.mesh].material] = true;
-  for (std::uint32_t m = 0; m < s.materials.size(); ++m) {
+  std::vector<std::uint32_t> sss_materials;
+  for (std::uint32_t m = 0; m < s.materials.size(); ++m)
+    if (s.materials[m].sss.enabled && used[m]) sss_materials.push_back(m);
+  const profiles::ModelOptions model_options = o.profile_options();
+  for (std::uint32_t m : sss_materials) {
     const scene::SssMaterial& sss = s.materials[m].sss;
-    if (!sss.enabled || !used[m]) continue;
     ProbeGroup g;
     g.material = m;
-    g.profile = reference_profile(sss, o.kernel, o.profile_options());
+    profiles::ModelOptions material_options = model_options;
+    if (model_options.mc_progress)  // model mc's walk: material k of n spans [k/n, (k+1)/n]
+      material_options.mc_progress = [&model_options, k = double(groups_.size()),
+                                      n = double(sss_materials.size())](double f) {
+        model_options.mc_progress((k + f) / n);
+      };
+    g.profile = reference_profile(sss, o.kernel, material_options);
     g.support_mm = g.profile->support_radius();
     g.pre_post = sss.albedo_mode == scene::AlbedoMode::PrePost;
     g.entry_fresnel = o.applies_fresnel();
@@ -288,7 +297,7 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
   std::unique_ptr<ShadowMaps> maps;
   arena.execute([&] {
     if (o.shadows == Shadows::ShadowMap) maps = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size);
-    ReferenceOptions with_progress = o;  // model mc's walk: each material's, 0 to 1
+    ReferenceOptions with_progress = o;  // model mc's walk: 0 to 1 over the materials
     with_progress.model_options.mc_progress = [&](double f) {
       report("profiles", f);
       if (cancelled()) throw Cancelled();

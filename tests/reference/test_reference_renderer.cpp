@@ -14,6 +14,9 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -322,12 +325,28 @@ TEST(ReferenceRenderer, CancellingStopsTheRender) {
 }
 
 // Model mc's walk is the slow part of the profile stage (2^20 photons of cream: minutes).
-// Both estimators report it as it runs ("profiles" below 1) and stop it when cancelled:
-// cancelled at the first report, the walk runs at most the chunks its threads had begun
-// (two threads here), not the 3 x 8 chunks of the whole profile.
+// Both estimators report it as it runs ("profiles" below 1), in order over the scene's
+// materials (two spheres of two materials here: the bar does not start again at the second
+// material), and stop it when cancelled: cancelled at the first report, the walk runs at
+// most the chunks its threads had begun (two threads here), not the 3 x 8 chunks of the
+// whole profile.
 TEST(ReferenceRenderer, TheMonteCarloModelsWalkReportsProgressAndCancels) {
   auto loaded = scene::load_scene("builtin:sphere");
   ASSERT_TRUE(std::holds_alternative<scene::Scene>(loaded));
+  {  // a second sphere, 10 cm to the side, of a second material
+    scene::Scene& s = std::get<scene::Scene>(loaded);
+    scene::Material second = s.materials[s.meshes[0].material];
+    second.name = "second";
+    second.sss.medium.sigma_a[0] *= 2.0;
+    s.materials.push_back(second);
+    scene::Mesh mesh = s.meshes[0];
+    mesh.material = std::uint32_t(s.materials.size() - 1);
+    s.meshes.push_back(mesh);
+    scene::Instance inst = s.instances[0];
+    inst.mesh = std::uint32_t(s.meshes.size() - 1);
+    inst.world = glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, 0.0f, 0.0f)) * inst.world;
+    s.instances.push_back(inst);
+  }
   for (scene::Material& m : std::get<scene::Scene>(loaded).materials)  // the exact kernel reads the model
     if (m.sss.enabled) m.sss.model = profiles::Model::MonteCarlo;
   for (const Estimator estimator : {Estimator::Octree, Estimator::Probe}) {
@@ -342,7 +361,9 @@ TEST(ReferenceRenderer, TheMonteCarloModelsWalkReportsProgressAndCancels) {
     render_reference(std::get<scene::Scene>(loaded), o, [&](const char* stage, double f) {
       if (std::string(stage) == "profiles" && f < 1.0) during.push_back(f);
     });
-    EXPECT_GE(during.size(), 8u) << estimator_name(estimator);
+    EXPECT_GE(during.size(), 16u) << estimator_name(estimator);
+    EXPECT_TRUE(std::is_sorted(during.begin(), during.end())) << estimator_name(estimator);
+    EXPECT_GT(during.back(), 0.5) << estimator_name(estimator);  // the second material's walk
 
     std::atomic<bool> cancel{false};
     int after = 0;
