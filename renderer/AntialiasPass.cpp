@@ -39,7 +39,7 @@ void AntialiasPass::add_to(graph::FrameGraph& graph) const {
       .step({{&t.display_source, kSampled}, {&t.display, kComputeWrite}},
             [this, &t](VkCommandBuffer cmd) {
               program_.bind(cmd, set_);
-              ComputeProgram::dispatch(cmd, r_.targets.width, r_.targets.height);
+              Program::dispatch(cmd, r_.targets.width, r_.targets.height);
             });
 }
 

@@ -6,7 +6,7 @@
 // only while it is asked for.
 #pragma once
 
-#include "renderer/ComputeProgram.h"
+#include "renderer/Program.h"
 #include "renderer/FrameResources.h"
 #include "renderer/graph/FrameGraph.h"
 
@@ -22,7 +22,7 @@ class AntialiasPass {
 
  private:
   const FrameResources& r_;
-  ComputeProgram program_;
+  Program program_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
 

@@ -42,10 +42,10 @@ void CompositePass::add_to(graph::FrameGraph& graph) const {
                              [this](VkCommandBuffer cmd) {
                                program_.bind(cmd, set_);
                                if (full_frame_)  // the environment behind the geometry
-                                 ComputeProgram::dispatch(cmd, r_.targets.display.width(),
+                                 Program::dispatch(cmd, r_.targets.display.width(),
                                                           r_.targets.display.height());
                                else
-                                 ComputeProgram::dispatch(cmd, r_.rect);
+                                 Program::dispatch(cmd, r_.rect);
                              });
 }
 

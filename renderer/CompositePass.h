@@ -5,7 +5,7 @@
 // behind the geometry.
 #pragma once
 
-#include "renderer/ComputeProgram.h"
+#include "renderer/Program.h"
 #include "renderer/FrameResources.h"
 #include "renderer/graph/FrameGraph.h"
 
@@ -26,7 +26,7 @@ class CompositePass {
 
  private:
   const FrameResources& r_;
-  ComputeProgram program_;
+  Program program_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   bool full_frame_ = false;
 };

@@ -66,7 +66,7 @@ void DebugViewPass::add_to(graph::FrameGraph& graph) const {
                                vkCmdPushConstants(cmd, program_.layout.get(),
                                                   VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
                                                   &push);
-                               ComputeProgram::dispatch(cmd, r_.targets.width,
+                               Program::dispatch(cmd, r_.targets.width,
                                                         r_.targets.height);
                              });
 }

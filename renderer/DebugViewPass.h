@@ -4,7 +4,7 @@
 // a view is asked for, so the frame without one records nothing more.
 #pragma once
 
-#include "renderer/ComputeProgram.h"
+#include "renderer/Program.h"
 #include "renderer/FrameResources.h"
 #include "renderer/RenderOptions.h"
 #include "renderer/graph/FrameGraph.h"
@@ -24,7 +24,7 @@ class DebugViewPass {
 
  private:
   const FrameResources& r_;
-  ComputeProgram program_;
+  Program program_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   DebugView view_ = DebugView::None;
   std::array<float, 2> range_{0.0f, 1.0f};

@@ -61,18 +61,15 @@ vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout l
 
 GBufferPass::GBufferPass(const FrameResources& resources)
     : r_(resources),
-      set_layout_(surface_set_bindings().build(r_.context, kName)),
-      layout_(vk::create_pipeline_layout(r_.context, set_layout_.get(), sizeof(shader::DrawPush),
-                                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                         kName)),
-      pipeline_(build_pipeline(r_.context, layout_.get(), false)),
-      pool_(r_.context, surface_set_bindings(), 1, kName) {
-  set_ = pool_.allocate(set_layout_.get());
+      program_(r_.context, surface_set_bindings(), sizeof(shader::DrawPush),
+               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 1, kName,
+               [&](VkPipelineLayout layout) { return build_pipeline(r_.context, layout, false); }) {
+  set_ = program_.allocate();
   write_surface_set(set_, r_);
 }
 
 void GBufferPass::set_uv_stretch(bool on) {
-  if (on && !uv_stretch_pipeline_) uv_stretch_pipeline_ = build_pipeline(r_.context, layout_.get(), true);
+  if (on && !uv_stretch_pipeline_) uv_stretch_pipeline_ = build_pipeline(r_.context, program_.layout.get(), true);
   uv_stretch_ = on;
 }
 
@@ -90,11 +87,8 @@ void GBufferPass::add_to(graph::FrameGraph& graph) const {
     vk::begin_rendering(cmd, t.depth.extent(),
                         std::span<const vk::ColorTarget>(colors.data(), uv_stretch_ ? 3 : 2),
                         &depth);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                      uv_stretch_ ? uv_stretch_pipeline_.get() : pipeline_.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_, 0,
-                            nullptr);
-    r_.scene.draw(cmd, layout_.get());
+    program_.bind(cmd, uv_stretch_ ? uv_stretch_pipeline_.get() : program_.pipeline.get(), set_);
+    r_.scene.draw(cmd, program_.layout.get());
     vk::end_rendering(cmd);
   });
 }

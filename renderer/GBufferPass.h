@@ -4,7 +4,7 @@
 #pragma once
 
 #include "renderer/FrameResources.h"
-#include "renderer/vk/Descriptors.h"
+#include "renderer/Program.h"
 #include "renderer/graph/FrameGraph.h"
 
 namespace sss::renderer {
@@ -28,12 +28,9 @@ class GBufferPass {
 
  private:
   const FrameResources& r_;
-  vk::DescriptorSetLayoutHandle set_layout_;
-  vk::PipelineLayoutHandle layout_;
-  vk::PipelineHandle pipeline_;
-  vk::PipelineHandle uv_stretch_pipeline_;  // built by set_uv_stretch(true)
+  Program program_;
+  vk::PipelineHandle uv_stretch_pipeline_;  // on program_'s layout, built by set_uv_stretch(true)
   bool uv_stretch_ = false;
-  vk::DescriptorPool pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
 

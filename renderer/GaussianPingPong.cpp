@@ -7,7 +7,7 @@ namespace sss::renderer {
 static_assert(sizeof(shader::BlurPush) == sizeof(shader::vec4) &&
               sizeof(shader::TexturePush) == sizeof(shader::vec4));
 
-void GaussianPingPong::allocate(ComputeProgram& program) {
+void GaussianPingPong::allocate(Program& program) {
   for (VkDescriptorSet* set : {&h_source, &h_a, &h_b, &v_a, &v_b}) *set = program.allocate();
 }
 
@@ -20,15 +20,15 @@ GaussianPingPong::Dispatch GaussianPingPong::dispatch(int g, int pass, float w) 
           into_a ? Role::A : Role::B};
 }
 
-void GaussianPingPong::run(VkCommandBuffer cmd, const ComputeProgram& program, const Dispatch& d,
+void GaussianPingPong::run(VkCommandBuffer cmd, const Program& program, const Dispatch& d,
                            std::uint32_t width, std::uint32_t height) {
   program.bind(cmd, d.set);
   vkCmdPushConstants(cmd, program.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(d.push),
                      &d.push);
-  ComputeProgram::dispatch(cmd, width, height);
+  Program::dispatch(cmd, width, height);
 }
 
-void GaussianPingPong::record(VkCommandBuffer cmd, const ComputeProgram& program, int count,
+void GaussianPingPong::record(VkCommandBuffer cmd, const Program& program, int count,
                               float w, std::uint32_t width, std::uint32_t height) const {
   for (int g = 0; g < count; ++g)
     for (int pass = 0; pass < 2; ++pass) {

@@ -6,7 +6,7 @@
 // the source (g = 0) or the previous vertical result, the vertical pass reads temp.
 #pragma once
 
-#include "renderer/ComputeProgram.h"
+#include "renderer/Program.h"
 #include "renderer/vk/Image.h"
 #include "shaders/shared/frame.h"
 
@@ -20,7 +20,7 @@ struct GaussianPingPong {
   VkDescriptorSet h_source = VK_NULL_HANDLE, h_a = VK_NULL_HANDLE, h_b = VK_NULL_HANDLE;
   VkDescriptorSet v_a = VK_NULL_HANDLE, v_b = VK_NULL_HANDLE;
 
-  void allocate(ComputeProgram& program);
+  void allocate(Program& program);
   // Calls write(set, input, output) for each of the five sets.
   template <class Write>
   void write(const vk::Image& source, const vk::Image& a, const vk::Image& b,
@@ -41,11 +41,11 @@ struct GaussianPingPong {
   // Gaussian g's horizontal (pass 0) or vertical (pass 1) dispatch.
   Dispatch dispatch(int g, int pass, float w) const;
   // Binds its set and push constant and dispatches over width x height.
-  static void run(VkCommandBuffer cmd, const ComputeProgram& program, const Dispatch& d,
+  static void run(VkCommandBuffer cmd, const Program& program, const Dispatch& d,
                   std::uint32_t width, std::uint32_t height);
   // Gaussians 0 .. count - 1, each a horizontal then a vertical dispatch, with a compute
   // barrier after each (the texture path's atlases, which the frame graph does not track).
-  void record(VkCommandBuffer cmd, const ComputeProgram& program, int count, float w,
+  void record(VkCommandBuffer cmd, const Program& program, int count, float w,
               std::uint32_t width, std::uint32_t height) const;
 };
 

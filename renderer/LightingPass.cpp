@@ -46,7 +46,7 @@ void LightingPass::add_to(graph::FrameGraph& graph) const {
                               {&t.surface, kComputeWrite}},
                              [this](VkCommandBuffer cmd) {
                                program_.bind(cmd, set_);
-                               ComputeProgram::dispatch(cmd, r_.rect);
+                               Program::dispatch(cmd, r_.rect);
                              });
 }
 

@@ -3,7 +3,7 @@
 // into targets.irradiance and targets.specular (GENERAL).
 #pragma once
 
-#include "renderer/ComputeProgram.h"
+#include "renderer/Program.h"
 #include "renderer/FrameResources.h"
 #include "renderer/graph/FrameGraph.h"
 
@@ -21,7 +21,7 @@ class LightingPass {
 
  private:
   const FrameResources& r_;
-  ComputeProgram program_;
+  Program program_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
 

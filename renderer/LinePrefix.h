@@ -7,7 +7,7 @@
 // strided taps see an input the narrower Gaussians already blurred (EdgeTest).
 #pragma once
 
-#include "renderer/ComputeProgram.h"
+#include "renderer/Program.h"
 #include "renderer/FrameResources.h"
 #include "renderer/graph/FrameGraph.h"
 
@@ -30,7 +30,7 @@ class LinePrefix {
 
  private:
   const FrameResources& r_;
-  ComputeProgram program_;
+  Program program_;
   std::vector<VkDescriptorSet> sets_;
   std::vector<const vk::Image*> inputs_;
 };

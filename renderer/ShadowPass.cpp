@@ -20,21 +20,20 @@ vk::DescriptorSetLayoutBuilder bindings() { return vk::DescriptorSetLayoutBuilde
 ShadowPass::ShadowPass(const FrameResources& resources, std::vector<bool> shadowed)
     : r_(resources),
       shadowed_(std::move(shadowed)),
-      set_layout_(bindings().build(r_.context, kName)),
-      layout_(vk::create_pipeline_layout(r_.context, set_layout_.get(), sizeof(shader::DrawPush),
-                                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                         kName)),
-      pipeline_(vk::GraphicsPipelineBuilder()
-                    .vertex_shader(sss_spv_shadow_vert)
-                    .vertex_binding(0, sizeof(GpuVertex))
-                    .vertex_attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT,
-                                      offsetof(GpuVertex, position))
-                    .depth(kDepthFormat, vk::DepthTest::Write)
-                    .cull(VK_CULL_MODE_NONE)
-                    .dynamic_depth_bias()
-                    .build(r_.context, layout_.get(), kName)),
-      pool_(r_.context, bindings(), 1, kName) {
-  set_ = pool_.allocate(set_layout_.get());
+      program_(r_.context, bindings(), sizeof(shader::DrawPush),
+               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 1, kName,
+               [&](VkPipelineLayout layout) {
+                 return vk::GraphicsPipelineBuilder()
+                     .vertex_shader(sss_spv_shadow_vert)
+                     .vertex_binding(0, sizeof(GpuVertex))
+                     .vertex_attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT,
+                                       offsetof(GpuVertex, position))
+                     .depth(kDepthFormat, vk::DepthTest::Write)
+                     .cull(VK_CULL_MODE_NONE)
+                     .dynamic_depth_bias()
+                     .build(r_.context, layout, kName);
+               }) {
+  set_ = program_.allocate();
   vk::DescriptorWriter(set_).uniform_buffer(b::Lights, r_.lights).update(r_.context);
 }
 
@@ -54,11 +53,9 @@ void ShadowPass::add_to(graph::FrameGraph& graph, bool light_depth) const {
         const vk::DepthTarget target((*layers[map])[layer].get());
         vk::begin_rendering(cmd, r_.targets.shadow.extent(), {}, &target);
         if (layer < shadowed_.size() && shadowed_[layer]) {
-          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-          vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1,
-                                  &set_, 0, nullptr);
+          program_.bind(cmd, set_);
           vkCmdSetDepthBias(cmd, 0.0f, 0.0f, biases[map]);
-          r_.scene.draw(cmd, layout_.get(), static_cast<int>(layer));
+          r_.scene.draw(cmd, program_.layout.get(), static_cast<int>(layer));
         }
         vk::end_rendering(cmd);
       }

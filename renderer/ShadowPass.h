@@ -5,7 +5,7 @@
 #pragma once
 
 #include "renderer/FrameResources.h"
-#include "renderer/vk/Descriptors.h"
+#include "renderer/Program.h"
 #include "renderer/graph/FrameGraph.h"
 
 #include <utility>
@@ -28,10 +28,7 @@ class ShadowPass {
  private:
   const FrameResources& r_;
   std::vector<bool> shadowed_;
-  vk::DescriptorSetLayoutHandle set_layout_;
-  vk::PipelineLayoutHandle layout_;
-  vk::PipelineHandle pipeline_;
-  vk::DescriptorPool pool_;
+  Program program_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
 

@@ -5,7 +5,7 @@
 // sum to the total reflectance).
 #pragma once
 
-#include "renderer/ComputeProgram.h"
+#include "renderer/Program.h"
 #include "renderer/FrameResources.h"
 #include "renderer/GaussianPingPong.h"
 #include "renderer/graph/FrameGraph.h"
@@ -28,7 +28,7 @@ class SssGaussiansPass {
  private:
   const FrameResources& r_;
   int gaussians_;
-  ComputeProgram program_;
+  Program program_;
   GaussianPingPong blur_;  // irradiance, then blur_a / blur_b via blur_temp
 };
 

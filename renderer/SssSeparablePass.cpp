@@ -68,7 +68,7 @@ void SssSeparablePass::add_to(graph::FrameGraph& graph) const {
       program_.bind(cmd, k == 0 ? horizontal_ : vertical_);
       vkCmdPushConstants(cmd, program_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                          sizeof(push), &push);
-      ComputeProgram::dispatch(cmd, r_.rect);
+      Program::dispatch(cmd, r_.rect);
     });
   }
 }

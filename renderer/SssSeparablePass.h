@@ -9,7 +9,7 @@
 // image; CompositePass does every other pixel.
 #pragma once
 
-#include "renderer/ComputeProgram.h"
+#include "renderer/Program.h"
 #include "renderer/FrameResources.h"
 #include "renderer/LinePrefix.h"
 #include "renderer/graph/FrameGraph.h"
@@ -30,7 +30,7 @@ class SssSeparablePass {
 
  private:
   const FrameResources& r_;
-  ComputeProgram program_;
+  Program program_;
   LinePrefix prefix_;  // the running sums each 1D pass reads
   VkDescriptorSet horizontal_ = VK_NULL_HANDLE;
   VkDescriptorSet vertical_ = VK_NULL_HANDLE;

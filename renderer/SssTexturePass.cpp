@@ -88,19 +88,16 @@ struct SssTexturePass::Textures {
 
 SssTexturePass::SssTexturePass(const FrameResources& resources, const RenderOptions& options)
     : r_(resources),
-      raster_set_layout_(surface_set_bindings().build(r_.context, "texture irradiance")),
-      raster_layout_(vk::create_pipeline_layout(
-          r_.context, raster_set_layout_.get(), sizeof(shader::DrawPush),
-          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, "texture irradiance")),
-      raster_pipeline_(raster_pipeline(r_.context, raster_layout_.get())),
-      raster_pool_(r_.context, surface_set_bindings(), 1, "texture irradiance"),
+      raster_(r_.context, surface_set_bindings(), sizeof(shader::DrawPush),
+              VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 1, "texture irradiance",
+              [&](VkPipelineLayout layout) { return raster_pipeline(r_.context, layout); }),
       lighting_(r_.context, lit::kAll, sss_spv_texture_lighting_comp,
                 sizeof(shader::TexturePush), shader::kMaxTextureObjects, "texture lighting"),
       dilate_(r_.context, dil::kAll, sss_spv_texture_dilate_comp, 0,
               shader::kMaxTextureObjects, "texture dilate"),
       blur_(r_.context, blur::kAll, sss_spv_sss_texture_comp, sizeof(shader::TexturePush),
             5 * shader::kMaxTextureObjects, kName) {
-  raster_set_ = raster_pool_.allocate(raster_set_layout_.get());
+  raster_set_ = raster_.allocate();
   write_descriptors();
   configure(options);
 }
@@ -275,11 +272,9 @@ void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& obje
   for (vk::ColorTarget& c : colors) c.layout = VK_IMAGE_LAYOUT_GENERAL;
   const vk::DepthTarget depth(depth_.view());
   vk::begin_rendering(cmd, {t.size, t.size}, colors, &depth);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, raster_pipeline_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, raster_layout_.get(), 0, 1,
-                          &raster_set_, 0, nullptr);
-  r_.scene.draw_instance(cmd, raster_layout_.get(), object.instance, -1);
-  r_.scene.draw_gutter(cmd, raster_layout_.get(), object.instance, -1);
+  raster_.bind(cmd, raster_set_);
+  r_.scene.draw_instance(cmd, raster_.layout.get(), object.instance, -1);
+  r_.scene.draw_gutter(cmd, raster_.layout.get(), object.instance, -1);
   vk::end_rendering(cmd);
   const VkMemoryBarrier2 rastered = vk::memory_barrier(
       {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT},
@@ -291,12 +286,12 @@ void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& obje
   lighting_.bind(cmd, t.lighting);
   vkCmdPushConstants(cmd, lighting_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                      sizeof(material), &material);
-  ComputeProgram::dispatch(cmd, t.size, t.size);
+  Program::dispatch(cmd, t.size, t.size);
   compute_barrier(cmd);
 
   // 3. Dilation: temp (E), b (stretch) -> irradiance, stretch.
   dilate_.bind(cmd, t.dilate);
-  ComputeProgram::dispatch(cmd, t.size, t.size);
+  Program::dispatch(cmd, t.size, t.size);
   compute_barrier(cmd);
 
   // 4. The Gaussians, incrementally: u into temp, v into a / b alternately (+ scattered).

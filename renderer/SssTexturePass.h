@@ -17,7 +17,7 @@
 // TextureUpdate::EveryFrame; otherwise its textures keep the last result.
 #pragma once
 
-#include "renderer/ComputeProgram.h"
+#include "renderer/Program.h"
 #include "renderer/FrameResources.h"
 #include "renderer/RenderOptions.h"
 #include "renderer/graph/FrameGraph.h"
@@ -81,14 +81,11 @@ class SssTexturePass {
   void allocate_object_sets();
 
   const FrameResources& r_;
-  vk::DescriptorSetLayoutHandle raster_set_layout_;
-  vk::PipelineLayoutHandle raster_layout_;
-  vk::PipelineHandle raster_pipeline_;
-  vk::DescriptorPool raster_pool_;
+  Program raster_;  // the irradiance raster into the atlas (graphics)
   VkDescriptorSet raster_set_ = VK_NULL_HANDLE;
-  ComputeProgram lighting_;
-  ComputeProgram dilate_;
-  ComputeProgram blur_;
+  Program lighting_;
+  Program dilate_;
+  Program blur_;
   std::vector<Object> objects_;
   std::vector<Textures> textures_;  // one per object
   vk::Image depth_;  // the atlas raster's depth (own triangles before the gutter), largest size

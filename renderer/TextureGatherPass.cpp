@@ -39,13 +39,10 @@ vk::PipelineHandle build_pipeline(const vk::Context& context, VkPipelineLayout l
 
 TextureGatherPass::TextureGatherPass(const FrameResources& resources)
     : r_(resources),
-      set_layout_(bindings().build(r_.context, kName)),
-      layout_(vk::create_pipeline_layout(r_.context, set_layout_.get(), sizeof(shader::DrawPush),
-                                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                         kName)),
-      pipeline_(build_pipeline(r_.context, layout_.get())),
-      pool_(r_.context, bindings(), 1, kName) {
-  set_ = pool_.allocate(set_layout_.get());
+      program_(r_.context, bindings(), sizeof(shader::DrawPush),
+               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 1, kName,
+               [&](VkPipelineLayout layout) { return build_pipeline(r_.context, layout); }) {
+  set_ = program_.allocate();
   vk::DescriptorWriter(set_).uniform_buffer(vert::Frame, r_.frame_uniforms).update(r_.context);
 }
 
@@ -80,9 +77,7 @@ void TextureGatherPass::add_to(graph::FrameGraph& graph) const {
         depth.layout = kDepthReadLayout;
         vk::begin_rendering(cmd, t.depth.extent(), {&color, 1}, &depth);
         if (!draws_.empty()) {
-          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-          vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1,
-                                  &set_, 0, nullptr);
+          program_.bind(cmd, set_);
           // The lookup's depth need not be bit-identical to the G-buffer's (lavapipe
           // compiles the same vertex shader per pipeline; `invariant` draws a Mesa
           // warning), so it is pulled toward the camera (up: reversed depth) by a few
@@ -92,7 +87,7 @@ void TextureGatherPass::add_to(graph::FrameGraph& graph) const {
           // no scattering pixel of the bunny, sphere or materials misses its lookup.
           vkCmdSetDepthBias(cmd, kLookupBiasUnits, 0.0f, kLookupBiasSlope);
           for (const auto& [instance, object] : draws_)
-            r_.scene.draw_instance(cmd, layout_.get(), instance, object);
+            r_.scene.draw_instance(cmd, program_.layout.get(), instance, object);
         }
         vk::end_rendering(cmd);
       });

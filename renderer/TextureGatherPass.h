@@ -8,7 +8,7 @@
 #pragma once
 
 #include "renderer/FrameResources.h"
-#include "renderer/vk/Descriptors.h"
+#include "renderer/Program.h"
 #include "renderer/graph/FrameGraph.h"
 
 namespace sss::renderer {
@@ -29,10 +29,7 @@ class TextureGatherPass {
 
  private:
   const FrameResources& r_;
-  vk::DescriptorSetLayoutHandle set_layout_;
-  vk::PipelineLayoutHandle layout_;
-  vk::PipelineHandle pipeline_;
-  vk::DescriptorPool pool_;
+  Program program_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   std::vector<std::pair<std::size_t, int>> draws_;  // (instance, object)
 };
