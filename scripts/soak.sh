@@ -4,8 +4,9 @@
 # panel code (10 steps: 9 presets, then a coefficient edit), reads resident memory after
 # every frame and records live Vulkan objects every 100 frames. Fails (exit 1) if resident
 # memory grows significantly by 1 MB or more over the cycles after warm-up (the first
-# cycle, 1000 frames; the statistics are in app/sss-viewer/Soak.h, SoakVerdict), or if the
-# live Vulkan objects differ at the same point of two cycles.
+# cycle, 1000 frames; the statistics are in app/sss-viewer/Soak.h, SoakVerdict: memory is
+# judged from 7000 frames on, 6 cycles after warm-up), or if the live Vulkan objects differ
+# at the same point of two cycles.
 #   scripts/soak.sh [FRAMES]        writes out/soak/soak.csv, soak.svg, soak.log
 # 10000 frames took 355 s on lavapipe (35 ms per frame on 2 shared cores). Settings:
 #   SSS_SOAK_SCENE (builtin:bunny), SSS_SOAK_SIZE (320x180), SSS_OUT (out),

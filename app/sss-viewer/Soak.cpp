@@ -145,25 +145,15 @@ std::vector<long> readings(const std::vector<long>& frame_rss_kb, int first, int
   return {frame_rss_kb.begin() + first, frame_rss_kb.begin() + last};
 }
 
-// The memory criterion (SoakVerdict::rss_growth_kb): the medians of the full cycles after
-// warm-up, their least-squares growth, its standard error and the verdict.
-void judge_rss(const std::vector<long>& frame_rss_kb, int period, long max_growth_kb,
-               SoakVerdict& v) {
-  for (int start = v.warmup_frames; start + period <= int(frame_rss_kb.size()); start += period)
-    v.cycle_median_kb.push_back(std::lround(median_of(readings(frame_rss_kb, start, start + period))));
-  const bool read = std::all_of(frame_rss_kb.begin(), frame_rss_kb.end(), [](long r) { return r > 0; });
-  const std::vector<long>& y = v.cycle_median_kb;
-  const std::size_t n = y.size();
-  if (n < 3) {
-    v.rss_growth_kb = n == 2 ? y[1] - y[0] : 0;  // one cycle: nothing to compare
-    v.rss_detectable_kb = max_growth_kb;
-    v.rss_ok = read && n >= 1 && v.rss_growth_kb < max_growth_kb;
-    return;
-  }
-  // Least squares y = a + b (k - k_mean) over k = 0 .. n - 1.
+// A least-squares line through y[0 .. n) against k = 0 .. n - 1, as a growth over `span`
+// cycles (slope x span) and that growth's standard error from the residuals (n >= 3).
+struct LineFit {
+  double growth = 0.0, se = 0.0;
+};
+LineFit fit_line(const long* y, std::size_t n, double span) {
   const double k_mean = double(n - 1) / 2.0;
   double y_mean = 0.0, sxx = 0.0, sxy = 0.0;
-  for (long m : y) y_mean += double(m) / double(n);
+  for (std::size_t k = 0; k < n; ++k) y_mean += double(y[k]) / double(n);
   for (std::size_t k = 0; k < n; ++k) {
     sxx += (double(k) - k_mean) * (double(k) - k_mean);
     sxy += (double(k) - k_mean) * (double(y[k]) - y_mean);
@@ -174,13 +164,41 @@ void judge_rss(const std::vector<long>& frame_rss_kb, int period, long max_growt
     const double r = double(y[k]) - (y_mean + b * (double(k) - k_mean));
     ssr += r * r;
   }
+  return {b * span, span * std::sqrt(ssr / double(n - 2) / sxx)};
+}
+
+// The memory criterion (SoakVerdict::rss_growth_kb): the medians of the full cycles after
+// warm-up, the growth of each half and the verdict.
+void judge_rss(const std::vector<long>& frame_rss_kb, int period, long max_growth_kb,
+               SoakVerdict& v) {
+  for (int start = v.warmup_frames; start + period <= int(frame_rss_kb.size()); start += period)
+    v.cycle_median_kb.push_back(std::lround(median_of(readings(frame_rss_kb, start, start + period))));
+  const bool read = std::all_of(frame_rss_kb.begin(), frame_rss_kb.end(), [](long r) { return r > 0; });
+  const std::vector<long>& y = v.cycle_median_kb;
+  const std::size_t n = y.size();
+  if (n < std::size_t(kSoakMinCycles)) {
+    v.rss_judged = false;
+    v.rss_ok = read;
+    return;
+  }
   const double span = double(n - 1);
-  const double growth = b * span, se = span * std::sqrt(ssr / double(n - 2) / sxx);
-  v.rss_t = student_t_quantile(0.999, int(n) - 2);
-  v.rss_growth_kb = std::lround(growth);
-  v.rss_growth_se_kb = std::lround(se);
-  v.rss_detectable_kb = std::lround(double(max_growth_kb) + v.rss_t * se);
-  v.rss_ok = read && growth - v.rss_t * se < double(max_growth_kb);
+  const LineFit all = fit_line(y.data(), n, span);
+  v.rss_growth_kb = std::lround(all.growth);
+  v.rss_growth_se_kb = std::lround(all.se);
+  v.rss_judged = true;
+  bool grows = true;
+  const std::size_t first = n / 2;  // the first half's cycles; the second has the rest
+  for (int h = 0; h < 2; ++h) {
+    const std::size_t m = h == 0 ? first : n - first;
+    const LineFit half = fit_line(y.data() + (h == 0 ? 0 : first), m, span);
+    v.half[h].growth_kb = std::lround(half.growth);
+    v.half[h].se_kb = std::lround(half.se);
+    v.half[h].t = student_t_quantile(kSoakHalfLevel, int(m) - 2);
+    v.half[h].detectable_kb = std::lround(double(max_growth_kb) + v.half[h].t * half.se);
+    grows = grows && half.growth - v.half[h].t * half.se >= double(max_growth_kb);
+  }
+  v.rss_detectable_kb = std::max(v.half[0].detectable_kb, v.half[1].detectable_kb);
+  v.rss_ok = read && !grows;
 }
 
 // The same point of every cycle after warm-up holds the same number of live Vulkan
@@ -413,10 +431,33 @@ SoakTimes soak_frames(const ViewerArgs& a, renderer::Renderer& r, MaterialEditor
     r.render_frame();
     times.render_ms += ms_since(t);
     editor.frame_presented();
-    frame_rss_kb.push_back(resident_kb());  // a read of /proc: ~30 us against ~20 ms a frame
+    frame_rss_kb[std::size_t(frame)] = resident_kb();  // a read of /proc: ~30 us a frame
   }
   times.total_s = ms_since(start) / 1000.0;
   return times;
+}
+
+// The memory verdict's figures (SoakVerdict) on stdout.
+void print_rss_verdict(const SoakVerdict& v, long limit_kb, const char* state) {
+  std::printf("RSS medians of the %zu full cycles after warm-up (kB):", v.cycle_median_kb.size());
+  for (long m : v.cycle_median_kb) std::printf(" %ld", m);
+  std::printf("\n");
+  if (!v.rss_judged) {
+    std::printf("RSS: not judged: %zu full cycles after warm-up, %d needed (--soak of at least "
+                "%d cycles: warm-up + %d)\n",
+                v.cycle_median_kb.size(), kSoakMinCycles, kSoakMinCycles + 1, kSoakMinCycles);
+    return;
+  }
+  std::printf("RSS growth over the run (least squares through all medians) %+ld kB, standard "
+              "error %ld kB\n", v.rss_growth_kb, v.rss_growth_se_kb);
+  const std::size_t first = v.cycle_median_kb.size() / 2;
+  for (int h = 0; h < 2; ++h)
+    std::printf("  %s half (%zu cycles): the run's growth by its line %+ld kB, error %ld kB, "
+                "t %.2f: flags growth of about %ld kB or more\n", h == 0 ? "first" : "second",
+                h == 0 ? first : v.cycle_median_kb.size() - first, v.half[h].growth_kb,
+                v.half[h].se_kb, v.half[h].t, v.half[h].detectable_kb);
+  std::printf("RSS fails when both halves' growth - t x error >= %ld kB (each one-sided 96.8%%, "
+              "together 99.9%%; a one-time step lies in one half): %s\n", limit_kb, state);
 }
 
 // The table of samples, the times and the verdict on stdout.
@@ -450,20 +491,7 @@ void print_soak_report(const ViewerArgs& a, const renderer::RenderOptions& optio
   rss_state = "not judged under AddressSanitizer";
   v.rss_ok = true;
 #endif
-  std::printf("RSS medians of the %zu full cycles after warm-up (kB):", v.cycle_median_kb.size());
-  for (long m : v.cycle_median_kb) std::printf(" %ld", m);
-  std::printf("\n");
-  if (v.cycle_median_kb.empty())
-    std::printf("RSS: no full cycle after warm-up to judge: %s\n", rss_state);
-  else if (v.rss_t > 0.0)
-    std::printf("RSS growth over them (least squares) %+ld kB, standard error %ld kB; fails when "
-                "growth - %.2f x error >= %ld kB (t, one-sided 99.9%%, %zu degrees of freedom), "
-                "i.e. this run detects a growth of about %ld kB or more: %s\n",
-                v.rss_growth_kb, v.rss_growth_se_kb, v.rss_t, a.soak_max_growth_kb,
-                v.cycle_median_kb.size() - 2, v.rss_detectable_kb, rss_state);
-  else
-    std::printf("RSS growth over them %+ld kB, limit %ld kB: %s\n", v.rss_growth_kb,
-                a.soak_max_growth_kb, rss_state);
+  print_rss_verdict(v, a.soak_max_growth_kb, rss_state);
   std::printf("(end minus warm-up %+ld kB; live heap %+ld kB)\n", v.rss_end_minus_warmup_kb,
               v.heap_growth_kb);
   std::printf("Vulkan objects: %s: %s\n", v.objects_detail.c_str(), v.objects_ok ? "ok" : "FAIL");
@@ -490,8 +518,8 @@ int run_soak(const ViewerArgs& a, const scene::Scene& scene, const renderer::Ren
   editor.update(r);
 
   std::vector<SoakSample> samples;
-  std::vector<long> frame_rss_kb;
-  frame_rss_kb.reserve(std::size_t(a.soak));
+  // Filled (so resident) before the first frame: growing it would add 8 bytes a frame.
+  std::vector<long> frame_rss_kb(std::size_t(a.soak), 0);
   const SoakTimes times = soak_frames(a, r, editor, samples, frame_rss_kb);
   SoakVerdict v = judge_soak(samples, frame_rss_kb, a.soak_every, a.soak_cycle, a.soak_max_growth_kb);
   if (!a.soak_csv.empty()) image::write_file_atomically(a.soak_csv, soak_csv(samples, frame_rss_kb));

@@ -41,6 +41,13 @@ struct SoakSample {
   std::string material;      // the step shown in the frames before the sample
 };
 
+// The memory verdict needs this many full cycles after warm-up (three a half, so that each
+// half's line has a residual to estimate its error from).
+inline constexpr int kSoakMinCycles = 6;
+// Each half's one-sided level: both halves must grow for a run to fail, so a run whose
+// memory grows by exactly the limit fails (1 - 0.968377)^2 = 0.001 of the time.
+inline constexpr double kSoakHalfLevel = 0.9683772233983162;  // 1 - sqrt(0.001)
+
 struct SoakVerdict {
   int warmup_frames = 0;
   // The memory criterion. Each full material cycle after warm-up is summed up by the
@@ -48,24 +55,36 @@ struct SoakVerdict {
   // so it lifts the median by what has leaked; the frames' own swing does not: lavapipe's
   // binning and the allocator make RSS swing by 5 to 10 MB from frame to frame at 160x90,
   // and a sample taken every 50 frames, or a cycle's peak, moved by 1 to 3 MB from cycle
-  // to cycle with no leak). A leak grows linearly with the cycles, so the growth over the
-  // run is the least-squares slope of the medians against the cycle index times
-  // (cycles - 1), with the slope's standard error from the residuals (n - 2 degrees of
-  // freedom): rss_growth_kb and rss_growth_se_kb. The medians of a run without a leak
-  // still scatter by about 1 MB (states of the allocator and the driver that last tens of
-  // frames), so a short run cannot tell 1 MB from 0: the run fails when the growth is
-  // significantly at or above the limit, rss_growth_kb - t x rss_growth_se_kb >=
-  // max_growth_kb, t the one-sided 99.9% quantile of Student's t with cycles - 2 degrees
-  // of freedom (a run whose memory grows by exactly the limit fails 1 time in 1,000 under
-  // Gaussian scatter; tested by simulation in SoakVerdict.TheGrowthTestFailsAtItsLevel).
-  // rss_detectable_kb = max_growth_kb + t x se is the growth the run fails with
-  // probability one half. Two cycles: the growth is the second median minus the first, no
-  // error, and fails at >= max_growth_kb; one cycle: nothing to compare (0).
+  // to cycle with no leak). A leak grows linearly with the cycles. The medians of a run
+  // without one still scatter by 0.7 to 1.6 MB (states of the allocator and the driver
+  // that last tens of frames), and RSS can also step up once and stay (an allocator
+  // arena, a layer's cache): a step is not a leak, but a line through a run with a step
+  // in its middle rises as steeply as a leak of that size. So:
+  //   - each half of the cycles (the first n/2, then the rest) gets its own least-squares
+  //     line through its medians: its slope times (cycles - 1), the growth over the whole
+  //     run that the half implies, with the standard error from the half's residuals
+  //     (m - 2 degrees of freedom);
+  //   - the run fails when both halves grow significantly by the limit or more:
+  //     growth - t x error >= max_growth_kb in each, t the one-sided kSoakHalfLevel
+  //     quantile of Student's t with m - 2 degrees of freedom. A leak grows in both
+  //     halves; a one-time step lies in one (a step between the halves in neither). A run
+  //     whose memory grows by exactly the limit fails 1 time in 1,000 under independent
+  //     Gaussian scatter (tested by simulation in SoakVerdict.TheGrowthTestFailsAtItsLevel).
+  //   - half[h].detectable_kb = max_growth_kb + t x that half's error is the growth that
+  //     half flags with probability one half; rss_detectable_kb is the larger of the two.
+  // rss_growth_kb and rss_growth_se_kb are the same line through all the medians, shown
+  // on the plot and printed; they do not decide. Fewer than kSoakMinCycles cycles: not
+  // judged (rss_judged false, and rss_ok says only whether /proc could be read).
   // Also the plain end-minus-warm-up difference of the samples (reported).
+  struct Half {
+    long growth_kb = 0, se_kb = 0, detectable_kb = 0;
+    double t = 0.0;
+  };
   long rss_growth_kb = 0;
   long rss_growth_se_kb = 0;
+  Half half[2];
   long rss_detectable_kb = 0;
-  double rss_t = 0.0;                // the t quantile used (0 with fewer than 3 cycles)
+  bool rss_judged = false;
   std::vector<long> cycle_median_kb; // one per full cycle after warm-up
   long rss_end_minus_warmup_kb = 0;
   long heap_growth_kb = 0;     // live malloc bytes, end minus end of warm-up
