@@ -327,7 +327,7 @@ void svg_panel(std::ostringstream& svg, const SoakPlot& plot, double top, const 
 std::string soak_svg(const std::vector<SoakSample>& samples, const std::vector<long>& frame_rss_kb,
                      const SoakVerdict& verdict, const std::string& title) {
   using P = SoakPlot;
-  const double kH = P::kTop + 2 * P::kPanel + P::kGap + 100;
+  const double kH = P::kTop + 2 * P::kPanel + P::kGap + 120;
   std::ostringstream svg;
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << P::kW << "\" height=\"" << kH
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
@@ -353,25 +353,36 @@ std::string soak_svg(const std::vector<SoakSample>& samples, const std::vector<l
     for (std::size_t k = 0; k < med.size(); ++k)
       svg << "<circle cx=\"" << num(plot.px(mid(k))) << "\" cy=\"" << num(py(double(med[k]) / 1024.0))
           << "\" r=\"4\" fill=\"#8e1b10\"/>\n";
-    if (med.size() >= 2) {  // the fit: through the medians' mean with the judged slope
+    // A line through cycles [k0, k1): through their mean at their middle, rising by `growth`
+    // over the whole run (cycles - 1).
+    const auto fit = [&](std::size_t k0, std::size_t k1, double growth, const char* style) {
       double mean = 0.0;
-      for (long m : med) mean += double(m) / double(med.size());
-      const double half = double(verdict.rss_growth_kb) / 2.0;
-      svg << "<line x1=\"" << num(plot.px(mid(0))) << "\" y1=\"" << num(py((mean - half) / 1024.0))
-          << "\" x2=\"" << num(plot.px(mid(med.size() - 1))) << "\" y2=\""
-          << num(py((mean + half) / 1024.0)) << "\" stroke=\"#8e1b10\" stroke-width=\"2\"/>\n";
+      for (std::size_t k = k0; k < k1; ++k) mean += double(med[k]) / double(k1 - k0);
+      const double per_cycle = growth / double(med.size() - 1), centre = double(k0 + k1 - 1) / 2.0;
+      const auto y = [&](std::size_t k) { return (mean + per_cycle * (double(k) - centre)) / 1024.0; };
+      svg << "<line x1=\"" << num(plot.px(mid(k0))) << "\" y1=\"" << num(py(y(k0))) << "\" x2=\""
+          << num(plot.px(mid(k1 - 1))) << "\" y2=\"" << num(py(y(k1 - 1))) << "\" stroke=\"#8e1b10\" "
+          << style << "/>\n";
+    };
+    if (verdict.rss_judged) {  // the two halves' lines decide; the whole run's is drawn thin
+      fit(0, med.size(), double(verdict.rss_growth_kb), "stroke-width=\"1\" stroke-dasharray=\"4,3\"");
+      fit(0, med.size() / 2, double(verdict.half[0].growth_kb), "stroke-width=\"2.5\"");
+      fit(med.size() / 2, med.size(), double(verdict.half[1].growth_kb), "stroke-width=\"2.5\"");
     }
   });
   Points objects;
   for (const SoakSample& s : samples) objects.emplace_back(s.frame, double(s.vk_objects));
   svg_panel(svg, plot, P::kTop + P::kPanel + P::kGap, "live Vulkan objects", "#2c6fbb", objects,
             [](auto) {});
-  svg << "<text x=\"" << (P::kLeft + P::kW - P::kRight) / 2 << "\" y=\"" << kH - 60
+  svg << "<text x=\"" << (P::kLeft + P::kW - P::kRight) / 2 << "\" y=\"" << kH - 80
       << "\" text-anchor=\"middle\">frame</text>\n"
-      << "<text x=\"" << P::kLeft << "\" y=\"" << kH - 34 << "\">RSS growth over the cycles after "
-      << "warm-up (dots: each cycle's median; line: least squares) " << verdict.rss_growth_kb
-      << " kB, standard error " << verdict.rss_growth_se_kb << " kB"
-      << "</text>\n<text x=\"" << P::kLeft << "\" y=\"" << kH - 14 << "\">(end minus warm-up "
+      << "<text x=\"" << P::kLeft << "\" y=\"" << kH - 54 << "\">Dots: each cycle's median RSS; "
+      << "thick lines: least squares through each half of the cycles, dashed: through all</text>\n"
+      << "<text x=\"" << P::kLeft << "\" y=\"" << kH - 34 << "\">Growth over the run by the halves "
+      << verdict.half[0].growth_kb << " \u00b1 " << verdict.half[0].se_kb << " and "
+      << verdict.half[1].growth_kb << " \u00b1 " << verdict.half[1].se_kb << " kB, by all "
+      << verdict.rss_growth_kb << " \u00b1 " << verdict.rss_growth_se_kb << " kB</text>\n"
+      << "<text x=\"" << P::kLeft << "\" y=\"" << kH - 14 << "\">(end minus warm-up "
       << verdict.rss_end_minus_warmup_kb << " kB, live heap " << verdict.heap_growth_kb << " kB); "
       << (verdict.objects_ok ? "Vulkan objects: no leak" : "Vulkan objects: LEAK") << "</text>\n"
       << "</svg>\n";
