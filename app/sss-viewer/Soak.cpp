@@ -197,7 +197,6 @@ void judge_rss(const std::vector<long>& frame_rss_kb, int period, long max_growt
     v.half[h].detectable_kb = std::lround(double(max_growth_kb) + v.half[h].t * half.se);
     grows = grows && half.growth - v.half[h].t * half.se >= double(max_growth_kb);
   }
-  v.rss_detectable_kb = std::max(v.half[0].detectable_kb, v.half[1].detectable_kb);
   v.rss_ok = read && !grows;
 }
 

@@ -71,7 +71,7 @@ struct SoakVerdict {
   //     whose memory grows by exactly the limit fails 1 time in 1,000 under independent
   //     Gaussian scatter (tested by simulation in SoakVerdict.TheGrowthTestFailsAtItsLevel).
   //   - half[h].detectable_kb = max_growth_kb + t x that half's error is the growth that
-  //     half flags with probability one half; rss_detectable_kb is the larger of the two.
+  //     half flags with probability one half.
   // rss_growth_kb and rss_growth_se_kb are the same line through all the medians, shown
   // on the plot and printed; they do not decide. Fewer than kSoakMinCycles cycles: not
   // judged (rss_judged false, and rss_ok says only whether /proc could be read).
@@ -83,7 +83,6 @@ struct SoakVerdict {
   long rss_growth_kb = 0;
   long rss_growth_se_kb = 0;
   Half half[2];
-  long rss_detectable_kb = 0;
   bool rss_judged = false;
   std::vector<long> cycle_median_kb; // one per full cycle after warm-up
   long rss_end_minus_warmup_kb = 0;
