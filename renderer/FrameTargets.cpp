@@ -14,7 +14,7 @@ vk::Image make(const vk::Context& c, std::uint32_t w, std::uint32_t h, VkFormat 
 
 }  // namespace
 
-FrameTargets::Use FrameTargets::use_for(const RenderOptions& o) {
+FrameTargets::Use FrameTargets::use_for(const RenderOptions& o, bool environment) {
   const SssTechnique t = o.technique;
   Use use;
   use.gaussian_blur = t == SssTechnique::Gaussians;
@@ -23,6 +23,7 @@ FrameTargets::Use FrameTargets::use_for(const RenderOptions& o) {
   use.accum = t == SssTechnique::Gaussians || t == SssTechnique::Texture;
   use.line = t == SssTechnique::Separable;
   use.uv_stretch = o.debug_view == DebugView::UvStretch;
+  use.sky_blocked = environment && o.sky_occlusion && !use.uv_stretch;
   // FXAA, never under a debug view (Renderer::update_display_passes follows this).
   use.display_source = o.antialias == Antialias::Fxaa && o.debug_view == DebugView::None;
   return use;
@@ -53,6 +54,8 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
   const auto side = [](bool read, std::uint32_t n) { return read ? n : 1u; };
   uv_stretch = make(context, side(use.uv_stretch, w), side(use.uv_stretch, h), kUvStretchFormat,
                     attachment, "gbuffer uv stretch");
+  sky_blocked = make(context, side(use.sky_blocked, w), side(use.sky_blocked, h), kSkyBlockedFormat,
+                     attachment, "gbuffer sky blocked");
   irradiance = make(context, w, h, kKeyedFormat, kComputeUsage, "irradiance");
   specular = make(context, w, h, kLightingFormat, kComputeUsage, "specular");
   surface = make(context, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, kComputeUsage, "surface");
@@ -76,7 +79,7 @@ FrameTargets::FrameTargets(const vk::Context& context, std::uint32_t w, std::uin
 
 VkDeviceSize FrameTargets::memory_bytes() const {
   VkDeviceSize total = shadow.memory_bytes() + light_depth.memory_bytes();
-  for (const vk::Image* image : {&depth, &normal, &albedo, &uv_stretch, &display_source})
+  for (const vk::Image* image : {&depth, &normal, &albedo, &uv_stretch, &sky_blocked, &display_source})
     total += image->memory_bytes();
   for (const vk::Image* image : compute_targets()) total += image->memory_bytes();
   return total;

@@ -26,6 +26,7 @@ inline constexpr VkImageLayout kDepthReadLayout = VK_IMAGE_LAYOUT_DEPTH_READ_ONL
 inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // xyz normal, w inward thickness mm
 inline constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;       // rgb albedo, a id
 inline constexpr VkFormat kUvStretchFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // mm per u, v; has UVs
+inline constexpr VkFormat kSkyBlockedFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // rgb blocked sky E
 inline constexpr VkFormat kLightingFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 // Irradiance and the separable pass's horizontal result: rgb value, alpha the surface key
 // (depth mm + id x stride, sss.glsl), which needs float32.
@@ -44,11 +45,14 @@ struct FrameTargets {
     bool accum = true;           // gaussians, texture (its lookup's colour attachment)
     bool line = true;            // sss_line, sss_prefix: separable
     bool uv_stretch = true;      // the uv-stretch view (the G-buffer's third attachment)
+    // sky_blocked: an environment with RenderOptions::sky_occlusion, outside the uv-stretch
+    // view (the G-buffer's third attachment, gbuffer_sky.frag)
+    bool sky_blocked = true;
     bool display_source = true;  // FXAA
     bool operator==(const Use&) const = default;
   };
-  // What a frame with these options reads.
-  static Use use_for(const RenderOptions& options);
+  // What a frame with these options reads; `environment`: the scene has an environment light.
+  static Use use_for(const RenderOptions& options, bool environment);
 
   FrameTargets(const vk::Context& context, std::uint32_t width, std::uint32_t height,
                std::uint32_t shadow_layers, std::uint32_t shadow_size, const Use& use);
@@ -65,6 +69,9 @@ struct FrameTargets {
   // uv-stretch debug view only: drawn by the G-buffer's second pipeline; like normal and
   // albedo, a colour attachment then SHADER_READ_ONLY_OPTIMAL in every frame.
   vk::Image uv_stretch;
+  // The environment's irradiance that the scene blocks (rgb; gbuffer_sky.frag, read by
+  // lighting.comp): a colour attachment then SHADER_READ_ONLY_OPTIMAL, like normal.
+  vk::Image sky_blocked;
   vk::Image irradiance, specular;           // lighting (irradiance: kKeyedFormat)
   vk::Image surface;  // lighting, for SSS: view depth in mm, material id (rgba32f)
   // SSS gaussians; accum is also the texture path's lookup target (a colour attachment in

@@ -10,7 +10,8 @@
 namespace sss::renderer {
 
 // The set the passes that draw the scene's surfaces with surface.glsl bind (the G-buffer,
-// the texture path's atlas raster): 0 the frame uniforms, 1 the material textures.
+// the texture path's atlas raster): 0 the frame uniforms, 1 the material textures, 2 the
+// lights (the environment's harmonics, for the sky variants' sky_blocked).
 vk::DescriptorSetLayoutBuilder surface_set_bindings();
 void write_surface_set(VkDescriptorSet set, const FrameResources& resources);
 
@@ -25,12 +26,18 @@ class GBufferPass {
   // targets.uv_stretch (its pipeline is built on first use). Off: the frame's pipeline,
   // uv_stretch is only moved to SHADER_READ_ONLY_OPTIMAL.
   void set_uv_stretch(bool on);
+  // With an environment (FrameTargets::Use::sky_blocked; the scene's sky occlusion baked):
+  // draw with gbuffer_sky.vert/.frag, which also write targets.sky_blocked (built on first
+  // use). The uv-stretch view wins when both are on.
+  void set_sky(bool on);
 
  private:
   const FrameResources& r_;
   Program program_;
   vk::PipelineHandle uv_stretch_pipeline_;  // on program_'s layout, built by set_uv_stretch(true)
+  vk::PipelineHandle sky_pipeline_;         // on program_'s layout, built by set_sky(true)
   bool uv_stretch_ = false;
+  bool sky_ = false;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
 

@@ -1,6 +1,7 @@
 #include "renderer/GpuScene.h"
 
 #include "renderer/CameraSetup.h"
+#include "reference/SkyOcclusion.h"
 #include "reference/Thickness.h"
 #include "scene/UvAtlas.h"
 #include "renderer/vk/Context.h"
@@ -9,6 +10,7 @@
 #include "renderer/vk/Transfer.h"
 #include "shaders/shared/frame.h"
 
+#include <chrono>
 #include <cstddef>
 #include <map>
 #include <optional>
@@ -50,6 +52,13 @@ void add_vertex_input(vk::GraphicsPipelineBuilder& builder) {
       .vertex_attribute(5, 0, VK_FORMAT_R32_SFLOAT, offsetof(GpuVertex, thickness));
 }
 
+void add_sky_vertex_input(vk::GraphicsPipelineBuilder& builder) {
+  static_assert(sizeof(reference::SkyTransfer) == 9 * sizeof(float));
+  builder.vertex_binding(1, sizeof(reference::SkyTransfer));
+  for (std::uint32_t k = 0; k < 3; ++k)
+    builder.vertex_attribute(6 + k, 1, VK_FORMAT_R32G32B32_SFLOAT, 3 * k * sizeof(float));
+}
+
 int GpuScene::add_texture(const vk::Context& context, const scene::Scene& scene,
                           std::uint32_t texture, bool srgb) {
   if (texture >= scene.textures.size() || !scene.textures[texture].image) return -1;
@@ -72,6 +81,15 @@ int GpuScene::add_texture(const vk::Context& context, const scene::Scene& scene,
 
 GpuScene::GpuScene(const vk::Context& context, const scene::Scene& scene)
     : instances_(scene.instances), materials_(scene.materials), mm_per_unit_(scene.mm_per_unit) {
+  geometry_.mm_per_unit = scene.mm_per_unit;
+  geometry_.instances = scene.instances;
+  for (const scene::Mesh& mesh : scene.meshes) {
+    scene::Mesh& m = geometry_.meshes.emplace_back();
+    m.name = mesh.name;
+    m.positions = mesh.positions;
+    m.normals = mesh.normals;
+    m.indices = mesh.indices;
+  }
   // Slot 0: white, bound wherever a slot is unused.
   const std::uint8_t white[4] = {255, 255, 255, 255};
   Slot dummy;
@@ -196,6 +214,7 @@ GpuScene::MeshBuffers GpuScene::upload_geometry(const vk::Context& context, cons
     b.gutter = device_buffer(context, std::span<const GpuVertex>(gutter),
                              VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, mesh.name + " gutter");
     b.gutter_vertices = static_cast<std::uint32_t>(gutter.size());
+    b.gutter_hosts = g.vertices;
   }
   return b;
 }
@@ -237,7 +256,44 @@ void GpuScene::ensure_sss_uvs(const vk::Context& context, const std::vector<scen
     b.normal_slot = meshes_[i].normal_slot;
     meshes_[i] = std::move(b);
     deferred_[i].reset();
+    // The atlas may have split vertices at its seams: the sky's transfers no longer match.
+    geometry_.meshes[i].positions = one.meshes[0].positions;
+    geometry_.meshes[i].normals = one.meshes[0].normals;
+    geometry_.meshes[i].indices = one.meshes[0].indices;
+    sky_.clear();
+    sky_baked_ = false;
   }
+}
+
+double GpuScene::ensure_sky_occlusion(const vk::Context& context) {
+  if (sky_baked_) return 0.0;
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::vector<reference::SkyTransfer>> transfers = reference::sky_occlusion(geometry_);
+  std::vector<SkyBuffers> sky(instances_.size());
+  for (std::size_t i = 0; i < instances_.size(); ++i) {
+    const std::vector<reference::SkyTransfer>& t = transfers[i];
+    const MeshBuffers& mesh = meshes_[instances_[i].mesh];
+    if (t.empty() || !mesh.vertices) continue;
+    const std::string& name = instances_[i].node;
+    sky[i].vertices = device_buffer(context, std::span<const reference::SkyTransfer>(t),
+                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, name + " sky transfer");
+    if (mesh.gutter_vertices > 0) {
+      std::vector<reference::SkyTransfer> gutter;
+      gutter.reserve(mesh.gutter_vertices);
+      for (const std::uint32_t v : mesh.gutter_hosts) gutter.push_back(t.at(v));
+      sky[i].gutter = device_buffer(context, std::span<const reference::SkyTransfer>(gutter),
+                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, name + " gutter sky transfer");
+    }
+  }
+  sky_ = std::move(sky);
+  sky_baked_ = true;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+VkBuffer GpuScene::sky_buffer(std::size_t instance, bool gutter) const {
+  if (!sky_baked_ || instance >= sky_.size()) return VK_NULL_HANDLE;
+  const vk::Buffer& b = gutter ? sky_[instance].gutter : sky_[instance].vertices;
+  return b ? b.handle() : VK_NULL_HANDLE;
 }
 
 std::vector<VkDescriptorImageInfo> GpuScene::texture_descriptors() const {
@@ -263,26 +319,26 @@ void GpuScene::push_constants(VkCommandBuffer cmd, VkPipelineLayout layout, cons
                      sizeof(push), &push);
 }
 
-void GpuScene::push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout,
-                             const scene::Instance& instance, int light_index, int object) const {
-  const MeshBuffers& mesh = meshes_[instance.mesh];
+void GpuScene::push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout, std::size_t instance,
+                             int light_index, int object) const {
+  const scene::Instance& i = instances_.at(instance);
+  const MeshBuffers& mesh = meshes_[i.mesh];
   if (mesh.index_count == 0) return;
-  push_constants(cmd, layout, instance, light_index, object);
-  const VkBuffer buffers[] = {mesh.vertices.handle()};
-  const VkDeviceSize offsets[] = {0};
-  vkCmdBindVertexBuffers(cmd, 0, 1, buffers, offsets);
+  push_constants(cmd, layout, i, light_index, object);
+  const VkBuffer buffers[] = {mesh.vertices.handle(), sky_buffer(instance, false)};
+  const VkDeviceSize offsets[] = {0, 0};
+  vkCmdBindVertexBuffers(cmd, 0, buffers[1] ? 2 : 1, buffers, offsets);
   vkCmdBindIndexBuffer(cmd, mesh.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
   vkCmdDrawIndexed(cmd, mesh.index_count, 1, 0, 0, 0);
 }
 
 void GpuScene::draw(VkCommandBuffer cmd, VkPipelineLayout layout, int light_index) const {
-  for (const scene::Instance& instance : instances_)
-    push_and_draw(cmd, layout, instance, light_index, -1);
+  for (std::size_t i = 0; i < instances_.size(); ++i) push_and_draw(cmd, layout, i, light_index, -1);
 }
 
 void GpuScene::draw_instance(VkCommandBuffer cmd, VkPipelineLayout layout, std::size_t instance,
                              int object) const {
-  push_and_draw(cmd, layout, instances_.at(instance), -1, object);
+  push_and_draw(cmd, layout, instance, -1, object);
 }
 
 void GpuScene::draw_gutter(VkCommandBuffer cmd, VkPipelineLayout layout, std::size_t instance,
@@ -291,9 +347,9 @@ void GpuScene::draw_gutter(VkCommandBuffer cmd, VkPipelineLayout layout, std::si
   const MeshBuffers& mesh = meshes_[i.mesh];
   if (mesh.gutter_vertices == 0) return;
   push_constants(cmd, layout, i, -1, object);
-  const VkBuffer buffers[] = {mesh.gutter.handle()};
-  const VkDeviceSize offsets[] = {0};
-  vkCmdBindVertexBuffers(cmd, 0, 1, buffers, offsets);
+  const VkBuffer buffers[] = {mesh.gutter.handle(), sky_buffer(instance, true)};
+  const VkDeviceSize offsets[] = {0, 0};
+  vkCmdBindVertexBuffers(cmd, 0, buffers[1] ? 2 : 1, buffers, offsets);
   vkCmdDraw(cmd, mesh.gutter_vertices, 1, 0, 0);
 }
 

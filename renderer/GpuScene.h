@@ -43,6 +43,10 @@ struct GpuVertex {
 // Every GpuVertex attribute (locations 0..5) from binding 0: what the pipelines drawing
 // the scene's meshes with all attributes declare (G-buffer, texture path).
 void add_vertex_input(vk::GraphicsPipelineBuilder& builder);
+// The sky's blocked transfer (reference::SkyTransfer, 9 floats) as locations 6..8 from
+// binding 1, which GpuScene binds per instance once ensure_sky_occlusion has baked it: the
+// sky variants of the G-buffer and of the texture path's atlas raster declare it.
+void add_sky_vertex_input(vk::GraphicsPipelineBuilder& builder);
 
 class GpuScene {
  public:
@@ -93,6 +97,12 @@ class GpuScene {
   // when that mode is on; the screen path and the CPU reference never pay for it. The
   // atlas build runs on the calling thread (its cost: renderer/README.md, "Costs").
   void ensure_sss_uvs(const vk::Context& context, const std::vector<scene::Material>& materials);
+  // Bakes the sky occlusion of every instance (reference::sky_occlusion, on the calling
+  // thread with TBB) and uploads it, unless it is baked already; ensure_sss_uvs drops it
+  // when it rebuilds a mesh. From then on every draw binds each instance's transfers at
+  // binding 1. Returns the bake's wall time in seconds (0 when nothing was baked).
+  double ensure_sky_occlusion(const vk::Context& context);
+  bool has_sky_occlusion() const { return sky_baked_; }
 
  private:
   struct MeshBuffers {
@@ -105,6 +115,7 @@ class GpuScene {
     bool sss_uvs = false;  // has_sss_uvs
     vk::Buffer gutter;     // GpuVertex x 3 per gutter triangle
     std::uint32_t gutter_vertices = 0;
+    std::vector<std::uint32_t> gutter_hosts;  // per gutter vertex: the mesh vertex it copies
     std::string name;
     scene::Bounds bounds;  // the mesh's, local
   };
@@ -112,7 +123,7 @@ class GpuScene {
   MeshBuffers upload_geometry(const vk::Context& context, const scene::Mesh& mesh, bool scatters);
   void push_constants(VkCommandBuffer cmd, VkPipelineLayout layout, const scene::Instance& instance,
                       int light_index, int object) const;
-  void push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const scene::Instance& instance,
+  void push_and_draw(VkCommandBuffer cmd, VkPipelineLayout layout, std::size_t instance,
                      int light_index, int object) const;
   struct Slot {
     vk::Image image;
@@ -120,6 +131,19 @@ class GpuScene {
   };
   int add_texture(const vk::Context& context, const scene::Scene& scene, std::uint32_t texture,
                   bool srgb);
+
+  // Per instance: its mesh's vertices' sky transfers, and its gutter's (copies of the
+  // host vertices', as gutter_vertices copies the vertices).
+  struct SkyBuffers {
+    vk::Buffer vertices, gutter;
+  };
+  std::vector<SkyBuffers> sky_;
+  bool sky_baked_ = false;
+  // What the sky bake casts rays against: every mesh's positions, normals and indices as
+  // drawn (ensure_sss_uvs keeps them current), the instances, mm_per_unit.
+  scene::Scene geometry_;
+  // The buffer that binding 1 reads for `instance` (gutter: its gutter's), or null.
+  VkBuffer sky_buffer(std::size_t instance, bool gutter) const;
 
   std::vector<MeshBuffers> meshes_;
   std::vector<scene::Instance> instances_;

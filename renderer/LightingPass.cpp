@@ -30,6 +30,7 @@ void LightingPass::write_descriptors() {
       .combined_image(b::light_depth_tex, t.light_depth, nearest)
       .combined_image(b::environment_specular_tex, r_.environment.specular(), nearest)
       .combined_image(b::dfg_tex, r_.environment.dfg(), nearest)
+      .combined_image(b::sky_blocked_tex, t.sky_blocked, nearest)
       .update(r_.context);
 }
 
@@ -41,6 +42,7 @@ void LightingPass::add_to(graph::FrameGraph& graph) const {
                               {&t.albedo, kSampled},
                               {&t.shadow, kSampled},
                               {&t.light_depth, kSampled},
+                              {&t.sky_blocked, kSampled},  // read only when the G-buffer drew it
                               {&t.irradiance, kComputeWrite},
                               {&t.specular, kComputeWrite},
                               {&t.surface, kComputeWrite}},

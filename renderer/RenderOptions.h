@@ -124,6 +124,11 @@ struct RenderOptions {
   // --transmission: light through thin parts of SSS materials, from the shadow maps'
   // thickness (renderer/README.md "Transmission"). Off: reflection only.
   bool transmission = true;
+  // --sky-occlusion: with an environment light, what the scene blocks of it is taken away
+  // (reference/SkyOcclusion.h: baked per vertex of each instance with Embree rays when the
+  // first frame with an environment needs it; shading.glsl). Off: every surface sees the
+  // whole sky, as before (a concave part gets the whole sky's irradiance).
+  bool sky_occlusion = true;
   // --fresnel: the directional Fresnel factors of the separable BSSRDF on subsurface
   // light (renderer/README.md "Directional Fresnel"): the light entering is E·(N·L)·F_t(η,
   // θi), the light leaving M·F_t(η, θo)/(cπ) instead of M/π. Off: every incident watt

@@ -109,7 +109,7 @@ Renderer::Renderer(const vk::Context& context, const scene::Scene& scene,
       materials_(context, scene, options.separable_taps, options.single_scattering),
       scene_(context, scene),
       targets_(context, options.width, options.height, shadow_layers_for(lights_),
-               options.shadow_map_size, FrameTargets::use_for(options)),
+               options.shadow_map_size, FrameTargets::use_for(options, scene.environment.has_value())),
       frame_uniforms_(context, {sizeof(shader::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                 vk::MemoryUsage::Dynamic, "frame uniforms"}),
       light_buffer_(context, {sizeof(shader::LightBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -143,7 +143,7 @@ void Renderer::write_frame_uniforms() {
   uniforms.options.w = options_.transmission ? 1.0f : 0.0f;
   uniforms.flags.x = options_.fresnel ? 1.0f : 0.0f;
   uniforms.flags.y = options_.single_scattering ? 1.0f : 0.0f;
-  uniforms.flags.z = has_environment_ ? 1.0f : 0.0f;
+  uniforms.flags.z = !has_environment_ ? 0.0f : targets_.use.sky_blocked ? 2.0f : 1.0f;
   uniforms.flags.w = has_environment_ && options_.background_environment ? 1.0f : 0.0f;
   if (composite_) composite_->set_full_frame(uniforms.flags.w > 0.5f);
   rect_ = geometry_rect(camera, bounds_, options_.width, options_.height);
@@ -230,6 +230,17 @@ void Renderer::update_display_passes() {
     antialias_ = std::make_unique<AntialiasPass>(resources_);
   gbuffer_->set_uv_stretch(targets_.use.uv_stretch);
   if (separable_) separable_->set_write_scattered(view == DebugView::Scattered);
+  update_sky();
+}
+
+void Renderer::update_sky() {
+  const bool sky = targets_.use.sky_blocked;
+  if (sky) {
+    const double seconds = scene_.ensure_sky_occlusion(context_);
+    if (seconds > 0.0) sky_bake_seconds_ = seconds;
+  }
+  gbuffer_->set_sky(sky);
+  if (texture_) texture_->set_sky(sky);
 }
 
 std::array<float, 2> Renderer::debug_range() const {
@@ -304,6 +315,12 @@ void Renderer::store_environment(const std::optional<scene::Environment>& enviro
 
 void Renderer::set_environment(const std::optional<scene::Environment>& environment) {
   store_environment(environment);
+  const FrameTargets::Use use = FrameTargets::use_for(options_, has_environment_);
+  if (use != targets_.use)
+    recreate_targets(options_.width, options_.height,
+                     static_cast<std::uint32_t>(targets_.shadow_layers.size()),
+                     options_.shadow_map_size, use);
+  update_sky();
   write_lights(lights_);
   write_frame_uniforms();
 }
@@ -353,7 +370,7 @@ void Renderer::set_options(const RenderOptions& options) {
   const bool size_changed = options.width != options_.width || options.height != options_.height;
   const bool shadow_changed = options.shadow_map_size != options_.shadow_map_size;
   // Another technique or view may read targets this one made 1 x 1, or no longer read some.
-  const FrameTargets::Use use = FrameTargets::use_for(options);
+  const FrameTargets::Use use = FrameTargets::use_for(options, has_environment_);
   if (size_changed || shadow_changed || use != targets_.use)
     recreate_targets(options.width, options.height,
                      static_cast<std::uint32_t>(targets_.shadow_layers.size()),

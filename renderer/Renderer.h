@@ -147,6 +147,8 @@ class Renderer {
   // {0, 0} for a view without a heat map.
   std::array<float, 2> debug_range() const;
   const scene::Camera& camera() const { return camera_; }
+  // The wall time of the last sky-occlusion bake (RenderOptions::sky_occlusion), 0 if none ran.
+  double sky_bake_seconds() const { return sky_bake_seconds_; }
 
  private:
   // The frame as passes that declare their images; record() records it.
@@ -165,6 +167,10 @@ class Renderer {
   // debug_ and what the view needs from the other passes, for options_.debug_view, and
   // antialias_ (options_.antialias, never under a debug view).
   void update_display_passes();
+  // With FrameTargets::Use::sky_blocked: bakes the scene's sky occlusion if it is not
+  // (GpuScene::ensure_sky_occlusion) and switches the G-buffer and the texture path to
+  // their sky variants; otherwise back to the plain ones.
+  void update_sky();
   // warnings_: the lights', the scene's and the texture path's.
   void collect_warnings();
   // has_environment_, environment_sh_ and environment_maps_ from the scene's environment.
@@ -176,6 +182,7 @@ class Renderer {
   std::vector<scene::Light> scene_lights_;
   // The scene's environment light as LightBlock::environment holds it (all 0 without one).
   bool has_environment_ = false;
+  double sky_bake_seconds_ = 0.0;
   std::array<shader::vec4, 9> environment_sh_{};
   scene::Bounds bounds_;  // of the scene's instances (shadow fits)
   double mm_per_unit_;

@@ -16,6 +16,8 @@
 #include "shaders/texture_lighting.comp.h"
 #include "shaders/texture_irradiance.frag.h"
 #include "shaders/texture_irradiance.vert.h"
+#include "shaders/texture_irradiance_sky.frag.h"
+#include "shaders/texture_irradiance_sky.vert.h"
 
 #include <algorithm>
 #include <array>
@@ -33,18 +35,23 @@ namespace lit = shader::bindings::texture_lighting_comp;
 namespace dil = shader::bindings::texture_dilate_comp;
 namespace blur = shader::bindings::sss_texture_comp;
 
-vk::PipelineHandle raster_pipeline(const vk::Context& context, VkPipelineLayout layout) {
+// sky: the variant that also writes the sky's blocked irradiance (a fifth target).
+vk::PipelineHandle raster_pipeline(const vk::Context& context, VkPipelineLayout layout, bool sky) {
   vk::GraphicsPipelineBuilder builder;
-  builder.vertex_shader(sss_spv_texture_irradiance_vert)
-      .fragment_shader(sss_spv_texture_irradiance_frag)
+  builder.vertex_shader(sky ? std::span<const uint32_t>(sss_spv_texture_irradiance_sky_vert)
+                            : std::span<const uint32_t>(sss_spv_texture_irradiance_vert))
+      .fragment_shader(sky ? std::span<const uint32_t>(sss_spv_texture_irradiance_sky_frag)
+                           : std::span<const uint32_t>(sss_spv_texture_irradiance_frag))
       .color(VK_FORMAT_R32G32B32A32_SFLOAT)  // position
       .color(kAtlasFormat)                   // normal
       .color(kAtlasFormat)                   // albedo
-      .color(kAtlasFormat)                   // stretch
-      .depth(kDepthFormat, vk::DepthTest::Write)  // own triangles (z 0) win over the gutter
+      .color(kAtlasFormat);                  // stretch
+  if (sky) builder.color(kAtlasFormat);      // the sky's blocked irradiance (temp)
+  builder.depth(kDepthFormat, vk::DepthTest::Write)  // own triangles (z 0) win over the gutter
       .cull(VK_CULL_MODE_NONE);
   add_vertex_input(builder);
-  return builder.build(context, layout, "texture irradiance");
+  if (sky) add_sky_vertex_input(builder);
+  return builder.build(context, layout, sky ? "texture irradiance sky" : "texture irradiance");
 }
 
 // Whatever touched the atlases before (the previous frame's lookups, their creation).
@@ -54,8 +61,8 @@ constexpr vk::Scope kBefore{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
 }  // namespace
 
 // One object's atlas textures, in GENERAL, rgba16f but for the position. The raster
-// writes position, normal, a (albedo) and b (raw stretch); the lighting writes temp (raw
-// E); the dilation writes irradiance and stretch; then a and b are the blur's ping-pong
+// writes position, normal, a (albedo), b (raw stretch) and with an environment temp (the
+// sky's blocked irradiance); the lighting writes temp (raw E); the dilation writes irradiance and stretch; then a and b are the blur's ping-pong
 // pair and temp its intermediate.
 struct SssTexturePass::Textures {
   std::uint32_t size = 0;
@@ -78,7 +85,7 @@ struct SssTexturePass::Textures {
     b = make("b", VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
     irradiance = make("irradiance", 0);
     stretch = make("stretch", 0);
-    temp = make("temp", 0);
+    temp = make("temp", VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);  // the sky raster's fifth target
     scattered = make("scattered", 0);
   }
   std::array<const vk::Image*, 8> all() const {
@@ -90,7 +97,7 @@ SssTexturePass::SssTexturePass(const FrameResources& resources, const RenderOpti
     : r_(resources),
       raster_(r_.context, surface_set_bindings(), sizeof(shader::DrawPush),
               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 1, "texture irradiance",
-              [&](VkPipelineLayout layout) { return raster_pipeline(r_.context, layout); }),
+              [&](VkPipelineLayout layout) { return raster_pipeline(r_.context, layout, false); }),
       lighting_(r_.context, lit::kAll, sss_spv_texture_lighting_comp,
                 sizeof(shader::TexturePush), shader::kMaxTextureObjects, "texture lighting"),
       dilate_(r_.context, dil::kAll, sss_spv_texture_dilate_comp, 0,
@@ -227,6 +234,13 @@ void SssTexturePass::configure(const RenderOptions& options) {
   allocate_object_sets();
 }
 
+void SssTexturePass::set_sky(bool on) {
+  if (on == sky_) return;
+  if (on && !sky_raster_) sky_raster_ = raster_pipeline(r_.context, raster_.layout.get(), true);
+  sky_ = on;
+  invalidate();
+}
+
 void SssTexturePass::invalidate() {
   for (Textures& t : textures_) t.dirty = true;
 }
@@ -265,23 +279,26 @@ void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& obje
   vk::pipeline_barrier(cmd, barriers);
   t.initialized = true;
 
-  // 1. Raster: the atlas G-buffer (position + island, normal, albedo) and the stretch.
-  std::array<vk::ColorTarget, 4> colors = {vk::ColorTarget(t.position.view()),
-                                           vk::ColorTarget(t.normal.view()),
-                                           vk::ColorTarget(t.a.view()), vk::ColorTarget(t.b.view())};
+  // 1. Raster: the atlas G-buffer (position + island, normal, albedo), the stretch, and
+  // with an environment the sky's blocked irradiance.
+  std::array<vk::ColorTarget, 5> colors = {
+      vk::ColorTarget(t.position.view()), vk::ColorTarget(t.normal.view()), vk::ColorTarget(t.a.view()),
+      vk::ColorTarget(t.b.view()), vk::ColorTarget(t.temp.view())};
   for (vk::ColorTarget& c : colors) c.layout = VK_IMAGE_LAYOUT_GENERAL;
   const vk::DepthTarget depth(depth_.view());
-  vk::begin_rendering(cmd, {t.size, t.size}, colors, &depth);
-  raster_.bind(cmd, raster_set_);
+  vk::begin_rendering(cmd, {t.size, t.size}, std::span<const vk::ColorTarget>(colors.data(), sky_ ? 5 : 4),
+                      &depth);
+  raster_.bind(cmd, sky_ ? sky_raster_.get() : raster_.pipeline.get(), raster_set_);
   r_.scene.draw_instance(cmd, raster_.layout.get(), object.instance, -1);
   r_.scene.draw_gutter(cmd, raster_.layout.get(), object.instance, -1);
   vk::end_rendering(cmd);
   const VkMemoryBarrier2 rastered = vk::memory_barrier(
       {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT},
-      {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT});
+      {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT});
   vk::pipeline_barrier(cmd, {}, {}, {&rastered, 1});
 
-  // 2. Lighting: E + island into temp.
+  // 2. Lighting: E + island into temp (reading the sky's blocked part there first).
   const shader::TexturePush material{{0.0f, 0.0f, 0.0f, float(object.material)}};
   lighting_.bind(cmd, t.lighting);
   vkCmdPushConstants(cmd, lighting_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,

@@ -52,6 +52,11 @@ class SssTexturePass {
   void configure(const RenderOptions& options);
   // Lights, materials, transmission or shadow maps changed: every object updates next frame.
   void invalidate();
+  // With an environment and the scene's sky occlusion baked (as GBufferPass::set_sky):
+  // the atlas raster also writes the sky's blocked irradiance, into each object's temp
+  // texture, where texture_lighting.comp reads it before it writes E there. A change
+  // invalidates every object.
+  void set_sky(bool on);
   // Points the lighting sets at the current shadow maps (after FrameTargets were recreated).
   void write_descriptors();
   // Updates the objects that need it; `materials` gives each one's Gaussian count.
@@ -82,6 +87,8 @@ class SssTexturePass {
 
   const FrameResources& r_;
   Program raster_;  // the irradiance raster into the atlas (graphics)
+  vk::PipelineHandle sky_raster_;  // its sky variant, on raster_'s layout (set_sky)
+  bool sky_ = false;
   VkDescriptorSet raster_set_ = VK_NULL_HANDLE;
   Program lighting_;
   Program dilate_;

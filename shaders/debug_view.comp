@@ -116,6 +116,7 @@ void main() {
       s.P = w.xyz / w.w;
       s.N = normalize(texelFetch(normal_tex, p, 0).xyz);
       s.thickness_mm = -1.0;  // S(1) alone: no transmission
+      s.sky_blocked = vec3(0.0);
       s.V = frame.camera.w > 0.5 ? -frame.forward.xyz : normalize(frame.camera.xyz - s.P);
       s.albedo = texelFetch(albedo_tex, p, 0).rgb;
       c = display_encode(single_scattering_radiance(s));

@@ -28,6 +28,9 @@ layout(set = 0, binding = 10) uniform sampler2DArray light_depth_tex;
 // The environment's split-sum tables (renderer/EnvironmentMaps.h), read with texelFetch.
 layout(set = 0, binding = 11) uniform sampler2DArray environment_specular_tex;
 layout(set = 0, binding = 12) uniform sampler2D dfg_tex;
+// The G-buffer's sky target: the environment's irradiance the scene blocks (rgb), read
+// when frame.flags.z is 2 (gbuffer_sky.frag drew it).
+layout(set = 0, binding = 13) uniform sampler2D sky_blocked_tex;
 #define SSS_ENVIRONMENT_SPECULAR 1
 
 #include "shared/sss.glsl"
@@ -52,6 +55,7 @@ void main() {
   vec4 normal = texelFetch(normal_tex, p, 0);
   s.N = normalize(normal.xyz);
   s.thickness_mm = normal.w;
+  s.sky_blocked = frame.flags.z > 1.5 ? texelFetch(sky_blocked_tex, p, 0).rgb : vec3(0.0);
   s.V = frame.camera.w > 0.5 ? -frame.forward.xyz : normalize(frame.camera.xyz - s.P);
   s.albedo = texelFetch(albedo_tex, p, 0).rgb;
   float depth_mm = dot(s.P - frame.camera.xyz, frame.forward.xyz) * frame.scale.x;

@@ -17,7 +17,9 @@ layout(set = 0, binding = 4) uniform sampler2D normal_tex;
 layout(set = 0, binding = 5) uniform sampler2D albedo_tex;
 layout(set = 0, binding = 6) uniform sampler2DArrayShadow shadow_tex;
 layout(set = 0, binding = 7) uniform sampler2DArray light_depth_tex;
-layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D irradiance_img;
+// In: the raster's sky target (the environment's irradiance the scene blocks, rgb) when
+// frame.flags.z is 2 (texture_irradiance_sky.frag drew it); out: E + island.
+layout(set = 0, binding = 8, rgba16f) uniform image2D irradiance_img;
 layout(push_constant) uniform Push { TexturePush push; };  // w: the material
 
 #include "shared/thickness.glsl"
@@ -38,6 +40,7 @@ void main() {
   vec4 normal = texelFetch(normal_tex, p, 0);
   s.N = normalize(normal.xyz);
   s.thickness_mm = normal.w;
+  s.sky_blocked = frame.flags.z > 1.5 ? imageLoad(irradiance_img, p).rgb : vec3(0.0);
   s.V = s.N;  // no specular here
   s.albedo = texelFetch(albedo_tex, p, 0).rgb;
   vec3 E, S;

@@ -9,7 +9,8 @@ void add_environment_options(CLI::App& app, EnvironmentArgs& args) {
                  "Light from every direction: none (default), R,G,B (a uniform sky's linear "
                  "radiance; 1,1,1 gives an open surface E = pi), or FILE.exr (an "
                  "equirectangular HDR image, +Y up, its centre looking down -Z). The GPU takes its "
-                 "irradiance from spherical harmonics and its specular from a prefiltered map, "
+                 "irradiance from spherical harmonics less what the scene blocks (a per-vertex "
+                 "bake; sss-viewer --sky-occlusion) and its specular from a prefiltered map "
                  "without occlusion; the references sample both with shadow rays (README "
                  "\"Environment light\")");
   app.add_option("--environment-intensity", args.intensity,

@@ -438,8 +438,13 @@ void ViewerUi::draw_environment(renderer::Renderer& r) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("--environment: light from every direction; its diffuse part scattered like\n"
                       "the other lights (spherical harmonics), its specular from a prefiltered map\n"
-                      "(split sum); no occlusion on the GPU");
+                      "(split sum); the diffuse part less what the scene blocks (sky occlusion)");
   ImGui::BeginDisabled(!environment_on_);
+  renderer::RenderOptions options = r.options();
+  if (ImGui::Checkbox("sky occlusion", &options.sky_occlusion)) r.set_options(options);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("--sky-occlusion: take away the sky that the scene blocks, per vertex\n"
+                      "(ray-cast once when first needed); off: every surface sees the whole sky");
   if (image) {
     ImGui::TextWrapped("image: %s", environment_->source.c_str());
   } else {

@@ -42,6 +42,7 @@ struct ViewerArgs {
   std::string debug_view = "none";  // --debug-view: renderer::parse_debug_view names
   std::vector<double> debug_range;  // --debug-range LO,HI (empty: the view's automatic)
   std::string transmission = "on";  // --transmission on | off
+  std::string sky_occlusion = "on";  // --sky-occlusion on | off
   std::string fresnel = "off";      // --fresnel on | off
   std::string single_scattering = "on";  // --single-scattering on | off
   int texture_size = 1024;              // --texture-size (--sss texture)

@@ -87,6 +87,9 @@ void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
   print_pass_times(s);
   std::printf("%-16s %10.3f\n", "cpu mean", cpu_total_ms / frames);
   print_target_memory(r);
+  if (r.sky_bake_seconds() > 0.0)
+    std::printf("%-16s %10.3f s (once, when the first frame with an environment needs it)\n", "sky occlusion",
+                r.sky_bake_seconds());
 }
 
 // The scene and how it is drawn.
@@ -138,6 +141,10 @@ void add_sss_term_options(CLI::App& app, ViewerArgs& a) {
   app.add_option("--transmission", a.transmission,
                  "on | off: light through thin parts of SSS materials, thickness from the "
                  "shadow maps (default on)");
+  app.add_option("--sky-occlusion", a.sky_occlusion,
+                 "on | off: with --environment, take away the sky the scene blocks (its "
+                 "spherical-harmonic transfer, ray-cast per vertex of each object when first "
+                 "needed; default on). Off: every surface sees the whole sky");
   app.add_option("--fresnel", a.fresnel,
                  "on | off: directional Fresnel factors on subsurface light, F_t(eta, theta_i) "
                  "entering and F_t(eta, theta_o)/(c pi) leaving instead of Lambert's 1/pi "
@@ -332,6 +339,9 @@ std::optional<int> set_frame_options(const ViewerArgs& a, renderer::RenderOption
   if (a.transmission != "on" && a.transmission != "off")
     return usage("--transmission: expected on or off, got '" + a.transmission + "'");
   options.transmission = a.transmission == "on";
+  if (a.sky_occlusion != "on" && a.sky_occlusion != "off")
+    return usage("--sky-occlusion: expected on or off, got '" + a.sky_occlusion + "'");
+  options.sky_occlusion = a.sky_occlusion == "on";
   if (a.fresnel != "on" && a.fresnel != "off")
     return usage("--fresnel: expected on or off, got '" + a.fresnel + "'");
   options.fresnel = a.fresnel == "on";

@@ -64,7 +64,9 @@ struct FrameUniforms {
                        // (RenderOptions::fresnel; shading.glsl, composite.glsl); y 1 =
                        // single scattering S(1) per pixel (RenderOptions::
                        // single_scattering; shading.glsl); z 1 = an environment light
-                       // (LightBlock::environment); w 1 = the environment behind
+                       // (LightBlock::environment), 2 = one whose blocked part the
+                       // G-buffer's and the atlases' sky targets hold (shading.glsl,
+                       // RenderOptions::sky_occlusion); w 1 = the environment behind
                        // the geometry in the display image (composite.comp; needs z)
 };
 

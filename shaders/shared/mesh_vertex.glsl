@@ -1,5 +1,5 @@
 // The vertex stage of the passes that draw the scene's meshes with every attribute
-// (gbuffer.vert, texture_irradiance.vert): the GpuVertex inputs, the surface outputs
+// (gbuffer.vert, texture_irradiance.vert and their _sky variants): the GpuVertex inputs, the surface outputs
 // surface.glsl reads, and their transform by the draw's model matrix. Not shared with C++.
 #ifndef SSS_SHADERS_MESH_VERTEX_GLSL
 #define SSS_SHADERS_MESH_VERTEX_GLSL
@@ -22,9 +22,16 @@ layout(location = 3) out vec4 out_tangent;
 // the transmitted light). A vertex without one gets 1e20: no transmission, and a triangle
 // that reaches it fades to none.
 layout(location = 5) out float out_thickness;
+#ifdef SSS_SKY_OCCLUSION
+// The sky's blocked transfer (reference/SkyOcclusion.h), 9 coefficients from binding 1
+// (GpuScene: per instance), interpolated like the thickness.
+layout(location = 6) in vec3 in_sky[3];
+layout(location = 6) out vec3 out_sky[3];
+#endif
 
 // Writes outputs 0..3 and 5 (world position, normal, material UV, tangent, inward
-// thickness); returns the world position.
+// thickness), and 6..8 (the sky's blocked transfer) with SSS_SKY_OCCLUSION; returns the
+// world position.
 vec4 write_surface_outputs() {
   vec4 world = draw.model * vec4(in_position, 1.0);
   out_world = world.xyz;
@@ -35,6 +42,9 @@ vec4 write_surface_outputs() {
   // model keeps it on the line, ending on the same surface point): its world length is
   // |M n| d for the unit local normal n.
   out_thickness = in_thickness < 0.0 ? 1e20 : length(mat3(draw.model) * normalize(in_normal)) * in_thickness;
+#ifdef SSS_SKY_OCCLUSION
+  out_sky = in_sky;
+#endif
   return world;
 }
 

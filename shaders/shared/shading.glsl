@@ -174,6 +174,9 @@ struct SurfacePoint {
   vec3 V;       // unit direction to the eye (specular only)
   vec3 albedo;  // base colour (F0 of metals)
   float thickness_mm;  // inward thickness along -N (the G-buffer's), for the sky's transmission
+  // The environment's irradiance that the scene blocks here (surface.glsl, sky_blocked;
+  // what the G-buffer's sky target holds when frame.flags.z is 2), else 0.
+  vec3 sky_blocked;
 };
 
 // E: irradiance at P (Σ over lights of E_light N·L x shadow; for subsurface materials
@@ -232,8 +235,10 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
       S += D * vis * F * incident;
     }
   }
-  // The environment (frame.flags.z): its irradiance from the spherical harmonics, with no
-  // occlusion; with directional Fresnel, a subsurface material takes the part of it that
+  // The environment (frame.flags.z): its irradiance from the spherical harmonics less
+  // what the scene blocks (s.sky_blocked: the per-vertex transfer of reference/
+  // SkyOcclusion.h, zero on a surface that sees the whole sky; clamped at 0 where a normal
+  // map turns N away from the vertex normal the bake used); with directional Fresnel, a subsurface material takes the part of it that
   // enters, c = the cosine-weighted mean of F_t over the hemisphere (1 / exit_norm; exact
   // for a uniform sky, which the GPU cannot tell from others); its specular by the split
   // sum where the pass has the tables (lighting.comp).
@@ -244,7 +249,7 @@ void shade(SurfacePoint s, bool specular, out vec3 E, out vec3 S) {
   // own total). Exact for a flat slab under any sky; on a curved thin part the far
   // surface's normal and its distance vary over the profile's width.
   if (frame.flags.z > 0.5) {
-    vec3 sky = environment_irradiance(s.N);
+    vec3 sky = max(environment_irradiance(s.N) - s.sky_blocked, vec3(0.0));
     bool entering = subsurface && frame.flags.x > 0.5;
     if (entering) sky /= materials[s.id].exit_norm;
     E += sky;

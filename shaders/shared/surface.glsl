@@ -17,6 +17,20 @@ layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_tangent;
 layout(location = 5) in float in_thickness;  // world units (mesh_vertex.glsl)
 
+#ifdef SSS_SKY_OCCLUSION
+// The environment's irradiance that the scene blocks at this point, E_blocked =
+// sum_k environment[k] T_k with the interpolated per-vertex transfer T
+// (reference/SkyOcclusion.h; exactly 0 where the vertices see the whole sky). The
+// lighting subtracts it from the harmonics' unoccluded irradiance (shading.glsl).
+layout(set = 0, binding = 2) uniform Lights { LightBlock light_block; };
+layout(location = 6) in vec3 in_sky[3];
+vec3 sky_blocked() {
+  vec3 e = vec3(0.0);
+  for (int k = 0; k < 9; ++k) e += light_block.environment[k].rgb * in_sky[k / 3][k % 3];
+  return e;
+}
+#endif
+
 // The inward thickness in mm, what the G-buffer's normal target keeps in w (the
 // environment's transmission, shading.glsl); infinite (in half floats) where there is none.
 float thickness_mm() { return in_thickness * frame.scale.x; }

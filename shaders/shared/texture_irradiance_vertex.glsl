@@ -1,10 +1,8 @@
-#version 460
-#extension GL_GOOGLE_include_directive : require
 // Texture path, irradiance raster: each triangle of one object drawn at its atlas UVs
 // (texel (x, y) of an N x N target is UV ((x + 0.5) / N, (y + 0.5) / N)), carrying its
 // world position, normal, material UVs and UV island to texture_irradiance.frag; the
 // mesh's seam gutter (Mesh::uv_atlas_gutter) is drawn with it, behind.
-#include "shared/mesh_vertex.glsl"
+#include "mesh_vertex.glsl"
 
 layout(location = 4) flat out float out_island;
 

@@ -14,6 +14,7 @@
 #include "RenderTest.h"
 
 #include "scene/BuiltinScenes.h"
+#include "scene/Shapes.h"
 #include "scene/SplitSum.h"
 #include "profiles/Fresnel.h"
 #include "profiles/Profile.h"
@@ -396,6 +397,98 @@ TEST_F(EnvironmentLightTest, TheEnvironmentBehindTheGeometryIsTheSkyAlongEachPix
   EXPECT_GT(background, kW * kH / 4);
   std::printf("[ environment behind ] %d background pixels, worst |code - expected| / tol %.3f\n",
               background, worst);
+}
+
+namespace sky {
+
+// The sphere scene inside a closed box whose faces look inward (normals and winding
+// turned), with the camera inside too: every direction from every vertex of the sphere
+// and of the box meets the box, so the bake (reference/SkyOcclusion.h) blocks the whole
+// sky, each sample adding the same Y_00: E_blocked = E_open exactly, in expectation and
+// in every sample.
+scene::Scene boxed_sphere(const glm::vec3& sky) {
+  scene::Scene s = scene::sphere_scene();
+  const scene::Bounds b = s.bounds();
+  const glm::vec3 c = b.center(), half(10.0f * b.radius());
+  scene::Mesh box = scene::make_box(c - half, c + half, 1);
+  for (glm::vec3& n : box.normals) n = -n;
+  for (std::size_t t = 0; t + 2 < box.indices.size(); t += 3) std::swap(box.indices[t + 1], box.indices[t + 2]);
+  box.tangents.clear();
+  box.name = "box";
+  scene::Material wall = s.materials[0];
+  wall.name = "wall";
+  wall.sss.enabled = false;
+  s.materials.push_back(wall);
+  s.meshes.push_back(box);
+  s.instances.push_back({std::uint32_t(s.meshes.size() - 1), glm::mat4(1.0f), "box"});
+  s.environment = scene::uniform_environment(sky);
+  s.cameras[0].zfar = 0.0f;  // infinite: the box's far walls are beyond the sphere's frame
+  return s;
+}
+
+}  // namespace sky
+
+// Sky occlusion on the GPU (RenderOptions::sky_occlusion): inside a closed box the sky is
+// blocked everywhere, so with it on the sky adds nothing to the diffuse frame, in every
+// mode, where without it the sphere gets albedo x T x L as in the open (the first test).
+// Transmission is off: the sky's transmitted part is not occluded (README).
+// Tolerance: E_blocked reaches the lighting through an rgba16f target, so the residual
+// E_open - E_blocked is at most 2^-11 of E_open (half a unit in the last place of a half
+// float, relative, is 2^-11 = 4.9e-4; below 0 it is clamped), and the gaussians and
+// texture chains round it again in rgba16f: 1e-3 x albedo T L, plus 1e-6 for the float32
+// frames' own rounding of the unchanged light.
+TEST_F(EnvironmentLightTest, InsideAClosedBoxTheSkyAddsNothing) {
+  const glm::vec3 sky_radiance(0.5f, 0.4f, 0.3f);
+  const Mode modes[] = {{SssTechnique::Off, "off", 0.0},
+                        {SssTechnique::Separable, "separable", 0.0},
+                        {SssTechnique::Gaussians, "gaussians", 0.0},
+                        {SssTechnique::Texture, "texture", 0.0}};
+  const scene::Scene lit = sky::boxed_sphere(sky_radiance);
+  scene::Scene dark = lit;
+  dark.environment.reset();
+  const glm::vec4 albedo = lit.materials[0].base_color;
+  for (const Mode& mode : modes) {
+    RenderOptions options = small_options(160, 90, mode.technique);
+    options.transmission = false;
+    const Frame without = render(dark, options);
+    const Frame with = render(lit, options);
+    options.sky_occlusion = false;
+    const Frame open = render(lit, options);
+    // The sphere's pixels: those the sphere covers without the box.
+    const Frame mask = render(scene::sphere_scene(), small_options(160, 90, mode.technique));
+    const MaterialProfile& p = *with.materials.profiles[0];
+    int sphere = 0, walls = 0;
+    double worst = 0.0, open_mean = 0.0;
+    for (int y = 0; y < 90; ++y)
+      for (int x = 0; x < 160; ++x) {
+        ASSERT_GT(with.hdr.pixel(x, y)[3], 0.0f) << "the camera is inside the box: geometry everywhere";
+        const bool on_sphere = mask.hdr.pixel(x, y)[3] > 0.0f;
+        ++(on_sphere ? sphere : walls);
+        for (int c = 0; c < 3; ++c) {
+          const double a = without.hdr.pixel(x, y)[c] - without.specular.pixel(x, y)[c];
+          const double b = with.hdr.pixel(x, y)[c] - with.specular.pixel(x, y)[c];
+          const double T = on_sphere ? (mode.kernel_total() ? p.kernel.total_reflectance[c]
+                                                            : p.fit.total_reflectance[c])
+                                     : 1.0;
+          const double full = double(albedo[c]) * T * sky_radiance[c];  // unoccluded dL
+          const double tol = 1e-3 * full + 1e-6;
+          EXPECT_NEAR(b - a, 0.0, tol) << mode.name << (on_sphere ? " sphere" : " wall") << " pixel " << x << ","
+                                       << y << " channel " << c;
+          worst = std::max(worst, std::fabs(b - a) / tol);
+          if (on_sphere)
+            open_mean += (open.hdr.pixel(x, y)[c] - open.specular.pixel(x, y)[c] - a) / full;
+        }
+      }
+    EXPECT_GT(sphere, 1000) << mode.name;
+    EXPECT_GT(walls, 1000) << mode.name;
+    open_mean /= 3.0 * sphere;
+    // The test's power: with the occlusion off the sphere gets the open sky's albedo T L
+    // (the first test, to its tolerances).
+    EXPECT_NEAR(open_mean, 1.0, 1e-2) << mode.name;
+    std::printf("[ sky occlusion %s ] %d sphere + %d wall pixels, worst |dL| / tol %.3f; without "
+                "occlusion the sphere's dL / (albedo T L) %.4f\n",
+                mode.name, sphere, walls, worst, open_mean);
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "RenderTest.h"
 
 #include "scene/BuiltinScenes.h"
+#include "scene/Environment.h"
 
 #include <gtest/gtest.h>
 
@@ -117,21 +118,25 @@ TEST_F(RenderTest, AFrameHoldsOnlyTheTargetsItsTechniqueReads) {
     DebugView view;
     Antialias aa;
     double unread_bytes_per_px;  // of the optional targets, those this frame does not read
+    bool environment = false;    // the sky target (8 bytes a pixel) is read with one
   };
   const Row rows[] = {
-      {SssTechnique::Off, DebugView::None, Antialias::Off, 4 * 8 + 2 * 16 + 8 + 4},
-      {SssTechnique::Separable, DebugView::None, Antialias::Off, 4 * 8 + 8 + 4},
-      {SssTechnique::Separable, DebugView::Scattered, Antialias::Off, 3 * 8 + 8 + 4},
-      {SssTechnique::Separable, DebugView::None, Antialias::Fxaa, 4 * 8 + 8},
-      {SssTechnique::Gaussians, DebugView::None, Antialias::Off, 2 * 16 + 8 + 4},
-      {SssTechnique::Texture, DebugView::None, Antialias::Off, 3 * 8 + 2 * 16 + 8 + 4},
-      {SssTechnique::Texture, DebugView::UvStretch, Antialias::Off, 3 * 8 + 2 * 16 + 4},
+      {SssTechnique::Off, DebugView::None, Antialias::Off, 4 * 8 + 2 * 16 + 8 + 4 + 8},
+      {SssTechnique::Separable, DebugView::None, Antialias::Off, 4 * 8 + 8 + 4 + 8},
+      {SssTechnique::Separable, DebugView::None, Antialias::Off, 4 * 8 + 8 + 4, true},
+      {SssTechnique::Separable, DebugView::Scattered, Antialias::Off, 3 * 8 + 8 + 4 + 8},
+      {SssTechnique::Separable, DebugView::None, Antialias::Fxaa, 4 * 8 + 8 + 8},
+      {SssTechnique::Gaussians, DebugView::None, Antialias::Off, 2 * 16 + 8 + 4 + 8},
+      {SssTechnique::Texture, DebugView::None, Antialias::Off, 3 * 8 + 2 * 16 + 8 + 4 + 8},
+      {SssTechnique::Texture, DebugView::None, Antialias::Off, 3 * 8 + 2 * 16 + 8 + 4, true},
+      // The uv-stretch view takes the G-buffer's third attachment: no sky target.
+      {SssTechnique::Texture, DebugView::UvStretch, Antialias::Off, 3 * 8 + 2 * 16 + 4 + 8, true},
   };
   for (const Row& row : rows) {
     RenderOptions o = small_options(w, h, row.technique);
     o.debug_view = row.view;
     o.antialias = row.aa;
-    const FrameTargets t(ctx(), w, h, 1, 512, FrameTargets::use_for(o));
+    const FrameTargets t(ctx(), w, h, 1, 512, FrameTargets::use_for(o, row.environment));
     const double saved = full - double(t.memory_bytes());
     const std::string what = std::string(technique_name(row.technique)) + " " +
                              std::string(debug_view_name(row.view)) + " " +
@@ -139,9 +144,11 @@ TEST_F(RenderTest, AFrameHoldsOnlyTheTargetsItsTechniqueReads) {
     EXPECT_NEAR(saved, row.unread_bytes_per_px * px, slack) << what;
     // The renderer holds these targets, and switching to the row's options from the
     // default changes them to these.
-    Renderer r(ctx(), scene::sphere_scene(), small_options(w, h, SssTechnique::Separable));
+    scene::Scene sphere = scene::sphere_scene();
+    if (row.environment) sphere.environment = scene::uniform_environment({0.3f, 0.3f, 0.3f});
+    Renderer r(ctx(), sphere, small_options(w, h, SssTechnique::Separable));
     r.set_options(o);
-    EXPECT_EQ(r.target_bytes(), t.memory_bytes()) << what;
+    EXPECT_EQ(r.target_bytes(), t.memory_bytes()) << what << (row.environment ? " environment" : "");
   }
 }
 

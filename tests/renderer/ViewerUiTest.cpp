@@ -22,6 +22,7 @@
 #include "profiles/SeparableKernel.h"
 #include "renderer/CameraSetup.h"
 #include "scene/BuiltinScenes.h"
+#include "scene/Shapes.h"
 
 #include "ViewerRun.h"
 
@@ -1019,10 +1020,63 @@ TEST_F(ViewerUiTest, TheEnableSubsurfaceSwitchGivesAPlainGltfMaterialSssAndTakes
   EXPECT_TRUE(bit_identical(r.read_hdr(), opaque)) << "opaque again, as before the switch";
 }
 
+// The panel's Environment section driven by clicks: injected mouse events on the widgets,
+// found by hovering (ImGui's HoveredId), as a user's pointer would find them.
+class EnvironmentSection {
+ public:
+  EnvironmentSection(Renderer& r, const scene::Scene& scene, int taps) : r_(r), ui_(scene, taps) {
+    imgui_.io().DisplaySize = ImVec2(960.0f, 2400.0f);  // a panel tall enough for every section
+    frame();
+    panel_ = frame();
+  }
+  // Clicks the widget labelled `label`; false if no hover finds it.
+  bool click(const char* label) {
+    if (!panel_) return false;
+    const std::optional<ImVec2> at = find(label);
+    if (!at) return false;
+    ImGuiIO& io = imgui_.io();
+    io.MousePos = *at;
+    frame();
+    io.MouseDown[0] = true;
+    frame();
+    io.MouseDown[0] = false;
+    frame();
+    return true;
+  }
+
+ private:
+  ImGuiWindow* frame(const char* label = nullptr, ImGuiID* id = nullptr) {
+    ImGuiIO& io = imgui_.io();
+    io.DeltaTime = 1.0f / 60.0f;
+    ImGui::NewFrame();
+    ui_.draw(r_, 16.0);
+    ImGui::Begin("sss-viewer");  // appends to the panel: only to compute the ID
+    if (label) *id = ImGui::GetID(label);
+    ImGui::End();
+    ImGui::Render();
+    return ImGui::FindWindowByName("sss-viewer");
+  }
+  std::optional<ImVec2> find(const char* label) {
+    ImGuiID id = 0;
+    frame(label, &id);
+    ImGuiIO& io = imgui_.io();
+    for (float y = panel_->Pos.y + 2.0f; y < panel_->Pos.y + panel_->Size.y; y += 4.0f)
+      for (float x = panel_->Pos.x + 12.0f; x < panel_->Pos.x + 96.0f; x += 8.0f) {
+        io.MousePos = ImVec2(x, y);
+        frame();
+        if (ImGui::GetCurrentContext()->HoveredId == id) return ImVec2(x, y);
+      }
+    return std::nullopt;
+  }
+  renderer::testing::HeadlessImGui imgui_;
+  Renderer& r_;
+  app::ViewerUi ui_;
+  ImGuiWindow* panel_ = nullptr;
+};
+
 // Issue 20 part 3, environment light: the panel's Environment section switches the sky
-// off and on through clicks (injected mouse events on the widgets found by hovering): off,
-// the frame is the one rendered without an environment bit for bit; on again, the one
-// rendered with it.
+// off and on through clicks: off, the frame is the one rendered without an environment
+// bit for bit; on again, the one rendered with it.
 TEST_F(ViewerUiTest, TheEnvironmentSwitchTakesTheSkyAwayAndBringsItBack) {
   scene::Scene plain = scene::sphere_scene();
   scene::Scene lit = plain;
@@ -1039,53 +1093,50 @@ TEST_F(ViewerUiTest, TheEnvironmentSwitchTakesTheSkyAwayAndBringsItBack) {
   with = r.read_hdr();
   ASSERT_FALSE(bit_identical(with, without));
 
-  renderer::testing::HeadlessImGui imgui;
-  ImGuiIO& io = imgui.io();
-  io.DisplaySize = ImVec2(960.0f, 2400.0f);  // a panel tall enough to show every section
-  app::ViewerUi ui(lit, o.separable_taps);
-  ImGuiID header_id = 0, switch_id = 0;
-  const auto frame = [&] {
-    io.DeltaTime = 1.0f / 60.0f;
-    ImGui::NewFrame();
-    ui.draw(r, 16.0);
-    ImGui::Begin("sss-viewer");  // appends to the panel: only to compute the IDs
-    header_id = ImGui::GetID("Environment");
-    switch_id = ImGui::GetID("environment light");
-    ImGui::End();
-    ImGui::Render();
-    return ImGui::FindWindowByName("sss-viewer");
-  };
-  const auto click = [&](ImVec2 at) {
-    io.MousePos = at;
-    frame();
-    io.MouseDown[0] = true;
-    frame();
-    io.MouseDown[0] = false;
-    frame();
-  };
-  const auto find = [&](ImGuiWindow* w, const ImGuiID& id) -> std::optional<ImVec2> {
-    for (float y = w->Pos.y + 2.0f; y < w->Pos.y + w->Size.y; y += 4.0f)
-      for (float x = w->Pos.x + 12.0f; x < w->Pos.x + 96.0f; x += 8.0f) {
-        io.MousePos = ImVec2(x, y);
-        frame();
-        if (ImGui::GetCurrentContext()->HoveredId == id) return ImVec2(x, y);
-      }
-    return std::nullopt;
-  };
-  ImGuiWindow* panel = frame();
-  panel = frame();
-  ASSERT_NE(panel, nullptr);
-  const auto header = find(panel, header_id);
-  ASSERT_TRUE(header.has_value()) << "the Environment section's header";
-  click(*header);
-  const auto box = find(panel, switch_id);
-  ASSERT_TRUE(box.has_value()) << "the open section shows the switch";
-  click(*box);
+  EnvironmentSection section(r, lit, o.separable_taps);
+  ASSERT_TRUE(section.click("Environment")) << "the Environment section's header";
+  ASSERT_TRUE(section.click("environment light")) << "the open section shows the switch";
   r.render_frame();
   EXPECT_TRUE(bit_identical(r.read_hdr(), without)) << "the sky switched off";
-  click(*box);
+  ASSERT_TRUE(section.click("environment light"));
   r.render_frame();
   EXPECT_TRUE(bit_identical(r.read_hdr(), with)) << "the sky switched on again";
+}
+
+// Sky occlusion's switch in the same section: a sphere on a floor under a sky, where the
+// floor blocks the sphere's lower half of the sky. Off, the frame is the one a renderer
+// made with --sky-occlusion off draws, bit for bit; on again, the default one.
+TEST_F(ViewerUiTest, TheSkyOcclusionSwitchTogglesWhatTheSceneBlocks) {
+  scene::Scene s = scene::sphere_scene();
+  const scene::Bounds b = s.bounds();
+  const float r0 = b.radius();
+  s.meshes.push_back(scene::make_box(b.center() + glm::vec3(-4 * r0, -r0 - 0.1f * r0, -4 * r0),
+                                     b.center() + glm::vec3(4 * r0, -r0, 4 * r0)));
+  s.instances.push_back({std::uint32_t(s.meshes.size() - 1), glm::mat4(1.0f), "floor"});
+  s.environment = scene::uniform_environment({0.4f, 0.4f, 0.5f});
+  RenderOptions o = small_options(kW, kH, SssTechnique::Separable);
+  image::Image open;
+  {
+    RenderOptions off = o;
+    off.sky_occlusion = false;
+    Renderer a(ctx(), s, off);
+    a.render_frame();
+    open = a.read_hdr();
+  }
+  Renderer r(ctx(), s, o);
+  r.render_frame();
+  const image::Image occluded = r.read_hdr();
+  ASSERT_FALSE(bit_identical(occluded, open)) << "the floor blocks part of the sphere's sky";
+
+  EnvironmentSection section(r, s, o.separable_taps);
+  ASSERT_TRUE(section.click("Environment"));
+  ASSERT_TRUE(section.click("sky occlusion")) << "the open section shows the switch";
+  EXPECT_FALSE(r.options().sky_occlusion);
+  r.render_frame();
+  EXPECT_TRUE(bit_identical(r.read_hdr(), open)) << "sky occlusion off";
+  ASSERT_TRUE(section.click("sky occlusion"));
+  r.render_frame();
+  EXPECT_TRUE(bit_identical(r.read_hdr(), occluded)) << "sky occlusion on again";
 }
 
 // Issue 20 part 3: builtin:materials showed eleven spheres and no way to tell which is

@@ -31,8 +31,8 @@ TEST(ShaderReflection, TypesComeFromTheDeclarations) {
   EXPECT_EQ(lighting::normal_tex.type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);  // sampler2D
   EXPECT_EQ(lighting::irradiance_img.type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);       // image2D
   EXPECT_EQ(lighting::irradiance_img.stages, VkShaderStageFlags(VK_SHADER_STAGE_COMPUTE_BIT));
-  // Every binding the shader uses, once: 0 .. 12.
-  EXPECT_EQ(lighting::kAll.size(), 13u);
+  // Every binding the shader uses, once: 0 .. 13.
+  EXPECT_EQ(lighting::kAll.size(), 14u);
 }
 
 TEST(ShaderReflection, ArraysAndStagesOfGraphicsShaders) {
