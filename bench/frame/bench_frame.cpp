@@ -7,7 +7,7 @@
 //   bench_frame [SCENE] [--width W] [--height H] [--frames N] [--warmup N]
 //               [--sss off|screen|texture] [--mode separable|gaussians] [--taps N]
 //               [--transmission on|off] [--single-scattering on|off] [--aa off|fxaa] [--look-away] [--texture-size N]
-//               [--texture-update every-frame|on-change] [--objects N] [--environment R,G,B|FILE.exr]
+//               [--texture-update every-frame|on-change] [--objects N] [--environment R,G,B|FILE.exr] [--sky-occlusion on|off]
 //               [--out FILE.png]
 // --objects N: N copies of the scene's instances side by side along x (one bounding
 // diameter apart), the camera moved back along its view to frame them all (issue 6: the
@@ -39,7 +39,8 @@ int usage(const char* message) {
                "bench_frame: %s\nusage: bench_frame [SCENE] [--width W] [--height H] "
                "[--frames N] [--warmup N] [--sss off|screen|texture] [--mode separable|gaussians] "
                "[--taps N] [--transmission on|off] [--single-scattering on|off] [--aa off|fxaa] [--look-away] [--texture-size N] "
-               "[--texture-update every-frame|on-change] [--objects N] [--environment R,G,B|FILE.exr]\n",
+               "[--texture-update every-frame|on-change] [--objects N] [--environment R,G,B|FILE.exr] "
+               "[--sky-occlusion on|off]\n",
                message);
   return 2;
 }
@@ -121,6 +122,10 @@ int main(int argc, char** argv) {
       const auto aa = renderer::parse_antialias(value());
       if (!aa) return usage("--aa: expected off or fxaa");
       options.antialias = *aa;
+    } else if (arg == "--sky-occlusion") {
+      const std::string v = value();
+      if (v != "on" && v != "off") return usage("--sky-occlusion: expected on or off");
+      options.sky_occlusion = v == "on";
     } else if (arg == "--environment") {
       environment = value();
     } else if (arg == "--mode") {
