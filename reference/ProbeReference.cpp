@@ -1,5 +1,7 @@
 #include "reference/ProbeReference.h"
 
+#include "reference/ReferenceChecks.h"
+
 #include "reference/GroundTruth.h"
 #include "reference/SingleScatter.h"
 #include "reference/PixelShading.h"
@@ -291,12 +293,13 @@ ReferenceImage render_probe_reference(const scene::Scene& s, const ReferenceOpti
   tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
   ReferenceImage out;
   ReferenceStats& stats = out.stats;
-  const RayScene rays(s, o.threads);
+  RayScene rays(s, o.threads);
   auto t0 = Clock::now();
   std::unique_ptr<ProbeEstimator> estimator;
   std::unique_ptr<ShadowMaps> maps;
   arena.execute([&] {
     if (o.shadows == Shadows::ShadowMap) maps = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size);
+    if (detail::gpu_sky_occlusion(s, o)) rays.set_sky_transfers(sky_occlusion(s, rays, cancel));
     ReferenceOptions with_progress = o;  // model mc's walk: 0 to 1 over the materials
     with_progress.model_options.mc_progress = [&](double f) {
       report("profiles", f);

@@ -4,6 +4,7 @@
 // rasterizes (no culling: back faces are hit, as the G-buffer draws them).
 #pragma once
 
+#include "reference/SkyOcclusion.h"
 #include "scene/Scene.h"
 
 #include <glm/mat3x3.hpp>
@@ -47,10 +48,19 @@ class RayScene {
   const glm::mat3& normal_matrix(std::uint32_t instance) const;
   double mm_per_unit() const { return mm_per_unit_; }
 
+  // The GPU's sky occlusion (sky_occlusion(): per instance, per vertex), for the GPU-shadow
+  // mode's environment light: surface_at() interpolates it into SurfacePoint::sky_blocked.
+  // Null for an instance without one (none set: the sky is not occluded on those terms).
+  void set_sky_transfers(std::vector<std::vector<SkyTransfer>> transfers) { sky_ = std::move(transfers); }
+  const std::vector<SkyTransfer>* sky_transfers(std::uint32_t instance) const {
+    return instance < sky_.size() && !sky_[instance].empty() ? &sky_[instance] : nullptr;
+  }
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   double mm_per_unit_ = 1000.0;
+  std::vector<std::vector<SkyTransfer>> sky_;
 };
 
 }  // namespace sss::reference

@@ -321,6 +321,7 @@ glm::dvec3 OctreeRender::transmitted(const LocalTransmittance& t, const SurfaceP
     SurfacePoint behind = p;
     behind.position_mm = p.position_mm - n * float(inward_mm);
     behind.geometric_normal = -n;
+    behind.sky_blocked = {};  // the GPU does not occlude the sky behind
     const glm::dvec3 e =
         environment_irradiance(*s.environment, rays, behind, -n, shadow_maps != nullptr, entry_eta);
     for (int c = 0; c < 3; ++c) sum[c] += e[c] * t.fraction(c, inward_mm);
@@ -468,6 +469,7 @@ ReferenceImage render_reference(const scene::Scene& s, const ReferenceOptions& o
   std::unique_ptr<ShadowMaps> built;
   if (o.shadows == Shadows::ShadowMap || o.thickness == Thickness::ShadowMap)
     arena.execute([&] { built = std::make_unique<ShadowMaps>(s, rays, o.shadow_map_size); });
+  if (detail::gpu_sky_occlusion(s, o)) arena.execute([&] { rays.set_sky_transfers(sky_occlusion(s, rays, cancel)); });
   // The environment's transmission through the GPU's thickness: its per-vertex bake.
   std::vector<std::vector<float>> vertex_thickness;
   if (s.environment && o.transmission == Transmission::Local && o.thickness == Thickness::ShadowMap) {

@@ -133,6 +133,10 @@ struct ReferenceOptions {
   std::uint32_t shadow_map_size = 1024;  // Shadows::ShadowMap: the GPU's (RenderOptions)
   Transmission transmission = Transmission::Profile;
   Thickness thickness = Thickness::RayCast;  // Transmission::Local only
+  // Shadows::ShadowMap with an environment: the GPU's sky occlusion (RenderOptions::
+  // sky_occlusion), its per-vertex bake (SkyOcclusion.h) taken from the harmonics'
+  // irradiance as the GPU does. Ray-traced shadows sample the sky's occlusion itself.
+  bool sky_occlusion = true;
 };
 
 // The profile the reference sums for an SSS material: its model's exact R(r), or with

@@ -6,6 +6,7 @@
 #include "image/Image.h"
 #include "scene/SplitSum.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
@@ -96,6 +97,9 @@ SurfacePoint surface_at(const scene::Scene& s, const RayScene& rays, std::uint32
     const glm::vec4 t = mesh.tangents[i0] * w0 + mesh.tangents[i1] * b.x + mesh.tangents[i2] * b.y;
     p.tangent = glm::vec4(glm::mat3(inst.world) * glm::vec3(t), mesh.tangents[i0].w);
   }
+  if (const std::vector<SkyTransfer>* sky = rays.sky_transfers(instance))
+    for (int k = 0; k < 9; ++k)
+      p.sky_blocked[k] = (*sky)[i0][k] * w0 + (*sky)[i1][k] * b.x + (*sky)[i2][k] * b.y;
   return p;
 }
 
@@ -212,7 +216,8 @@ class PointSky {
 glm::dvec3 environment_irradiance(const scene::Environment& env, const RayScene& rays, const SurfacePoint& p,
                                   const glm::vec3& n, bool as_gpu, const glm::dvec3* entry_eta) {
   if (as_gpu) {
-    glm::dvec3 e(env.irradiance(n));
+    // As shade() takes it: the harmonics' irradiance less what the bake says is blocked.
+    glm::dvec3 e(glm::max(env.irradiance(n) - blocked_irradiance(env.irradiance_sh, p.sky_blocked), glm::vec3(0.0f)));
     // The GPU's entry factor for a sky: c, the cosine-weighted mean of F_t over the
     // hemisphere (shading.glsl), exact for a uniform sky.
     if (entry_eta)

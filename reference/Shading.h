@@ -32,6 +32,10 @@ struct SurfacePoint {
   glm::vec4 tangent{0.0f};  // xyz world, w sign; zero when the mesh has none
   bool has_uv = false;
   std::uint32_t material = 0;
+  // The GPU's sky occlusion at the point, its vertices' transfers interpolated as the
+  // G-buffer does (RayScene::sky_transfers; zero without them): what the GPU-shadow mode
+  // takes from the harmonics' irradiance.
+  SkyTransfer sky_blocked{};
 };
 
 SurfacePoint surface_at(const scene::Scene& scene, const RayScene& rays, std::uint32_t instance,
@@ -45,8 +49,8 @@ glm::vec3 base_colour(const scene::Scene& scene, const SurfacePoint& p);
 glm::vec3 shading_normal(const scene::Scene& scene, const SurfacePoint& p, const glm::vec3& to_eye);
 
 // The environment's irradiance at p with normal n (unit). as_gpu: as the GPU lights it
-// (scene::Environment::irradiance: spherical harmonics, no occlusion; the GPU-shadow mode
-// of direct_light). Otherwise the true one: kEnvironmentStrata² stratified cosine-weighted
+// (scene::Environment::irradiance: spherical harmonics less blocked_irradiance of
+// p.sky_blocked, clamped at 0, as shading.glsl; the GPU-shadow mode of direct_light). Otherwise the true one: kEnvironmentStrata² stratified cosine-weighted
 // directions with shadow rays and the full-resolution radiance, deterministic per point.
 // entry_eta (per channel; directional Fresnel on a subsurface material): only the part
 // that enters, each direction times F_t(η, n.w), or as the GPU takes it, times

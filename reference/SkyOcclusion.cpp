@@ -52,12 +52,16 @@ SkyTransfer vertex_transfer(const RayScene& rays, const glm::vec3& p, const glm:
 
 std::vector<std::vector<SkyTransfer>> sky_occlusion(const scene::Scene& scene,
                                                    const std::atomic<bool>* cancel) {
-  std::vector<std::vector<SkyTransfer>> out(scene.instances.size());
   bool any = false;
   for (const scene::Instance& instance : scene.instances)
     any = any || (instance.mesh < scene.meshes.size() && scene.meshes[instance.mesh].triangle_count() > 0);
-  if (!any) return out;
-  const RayScene rays(scene);
+  if (!any) return std::vector<std::vector<SkyTransfer>>(scene.instances.size());
+  return sky_occlusion(scene, RayScene(scene), cancel);
+}
+
+std::vector<std::vector<SkyTransfer>> sky_occlusion(const scene::Scene& scene, const RayScene& rays,
+                                                   const std::atomic<bool>* cancel) {
+  std::vector<std::vector<SkyTransfer>> out(scene.instances.size());
   scene::Bounds box;
   for (std::uint32_t i = 0; i < scene.instances.size(); ++i)
     for (const glm::vec3& p : rays.world_positions(i)) box.extend(p);

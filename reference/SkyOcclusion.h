@@ -30,6 +30,8 @@
 
 namespace sss::reference {
 
+class RayScene;
+
 inline constexpr int kSkyOcclusionStrata = 12;  // 144 directions per vertex
 
 using SkyTransfer = std::array<float, 9>;
@@ -43,6 +45,9 @@ using SkyTransfer = std::array<float, 9>;
 // vertex's directions are seeded by its instance and index. `cancel` (optional) stops the
 // bake early; what it returns then is incomplete and must not be used.
 std::vector<std::vector<SkyTransfer>> sky_occlusion(const scene::Scene& scene,
+                                                   const std::atomic<bool>* cancel = nullptr);
+// The same with the scene's rays already built (RayScene(scene)).
+std::vector<std::vector<SkyTransfer>> sky_occlusion(const scene::Scene& scene, const RayScene& rays,
                                                    const std::atomic<bool>* cancel = nullptr);
 
 // E_blocked = sum_k sh[k] T_k for a sky whose irradiance coefficients are `sh`

@@ -115,6 +115,7 @@ struct Args {
   std::string scene_name = std::string(scene::kDefaultScene);
   std::string out, png, method = "diffusion", estimator = "auto", variance, tile_text, summary;
   std::string kernel = "exact", shadows = "ray-traced", transmission = "profile", thickness = "ray-cast";
+  std::string sky_occlusion = "on";  // --sky-occlusion (the GPU-shadow mode)
   int width = 640, height = 360, threads = 0, shadow_map_size = 1024;
   double spacing = 0.5, error_bound = 0.3, target_error = 0.0;
   std::size_t max_points = 8'000'000;
@@ -151,6 +152,10 @@ void add_diffusion_options(CLI::App& app, Args& a) {
                  "diffusion: ray-traced (a shadow ray per light, default) or shadow-map (the real-time frame's "
                  "shadow maps and 3x3 PCF rebuilt on the CPU, no shadow from point lights); the error budget's "
                  "'lighting' link");
+  app.add_option("--sky-occlusion", a.sky_occlusion,
+                 "diffusion --shadows shadow-map with --environment: on (default) takes away the sky the scene "
+                 "blocks as sss-viewer --sky-occlusion does (its per-vertex bake, interpolated), off leaves every "
+                 "point the whole sky; ray-traced shadows sample the sky's occlusion itself");
   app.add_option("--transmission", a.transmission,
                  "diffusion, octree: how light crosses thin parts: profile (default: far-side points summed with "
                  "the profile, the model's own answer), local (as sss-viewer: the far side dark, each point facing "
@@ -283,6 +288,11 @@ std::optional<int> check_modes(const CLI::App& app, Args& a) {
     if (app.count(name) > 0 && a.walk)
       return usage(std::string(name) + ": applies to --method diffusion only (the ground truth has neither a "
                                        "profile nor shadow maps)");
+  if (a.sky_occlusion != "on" && a.sky_occlusion != "off")
+    return usage("--sky-occlusion: expected on or off, got '" + a.sky_occlusion + "'");
+  if (app.count("--sky-occlusion") > 0 && (a.walk || a.shadows != "shadow-map"))
+    return usage("--sky-occlusion: applies to --method diffusion --shadows shadow-map only (ray-traced shadows "
+                 "sample the sky's occlusion)");
   if (app.count("--shadow-map-size") > 0 && a.shadows != "shadow-map" && a.thickness != "shadow-map")
     return usage("--shadow-map-size: applies to --shadows shadow-map or --thickness-from shadow-map only");
   for (const char* name : {"--spacing", "--max-points", "--error-bound", "--brute-force"})
@@ -382,6 +392,7 @@ reference::ReferenceOptions diffusion_options(const Args& a) {
   diffusion.kernel = a.kernel == "fit" ? reference::KernelSource::Fit : reference::KernelSource::Exact;
   diffusion.shadows = a.shadows == "shadow-map" ? reference::Shadows::ShadowMap : reference::Shadows::RayTraced;
   diffusion.shadow_map_size = std::uint32_t(a.shadow_map_size);
+  diffusion.sky_occlusion = a.sky_occlusion == "on";
   diffusion.thickness = a.thickness == "shadow-map" ? reference::Thickness::ShadowMap : reference::Thickness::RayCast;
   diffusion.transmission = a.transmission == "local" ? reference::Transmission::Local
                            : a.transmission == "off" ? reference::Transmission::Off

@@ -143,6 +143,9 @@ TEST(SssReferenceApp, BadInputExitsTwoNamingTheProblem) {
       {"builtin:sphere --out " + out.string() + " --spacing 0", "spacing"},
       {"builtin:sphere --out " + out.string() + " --spacing 0.5 --max-points 10", "exceed"},
       {"builtin:sphere --out " + out.string() + " --error-bound -1", "--error-bound"},
+      // The GPU's sky occlusion belongs to the GPU-shadow mode; ray-traced shadows sample it.
+      {"builtin:sphere --out " + out.string() + " --sky-occlusion off", "--sky-occlusion"},
+      {"builtin:sphere --out " + out.string() + " --shadows shadow-map --sky-occlusion maybe", "--sky-occlusion"},
   };
   for (const Case& c : cases) {
     const CliRun r = reference(c.args);

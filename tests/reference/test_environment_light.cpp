@@ -5,11 +5,13 @@
 // a linear sky (a Z-test over independent points, each estimate's spread measured).
 #include "profiles/Fresnel.h"
 #include "reference/GroundTruth.h"
+#include "reference/ReferenceRenderer.h"
 #include "reference/RayScene.h"
 #include "reference/Shading.h"
 #include "scene/BuiltinScenes.h"
 #include "scene/Environment.h"
 #include "scene/SplitSum.h"
+#include "tests/common/BoxedSphere.h"
 #include "tests/common/GgxQuadrature.h"
 
 #include <gtest/gtest.h>
@@ -277,6 +279,49 @@ TEST(ReferenceEnvironment, TheRandomWalkInAFurnaceReturnsTheSky) {
       EXPECT_NEAR(mean, expected, 4.0 * se + loss * expected + 1e-6) << "eta " << eta << " channel " << c;
     }
   }
+}
+
+// The GPU-shadow mode (the error budget's lighting link) lights as the GPU does, sky
+// occlusion included: inside a closed box (tests/common/BoxedSphere.h) the bake blocks the
+// whole sky, so the sky adds nothing to the sphere's scattered light, M/pi (diffuse_only),
+// where with --sky-occlusion off every point gets the open sky and the sphere about T L.
+// Tolerance: E_open - E_blocked is a difference of two float sums of ~pi L, a few ulps
+// (1e-6 relative); the octree's sum of those residuals keeps them that small: 1e-5 T L.
+TEST(ReferenceEnvironment, OnTheGpusTermsTheSkyTheBakeBlocksIsTakenAway) {
+  const glm::vec3 sky(0.5f, 0.4f, 0.3f);
+  const scene::Scene lit = sss::testing::boxed_sphere(sky);
+  scene::Scene dark = lit;
+  dark.environment.reset();
+  ReferenceOptions o;
+  o.width = 64;
+  o.height = 36;
+  o.diffuse_only = true;
+  o.shadows = Shadows::ShadowMap;
+  o.shadow_map_size = 256;
+  const ReferenceImage without = render_reference(dark, o);
+  const ReferenceImage with = render_reference(lit, o);
+  o.sky_occlusion = false;
+  const ReferenceImage open = render_reference(lit, o);
+  const auto profile = reference_profile(lit.materials[0].sss, o.kernel, o.profile_options());
+  int sphere = 0;
+  double open_mean = 0.0;
+  for (int y = 0; y < 36; ++y)
+    for (int x = 0; x < 64; ++x) {
+      // The sphere: lit by the open sky (the box's walls are opaque, 0 in M/pi; without the
+      // sky the box keeps every light from the sphere).
+      if (open.hdr.pixel(x, y)[0] <= 0.0f) continue;
+      ++sphere;
+      for (int c = 0; c < 3; ++c) {
+        const double tl = profile->total_reflectance()[c] * sky[c];
+        EXPECT_NEAR(with.hdr.pixel(x, y)[c] - without.hdr.pixel(x, y)[c], 0.0, 1e-5 * tl)
+            << "pixel " << x << "," << y << " channel " << c;
+        open_mean += (open.hdr.pixel(x, y)[c] - without.hdr.pixel(x, y)[c]) / tl;
+      }
+    }
+  ASSERT_GT(sphere, 100);
+  open_mean /= 3.0 * sphere;
+  std::printf("%d sphere pixels; without the occlusion the sky adds %.3f T L\n", sphere, open_mean);
+  EXPECT_GT(open_mean, 0.5) << "the test's power: the open sky lights the sphere";
 }
 
 }  // namespace

@@ -14,7 +14,7 @@
 #include "RenderTest.h"
 
 #include "scene/BuiltinScenes.h"
-#include "scene/Shapes.h"
+#include "common/BoxedSphere.h"
 #include "scene/SplitSum.h"
 #include "profiles/Fresnel.h"
 #include "profiles/Profile.h"
@@ -399,39 +399,10 @@ TEST_F(EnvironmentLightTest, TheEnvironmentBehindTheGeometryIsTheSkyAlongEachPix
               background, worst);
 }
 
-namespace sky {
-
-// The sphere scene inside a closed box whose faces look inward (normals and winding
-// turned), with the camera inside too: every direction from every vertex of the sphere
-// and of the box meets the box, so the bake (reference/SkyOcclusion.h) blocks the whole
-// sky, each sample adding the same Y_00: E_blocked = E_open exactly, in expectation and
-// in every sample.
-scene::Scene boxed_sphere(const glm::vec3& sky) {
-  scene::Scene s = scene::sphere_scene();
-  const scene::Bounds b = s.bounds();
-  const glm::vec3 c = b.center(), half(10.0f * b.radius());
-  scene::Mesh box = scene::make_box(c - half, c + half, 1);
-  for (glm::vec3& n : box.normals) n = -n;
-  for (std::size_t t = 0; t + 2 < box.indices.size(); t += 3) std::swap(box.indices[t + 1], box.indices[t + 2]);
-  box.tangents.clear();
-  box.name = "box";
-  scene::Material wall = s.materials[0];
-  wall.name = "wall";
-  wall.sss.enabled = false;
-  s.materials.push_back(wall);
-  s.meshes.push_back(box);
-  s.instances.push_back({std::uint32_t(s.meshes.size() - 1), glm::mat4(1.0f), "box"});
-  s.environment = scene::uniform_environment(sky);
-  s.cameras[0].zfar = 0.0f;  // infinite: the box's far walls are beyond the sphere's frame
-  return s;
-}
-
-}  // namespace sky
-
-// Sky occlusion on the GPU (RenderOptions::sky_occlusion): inside a closed box the sky is
-// blocked everywhere, so with it on the sky adds nothing to the diffuse frame, in every
-// mode, where without it the sphere gets albedo x T x L as in the open (the first test).
-// Transmission is off: the sky's transmitted part is not occluded (README).
+// Sky occlusion on the GPU (RenderOptions::sky_occlusion): inside a closed box
+// (common/BoxedSphere.h) the sky is blocked everywhere, so with it on the sky adds nothing
+// to the diffuse frame, in every mode, where without it the sphere gets albedo x T x L as
+// in the open (the first test). Transmission is off: the sky's transmitted part is not occluded (README).
 // Tolerance: E_blocked reaches the lighting through an rgba16f target, so the residual
 // E_open - E_blocked is at most 2^-11 of E_open (half a unit in the last place of a half
 // float, relative, is 2^-11 = 4.9e-4; below 0 it is clamped), and the gaussians and
@@ -443,7 +414,7 @@ TEST_F(EnvironmentLightTest, InsideAClosedBoxTheSkyAddsNothing) {
                         {SssTechnique::Separable, "separable", 0.0},
                         {SssTechnique::Gaussians, "gaussians", 0.0},
                         {SssTechnique::Texture, "texture", 0.0}};
-  const scene::Scene lit = sky::boxed_sphere(sky_radiance);
+  const scene::Scene lit = sss::testing::boxed_sphere(sky_radiance);
   scene::Scene dark = lit;
   dark.environment.reset();
   const glm::vec4 albedo = lit.materials[0].base_color;

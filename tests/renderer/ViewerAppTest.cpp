@@ -133,6 +133,7 @@ TEST(ViewerApp, DocumentedErrors) {
       {"builtin:sphere --headless --out " + out + " --width 16384 --height 16384", 2,
        "--width x --height"},
       {"builtin:sphere --headless --out " + out + " --albedo half", 2, "--albedo"},
+      {"builtin:sphere --headless --out " + out + " --sky-occlusion maybe", 2, "--sky-occlusion"},
       {"builtin:sphere --headless --out " + out + " --no-specular", 2, "--no-specular"},
       {"builtin:sphere --no-specular", 2, "--no-specular needs --headless"},
       {"builtin:nothing --headless --out " + out, 2, "builtin:nothing"},
