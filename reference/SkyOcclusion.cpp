@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace sss::reference {
@@ -22,13 +23,25 @@ constexpr std::array<double, 9> kInverseA = {1.0 / kPi,         3.0 / (2.0 * kPi
                                              3.0 / (2.0 * kPi), 4.0 / kPi,         4.0 / kPi,
                                              4.0 / kPi,         4.0 / kPi,         4.0 / kPi};
 
-SkyTransfer vertex_transfer(const RayScene& rays, const glm::vec3& p, const glm::vec3& n,
-                            float offset, std::uint64_t seed) {
+// The seed of a vertex's directions: its position's and normal's bits, so that copies of
+// one vertex (UV seams, split normals, an atlas's re-indexing) get the same estimate.
+std::uint64_t seed_of(const glm::vec3& p, const glm::vec3& n) {
+  std::uint64_t h = 0x5C0CC1u;
+  for (const float v : {p.x, p.y, p.z, n.x, n.y, n.z}) {
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &v, sizeof(bits));
+    h = profiles::SplitMix64(h ^ bits).next();
+  }
+  return h;
+}
+
+// `origin`: the vertex lifted off its surface (see sky_occlusion).
+SkyTransfer vertex_transfer(const RayScene& rays, const glm::vec3& origin, const glm::vec3& n,
+                            std::uint64_t seed) {
   SkyTransfer out{};
   const glm::vec3 a = std::fabs(n.x) > 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
   const glm::vec3 b1 = glm::normalize(glm::cross(a, n));
   const glm::vec3 b2 = glm::cross(n, b1);
-  const glm::vec3 origin = p + n * offset;
   profiles::Xoshiro256ss rng(seed);
   const int k = kSkyOcclusionStrata;
   std::array<double, 9> sum{};
@@ -75,6 +88,19 @@ std::vector<std::vector<SkyTransfer>> sky_occlusion(const scene::Scene& scene, c
     std::vector<SkyTransfer>& transfers = out[i];
     transfers.assign(mesh.positions.size(), SkyTransfer{});
     if (mesh.normals.size() != mesh.positions.size()) continue;
+    // The mean centroid of each vertex's triangles: at a concave crease with split normals
+    // (a box's inside corner, a floor against a wall) the lifted vertex lies in the next
+    // face's plane, where a ray into that face hits at t = 0 or not at all by rounding;
+    // a thousandth of the way toward its own triangles it lies off that plane.
+    std::vector<glm::vec3> centroid_sum(world.size(), glm::vec3(0.0f));
+    std::vector<int> around(world.size(), 0);
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const glm::vec3 c = (world[mesh.indices[t]] + world[mesh.indices[t + 1]] + world[mesh.indices[t + 2]]) / 3.0f;
+      for (int k = 0; k < 3; ++k) {
+        centroid_sum[mesh.indices[t + k]] += c;
+        ++around[mesh.indices[t + k]];
+      }
+    }
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, transfers.size(), 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         if (cancel && cancel->load()) return;
@@ -82,9 +108,10 @@ std::vector<std::vector<SkyTransfer>> sky_occlusion(const scene::Scene& scene, c
                           const glm::vec3 n = normal_matrix * mesh.normals[v];
                           const float len = glm::length(n);
                           if (!(len > 0.0f) || !std::isfinite(len)) continue;
-                          const std::uint64_t seed =
-                              profiles::SplitMix64((std::uint64_t(i) << 32) ^ v).next();
-                          transfers[v] = vertex_transfer(rays, world[v], n / len, offset, seed);
+                          glm::vec3 origin = world[v];
+                          if (around[v] > 0) origin += 1e-3f * (centroid_sum[v] / float(around[v]) - origin);
+                          origin += n / len * offset;
+                          transfers[v] = vertex_transfer(rays, origin, n / len, seed_of(world[v], n / len));
                         }
                       });
   }

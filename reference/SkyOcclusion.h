@@ -38,11 +38,13 @@ using SkyTransfer = std::array<float, 9>;
 
 // One SkyTransfer per vertex of each instance's mesh (scene.instances order; empty for an
 // instance whose mesh has no triangles). A vertex whose normal is not usable gets zeros.
-// Each ray starts 1e-4 x the scene's bounding diagonal above the vertex along its normal
-// and counts a hit at any distance; a convex object alone gets exactly zero (no ray that
-// leaves a vertex into its normal's hemisphere re-enters a convex polyhedron whose vertex
-// normals are positive sums of the face normals around them). Deterministic: each
-// vertex's directions are seeded by its instance and index. `cancel` (optional) stops the
+// Each ray starts a thousandth of the way from the vertex toward the mean centroid of its
+// triangles (off the plane of a neighbouring face at a concave crease), then 1e-4 x the
+// scene's bounding diagonal along the normal, and counts a hit at any distance; a convex
+// object alone gets exactly zero (no ray that leaves a vertex into its normal's
+// hemisphere re-enters a convex polyhedron whose vertex normals are positive sums of the
+// face normals around them). Deterministic: each vertex's directions are seeded by its
+// world position and normal, so copies of one vertex agree. `cancel` (optional) stops the
 // bake early; what it returns then is incomplete and must not be used.
 std::vector<std::vector<SkyTransfer>> sky_occlusion(const scene::Scene& scene,
                                                    const std::atomic<bool>* cancel = nullptr);

@@ -271,9 +271,13 @@ double GpuScene::ensure_sky_occlusion(const vk::Context& context) {
   const std::vector<std::vector<reference::SkyTransfer>> transfers = reference::sky_occlusion(geometry_);
   std::vector<SkyBuffers> sky(instances_.size());
   for (std::size_t i = 0; i < instances_.size(); ++i) {
-    const std::vector<reference::SkyTransfer>& t = transfers[i];
     const MeshBuffers& mesh = meshes_[instances_[i].mesh];
-    if (t.empty() || !mesh.vertices) continue;
+    if (!mesh.vertices) continue;
+    // A mesh without a whole triangle still draws its indices: zeros, so that binding 1
+    // never keeps the previous instance's (shorter) buffer.
+    const std::vector<reference::SkyTransfer> t =
+        transfers[i].empty() ? std::vector<reference::SkyTransfer>(geometry_.meshes[instances_[i].mesh].positions.size())
+                             : transfers[i];
     const std::string& name = instances_[i].node;
     sky[i].vertices = device_buffer(context, std::span<const reference::SkyTransfer>(t),
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, name + " sky transfer");

@@ -99,8 +99,10 @@ class GpuScene {
   void ensure_sss_uvs(const vk::Context& context, const std::vector<scene::Material>& materials);
   // Bakes the sky occlusion of every instance (reference::sky_occlusion, on the calling
   // thread with TBB) and uploads it, unless it is baked already; ensure_sss_uvs drops it
-  // when it rebuilds a mesh. From then on every draw binds each instance's transfers at
-  // binding 1. Returns the bake's wall time in seconds (0 when nothing was baked).
+  // when it rebuilds a mesh (its vertices may be split). From then on every draw binds
+  // each instance's transfers at binding 1. Returns the bake's wall time in seconds (0
+  // when nothing was baked). Keeps geometry_ (a copy of the meshes' positions, normals and
+  // indices) for it from construction, as an environment can be switched on later.
   double ensure_sky_occlusion(const vk::Context& context);
   bool has_sky_occlusion() const { return sky_baked_; }
 

@@ -143,7 +143,7 @@ void Renderer::write_frame_uniforms() {
   uniforms.options.w = options_.transmission ? 1.0f : 0.0f;
   uniforms.flags.x = options_.fresnel ? 1.0f : 0.0f;
   uniforms.flags.y = options_.single_scattering ? 1.0f : 0.0f;
-  uniforms.flags.z = !has_environment_ ? 0.0f : targets_.use.sky_blocked ? 2.0f : 1.0f;
+  uniforms.flags.z = !has_environment_ ? 0.0f : sky_on_ ? 2.0f : 1.0f;
   uniforms.flags.w = has_environment_ && options_.background_environment ? 1.0f : 0.0f;
   if (composite_) composite_->set_full_frame(uniforms.flags.w > 0.5f);
   rect_ = geometry_rect(camera, bounds_, options_.width, options_.height);
@@ -234,13 +234,25 @@ void Renderer::update_display_passes() {
 }
 
 void Renderer::update_sky() {
+  // On only once every part is in place: a bake or a pipeline build that throws leaves the
+  // frame unoccluded (flags.z 1), never reading a sky target that nothing drew, nor
+  // drawing a sky pipeline without its vertex binding.
+  sky_on_ = false;
   const bool sky = targets_.use.sky_blocked;
-  if (sky) {
-    const double seconds = scene_.ensure_sky_occlusion(context_);
-    if (seconds > 0.0) sky_bake_seconds_ = seconds;
+  try {
+    if (sky) {
+      const double seconds = scene_.ensure_sky_occlusion(context_);
+      if (seconds > 0.0) sky_bake_seconds_ = seconds;
+    }
+    gbuffer_->set_sky(sky);
+    if (texture_) texture_->set_sky(sky);
+  } catch (...) {
+    gbuffer_->set_sky(false);
+    if (texture_) texture_->set_sky(false);
+    if (composite_) write_frame_uniforms();  // flags.z 1 (in the constructor: written later)
+    throw;
   }
-  gbuffer_->set_sky(sky);
-  if (texture_) texture_->set_sky(sky);
+  sky_on_ = sky;
 }
 
 std::array<float, 2> Renderer::debug_range() const {

@@ -183,6 +183,7 @@ class Renderer {
   // The scene's environment light as LightBlock::environment holds it (all 0 without one).
   bool has_environment_ = false;
   double sky_bake_seconds_ = 0.0;
+  bool sky_on_ = false;  // the G-buffer and the texture path draw the sky target (update_sky)
   std::array<shader::vec4, 9> environment_sh_{};
   scene::Bounds bounds_;  // of the scene's instances (shadow fits)
   double mm_per_unit_;

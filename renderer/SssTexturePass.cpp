@@ -295,7 +295,8 @@ void SssTexturePass::update(VkCommandBuffer cmd, Textures& t, const Object& obje
   const VkMemoryBarrier2 rastered = vk::memory_barrier(
       {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT},
       {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT});
+       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT});  // the lighting writes temp, which the sky raster wrote
   vk::pipeline_barrier(cmd, {}, {}, {&rastered, 1});
 
   // 2. Lighting: E + island into temp (reading the sky's blocked part there first).

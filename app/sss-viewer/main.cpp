@@ -88,7 +88,7 @@ void print_stats(const renderer::Renderer& r, int frames, double cpu_total_ms) {
   std::printf("%-16s %10.3f\n", "cpu mean", cpu_total_ms / frames);
   print_target_memory(r);
   if (r.sky_bake_seconds() > 0.0)
-    std::printf("%-16s %10.3f s (once, when the first frame with an environment needs it)\n", "sky occlusion",
+    std::printf("%-16s %10.3f s (the per-vertex bake, once per scene and atlas)\n", "sky occlusion",
                 r.sky_bake_seconds());
 }
 

@@ -7,10 +7,11 @@
 //     sky is pi L F, F the polygon's view factor by Lambert's contour formula (exact for
 //     any polygon: F = (1 / 2 pi) sum over edges of the edge's subtended angle times the
 //     cosine between n and the normal of the plane through the point and the edge).
-// Each bake is a Monte Carlo estimate, so each test bakes M vertices that share one
-// position and expectation but have their own seeds, and Z-tests their mean against the
-// closed form with their own standard error: |Z| < 4.5 fails a correct bake about once
-// in 150,000 per coefficient.
+// Each bake is a Monte Carlo estimate, seeded by the vertex's position and normal, so each
+// test bakes M vertices at positions apart by far less than the closed form changes over
+// (but not equal: each has its own seed) and Z-tests their mean against the closed form
+// with their own standard error: |Z| < 4.5 fails a correct bake about once in 150,000
+// per coefficient.
 #include "reference/SkyOcclusion.h"
 
 #include "reference/RayScene.h"
@@ -23,6 +24,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -34,11 +36,12 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kZ = 4.5;
 constexpr std::uint32_t kVertices = 300;
 
-// A floor "mesh" of kVertices copies of point p (normal +z) with one small triangle below.
-scene::Mesh floor_points(const glm::vec3& p) {
+// A floor "mesh" of kVertices points from p along `step` (normal +z), with one small
+// triangle below.
+scene::Mesh floor_points(const glm::vec3& p, const glm::vec3& step) {
   scene::Mesh m;
   m.name = "floor points";
-  m.positions.assign(kVertices, p);
+  for (std::uint32_t k = 0; k < kVertices; ++k) m.positions.push_back(p + float(k) * step);
   m.normals.assign(kVertices, {0.0f, 0.0f, 1.0f});
   const std::uint32_t base = kVertices;
   m.positions.insert(m.positions.end(), {{-3.0f, -3.0f, -1.0f}, {-2.0f, -3.0f, -1.0f}, {-3.0f, -2.0f, -1.0f}});
@@ -72,14 +75,15 @@ Stats stats_of(const std::vector<SkyTransfer>& t, F value) {
 }
 
 TEST(SkyOcclusion, AWallBlocksTheQuarterOfTheSkyBesideIt) {
-  // The wall: the plane x = 0, 2e4 long and 1e4 tall, facing -x; the floor point 1e-3
-  // from it. What it leaves open on the blocked side is under 1e-6 sr.
+  // The wall: the plane x = 0, 2e4 long and 1e4 tall, facing -x; the floor points 1e-3
+  // from it, 0.01 apart along it (0..3). What it leaves open on the blocked side is under
+  // 1e-6 sr.
   scene::Mesh wall;
   wall.name = "wall";
   wall.positions = {{0, -1e4f, 0}, {0, 1e4f, 0}, {0, 1e4f, 1e4f}, {0, -1e4f, 1e4f}};
   wall.normals.assign(4, {-1.0f, 0.0f, 0.0f});
   wall.indices = {0, 1, 2, 0, 2, 3};
-  const scene::Scene s = scene_of({floor_points({-1e-3f, 0.0f, 0.0f}), wall});
+  const scene::Scene s = scene_of({floor_points({-1e-3f, 0.0f, 0.0f}, {0.0f, 0.01f, 0.0f}), wall});
   const auto transfer = sky_occlusion(s);
   ASSERT_EQ(transfer.size(), 2u);
   ASSERT_EQ(transfer[0].size(), kVertices + 3);
@@ -100,7 +104,7 @@ TEST(SkyOcclusion, AWallBlocksTheQuarterOfTheSkyBesideIt) {
     const Stats st = stats_of(transfer[0], [k](const SkyTransfer& t) { return double(t[k]); });
     const double want = exact[k] / a[k];
     std::printf("T_%d: %.5f +- %.5f, exact %.5f\n", k, st.mean, st.se, want);
-     EXPECT_LT(std::fabs(st.mean - want), kZ * st.se + 1e-6) << "coefficient " << k;  // + the rule's error
+    EXPECT_LT(std::fabs(st.mean - want), kZ * st.se + 1e-6) << "coefficient " << k;  // + the rule's error
   }
 }
 
@@ -133,7 +137,8 @@ TEST(SkyOcclusion, APolygonAboveAPointBlocksItsViewFactorOfAUniformSky) {
     roof.normals.push_back({0.0f, 0.0f, -1.0f});
     roof.indices.insert(roof.indices.end(), {0u, std::uint32_t(1 + (i + 1) % sides), std::uint32_t(1 + i)});
   }
-  const scene::Scene s = scene_of({floor_points({0.0f, 0.0f, 0.0f}), roof});
+  // The points 1e-7 apart along x (3e-5 in all): F changes by less than 1e-4 of its SE.
+  const scene::Scene s = scene_of({floor_points({0.0f, 0.0f, 0.0f}, {1e-7f, 0.0f, 0.0f}), roof});
   const auto transfer = sky_occlusion(s);
   const scene::Environment sky = scene::uniform_environment({0.5f, 1.0f, 2.0f});
   // The point's ray origin is raised 1e-4 x the scene's diagonal (from the triangle
@@ -163,19 +168,46 @@ TEST(SkyOcclusion, AConvexObjectBlocksNothing) {
   }
 }
 
-// A cancelled bake stops; an empty scene bakes nothing.
+// The inside of a closed box, turned 30 degrees about a skew axis, scaled, in a scene of
+// other units: every direction from every vertex meets the box, so each vertex blocks the
+// whole sky, T_0 = Y_00 = 1 / (2 sqrt(pi)) exactly (each sample adds Y_00). The box's
+// vertices sit on creases between faces with split normals, where a ray into the next
+// face starts in its plane: the bake starts it off that plane (toward the vertex's own
+// triangles), or rounding loses some of those rays.
+TEST(SkyOcclusion, EveryVertexInsideAClosedBoxSeesNoSky) {
+  scene::Mesh box = scene::make_box({-1.0f, -2.0f, -0.5f}, {3.0f, 1.0f, 2.5f});
+  for (glm::vec3& n : box.normals) n = -n;
+  for (std::size_t t = 0; t + 2 < box.indices.size(); t += 3) std::swap(box.indices[t + 1], box.indices[t + 2]);
+  scene::Scene s = scene_of({box});
+  s.mm_per_unit = 25.4;
+  s.instances[0].world = glm::rotate(glm::scale(glm::mat4(1.0f), glm::vec3(1.7f)), 0.5236f,
+                                     glm::normalize(glm::vec3(1.0f, 2.0f, 3.0f)));
+  const auto transfer = sky_occlusion(s);
+  const double y00 = 0.5 / std::sqrt(kPi);
+  for (std::size_t v = 0; v < box.positions.size(); ++v)
+    EXPECT_NEAR(transfer[0][v][0], y00, 1e-6) << "vertex " << v;
+}
+
+// A cancelled bake stops before it casts a ray (the points beside a wall, which a bake
+// gives T_0 = 0.14, keep 0); an empty scene bakes nothing.
 TEST(SkyOcclusion, EmptyAndCancelled) {
   EXPECT_TRUE(sky_occlusion(scene::Scene{}).empty());
+  scene::Mesh wall = scene::make_box({0.0f, -10.0f, 0.0f}, {1.0f, 10.0f, 10.0f});
+  const scene::Scene s = scene_of({floor_points({-1e-3f, 0.0f, 0.0f}, {0.0f, 0.01f, 0.0f}), wall});
+  EXPECT_GT(sky_occlusion(s)[0][0][0], 0.1f);
   std::atomic<bool> cancel{true};
-  const auto transfer = sky_occlusion(scene_of({scene::make_uv_sphere(1.0f, 8, 4)}), &cancel);
-  EXPECT_EQ(transfer.size(), 1u);
+  const auto transfer = sky_occlusion(s, &cancel);
+  ASSERT_EQ(transfer.size(), 2u);
+  for (std::uint32_t v = 0; v < kVertices; ++v) EXPECT_EQ(transfer[0][v][0], 0.0f);
 }
 
 // The bake against the references' own sky sampler (reference::environment_irradiance,
 // shadow rays from the point, independent code and seeds) at the bunny's vertices, under
 // a uniform sky: the irradiance the GPU keeps, E_open - E_blocked, against the sampled E.
-// Both are unbiased for the same integral, so their per-vertex differences have mean 0:
-// Z-tested over every vertex.
+// Both estimate the visible sky's irradiance; their ray origins differ by less than the
+// sampling resolves (the bake lifts by 1e-4 of the scene's diagonal along n, the sampler
+// by 1e-4 of |p| along the geometric normal), so their per-vertex differences have mean
+// 0: Z-tested over every vertex.
 TEST(SkyOcclusion, AgreesWithTheReferencesSamplerOnTheBunny) {
   auto loaded = scene::load_scene("builtin:bunny");
   ASSERT_TRUE(std::holds_alternative<scene::Scene>(loaded));
