@@ -289,6 +289,24 @@ std::optional<int> set_sss_options(const ViewerArgs& a, renderer::RenderOptions&
 
 // The frame: its size and exposure, anti-aliasing, background, debug view and the
 // lighting switches, into `options`; an exit status where bad.
+// The on | off options, each one RenderOptions flag.
+std::optional<int> set_switches(const ViewerArgs& a, renderer::RenderOptions& o) {
+  const struct {
+    const char* flag;
+    const std::string& value;
+    bool& out;
+  } switches[] = {{"--transmission", a.transmission, o.transmission},
+                  {"--sky-occlusion", a.sky_occlusion, o.sky_occlusion},
+                  {"--fresnel", a.fresnel, o.fresnel},
+                  {"--single-scattering", a.single_scattering, o.single_scattering}};
+  for (const auto& s : switches) {
+    if (s.value != "on" && s.value != "off")
+      return usage(std::string(s.flag) + ": expected on or off, got '" + s.value + "'");
+    s.out = s.value == "on";
+  }
+  return std::nullopt;
+}
+
 std::optional<int> set_frame_options(const ViewerArgs& a, renderer::RenderOptions& options) {
   if (!(a.exposure >= 1e-6 && a.exposure <= 1e6))  // also NaN (CLI::Range would let it through)
     return usage("--exposure: must lie in [1e-06, 1e+06], got " + std::to_string(a.exposure));
@@ -336,19 +354,7 @@ std::optional<int> set_frame_options(const ViewerArgs& a, renderer::RenderOption
         !e.empty())
       return usage("--debug-range: " + e);
   }
-  if (a.transmission != "on" && a.transmission != "off")
-    return usage("--transmission: expected on or off, got '" + a.transmission + "'");
-  options.transmission = a.transmission == "on";
-  if (a.sky_occlusion != "on" && a.sky_occlusion != "off")
-    return usage("--sky-occlusion: expected on or off, got '" + a.sky_occlusion + "'");
-  options.sky_occlusion = a.sky_occlusion == "on";
-  if (a.fresnel != "on" && a.fresnel != "off")
-    return usage("--fresnel: expected on or off, got '" + a.fresnel + "'");
-  options.fresnel = a.fresnel == "on";
-  if (a.single_scattering != "on" && a.single_scattering != "off")
-    return usage("--single-scattering: expected on or off, got '" + a.single_scattering + "'");
-  options.single_scattering = a.single_scattering == "on";
-  return std::nullopt;
+  return set_switches(a, options);
 }
 
 // Renders --frames headless and writes --out (and --atlas-out), printing the debug
