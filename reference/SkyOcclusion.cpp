@@ -2,6 +2,7 @@
 
 #include "profiles/Random.h"
 #include "reference/RayScene.h"
+#include "reference/Thickness.h"
 #include "scene/Environment.h"
 
 #include <glm/geometric.hpp>
@@ -88,19 +89,11 @@ std::vector<std::vector<SkyTransfer>> sky_occlusion(const scene::Scene& scene, c
     std::vector<SkyTransfer>& transfers = out[i];
     transfers.assign(mesh.positions.size(), SkyTransfer{});
     if (mesh.normals.size() != mesh.positions.size()) continue;
-    // The mean centroid of each vertex's triangles: at a concave crease with split normals
-    // (a box's inside corner, a floor against a wall) the lifted vertex lies in the next
-    // face's plane, where a ray into that face hits at t = 0 or not at all by rounding;
-    // a thousandth of the way toward its own triangles it lies off that plane.
-    std::vector<glm::vec3> centroid_sum(world.size(), glm::vec3(0.0f));
-    std::vector<int> around(world.size(), 0);
-    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-      const glm::vec3 c = (world[mesh.indices[t]] + world[mesh.indices[t + 1]] + world[mesh.indices[t + 2]]) / 3.0f;
-      for (int k = 0; k < 3; ++k) {
-        centroid_sum[mesh.indices[t + k]] += c;
-        ++around[mesh.indices[t + k]];
-      }
-    }
+    // A thousandth of the way toward the vertex's own triangles (fan_centroids): at a
+    // concave crease with split normals (a box's inside corner, a floor against a wall)
+    // the lifted vertex would lie in the next face's plane, where a ray into that face
+    // hits at t = 0 or not at all by rounding.
+    const std::vector<glm::vec3> centroid = fan_centroids(world, mesh.indices);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, transfers.size(), 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         if (cancel && cancel->load()) return;
@@ -108,9 +101,8 @@ std::vector<std::vector<SkyTransfer>> sky_occlusion(const scene::Scene& scene, c
                           const glm::vec3 n = normal_matrix * mesh.normals[v];
                           const float len = glm::length(n);
                           if (!(len > 0.0f) || !std::isfinite(len)) continue;
-                          glm::vec3 origin = world[v];
-                          if (around[v] > 0) origin += 1e-3f * (centroid_sum[v] / float(around[v]) - origin);
-                          origin += n / len * offset;
+                          const glm::vec3 origin =
+                              world[v] + 1e-3f * (centroid[v] - world[v]) + n / len * offset;
                           transfers[v] = vertex_transfer(rays, origin, n / len, seed_of(world[v], n / len));
                         }
                       });

@@ -25,4 +25,10 @@ namespace sss::reference {
 // within 1e-3 of an edge x the facets' tilt (tests/reference/test_thickness.cpp).
 std::vector<float> inward_thickness(const scene::Mesh& mesh);
 
+// Per vertex, the mean of the centroids of the triangles around it (the vertex itself when
+// none is): where the per-vertex bakes (inward_thickness, sky_occlusion) nudge a ray's
+// start a thousandth of the way, off the edges and creases the vertex lies on.
+std::vector<glm::vec3> fan_centroids(const std::vector<glm::vec3>& positions,
+                                     const std::vector<std::uint32_t>& indices);
+
 }  // namespace sss::reference

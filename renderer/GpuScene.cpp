@@ -275,9 +275,9 @@ double GpuScene::ensure_sky_occlusion(const vk::Context& context) {
     if (!mesh.vertices) continue;
     // A mesh without a whole triangle still draws its indices: zeros, so that binding 1
     // never keeps the previous instance's (shorter) buffer.
-    const std::vector<reference::SkyTransfer> t =
-        transfers[i].empty() ? std::vector<reference::SkyTransfer>(geometry_.meshes[instances_[i].mesh].positions.size())
-                             : transfers[i];
+    const std::vector<reference::SkyTransfer> zeros(
+        transfers[i].empty() ? geometry_.meshes[instances_[i].mesh].positions.size() : 0);
+    const std::vector<reference::SkyTransfer>& t = transfers[i].empty() ? zeros : transfers[i];
     const std::string& name = instances_[i].node;
     sky[i].vertices = device_buffer(context, std::span<const reference::SkyTransfer>(t),
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, name + " sky transfer");
